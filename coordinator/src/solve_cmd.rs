@@ -1,0 +1,24 @@
+//! `fixplan solve CASE.json`: one part, SPEC Appendix A in and out.
+
+use fixplan_core::{solve_case, Case, SolveResult, Status};
+use std::path::Path;
+
+/// Reads and solves a case file. Every failure becomes an `invalid` result
+/// naming the file and the problem, never a panic.
+pub fn solve_file(path: &Path) -> SolveResult {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return SolveResult::invalid(format!("{}: cannot read: {e}", path.display())),
+    };
+    let case: Case = match serde_json::from_str(&text) {
+        Ok(c) => c,
+        Err(e) => return SolveResult::invalid(format!("{}: {e}", path.display())),
+    };
+    let mut res = solve_case(&case);
+    if res.status == Status::Invalid {
+        if let Some(m) = res.error.take() {
+            res.error = Some(format!("{}: {m}", path.display()));
+        }
+    }
+    res
+}

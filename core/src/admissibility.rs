@@ -1,0 +1,112 @@
+//! Collision and clearance of the clamp body and plunger against the posed
+//! part, the access regions and the locators (SPEC section 4, admissible
+//! fixture). Reuses buffers across candidates: the inner loop allocates
+//! nothing once warm.
+
+use crate::geometry::{polygon_clearance, polygon_disk_clearance, rot90, rot90i, v2, Aabb, V2, BORDERLINE, EPS};
+use crate::prepare::{ClampGeom, PreparedPart};
+use crate::setups::{lattice_point, Setup};
+
+/// Per-thread buffers.
+#[derive(Debug, Default, Clone)]
+pub struct Scratch {
+    posed: bool,
+    part: Vec<V2>,
+    part_box: Option<Aabb>,
+    access: Vec<Vec<V2>>,
+    access_box: Vec<Aabb>,
+    body: Vec<V2>,
+    plunger: Vec<V2>,
+    pts: Vec<[i64; 2]>,
+}
+
+impl Scratch {
+    /// Forget the posed part: a new setup begins.
+    pub fn reset_pose(&mut self) {
+        self.posed = false;
+    }
+
+    fn ensure_posed(&mut self, prep: &PreparedPart, setup: &Setup) {
+        if self.posed {
+            return;
+        }
+        let pose = setup.pose;
+        self.part.clear();
+        self.part.extend(prep.part.iter().map(|&p| pose.apply(p)));
+        self.part_box = Some(Aabb::of(&self.part));
+        self.access.resize(prep.access.len(), Vec::new());
+        self.access_box.clear();
+        for (dst, src) in self.access.iter_mut().zip(&prep.access) {
+            dst.clear();
+            dst.extend(src.iter().map(|&p| pose.apply(p)));
+            self.access_box.push(Aabb::of(dst));
+        }
+        self.posed = true;
+    }
+
+    /// Smallest clearance margin of body and plunger (rotation `k`, mount
+    /// `m`, extension `t`) against part, access regions and locators, or
+    /// `None` when one is closer than `min_clearance` or overlaps.
+    pub fn clamp_clear(
+        &mut self,
+        prep: &PreparedPart,
+        setup: &Setup,
+        k: u8,
+        m: [i64; 2],
+        t: f64,
+    ) -> Option<f64> {
+        self.ensure_posed(prep, setup);
+        let mv = lattice_point(m);
+        let c = &prep.clamp;
+        self.body.clear();
+        self.body.extend(c.body.iter().map(|&p| rot90(k, p) + mv));
+        self.plunger.clear();
+        self.plunger
+            .extend(c.plunger.iter().map(|&p| rot90(k, p + v2(t, 0.0)) + mv));
+        let need = prep.min_clearance;
+        let locs = setup.locators.map(lattice_point);
+        let mut margin = f64::INFINITY;
+        for poly in [&self.body, &self.plunger] {
+            let bb = Aabb::of(poly);
+            let obstacles = std::iter::once((&self.part, self.part_box.as_ref()?))
+                .chain(self.access.iter().zip(self.access_box.iter()));
+            for (obst, obox) in obstacles {
+                let gap = bb.gap(obox);
+                if gap - need > BORDERLINE {
+                    margin = margin.min(gap - need);
+                    continue;
+                }
+                let d = polygon_clearance(poly, obst)?;
+                if d < need - EPS {
+                    return None;
+                }
+                margin = margin.min((d - need).abs());
+            }
+            for l in &locs {
+                let d = polygon_disk_clearance(poly, *l, prep.r)?;
+                if d < need - EPS {
+                    return None;
+                }
+                margin = margin.min((d - need).abs());
+            }
+        }
+        Some(margin)
+    }
+
+    /// Locators and clamp mount holes, for the plate fit.
+    pub fn plate_points(
+        &mut self,
+        locators: &[[i64; 2]; 3],
+        c: &ClampGeom,
+        k: u8,
+        m: [i64; 2],
+    ) -> &[[i64; 2]] {
+        self.pts.clear();
+        self.pts.extend_from_slice(locators);
+        self.pts.extend(c.holes.iter().map(|h| {
+            let p = rot90i(k, h.offset);
+            [p[0] + m[0], p[1] + m[1]]
+        }));
+        &self.pts
+    }
+}

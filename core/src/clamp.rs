@@ -1,0 +1,198 @@
+//! Clamp placement (SPEC section 4): candidate contacts where a plunger
+//! axis crosses a segment's form-closure interval, then the mount search by
+//! increasing extension with every admissibility test.
+
+use crate::admissibility::Scratch;
+use crate::form_closure::{wrench, LocatorWrenches};
+use crate::geometry::{rot90, rot90i, v2, V2, BORDERLINE, EPS};
+use crate::input::Pattern;
+use crate::metric::PartContact;
+use crate::prepare::PreparedPart;
+use crate::ranking::{Fixture, TopK};
+use crate::report::Counts;
+use crate::setups::{lattice_point, Setup};
+
+/// Counts and best fixtures of one piece of work.
+#[derive(Debug, Clone)]
+pub struct Accumulator {
+    pub counts: Counts,
+    pub top: TopK,
+}
+
+impl Accumulator {
+    pub fn new(top_k: usize) -> Self {
+        Accumulator { counts: Counts::default(), top: TopK::new(top_k) }
+    }
+}
+
+/// A candidate clamp contact.
+#[derive(Debug, Clone, Copy)]
+pub struct Candidate {
+    pub segment: usize,
+    pub rotation: u8,
+    /// Axis line index: `e_k . m` for every mount of this candidate.
+    pub line: i64,
+    /// Contact parameter and tip centre (plate frame).
+    pub s: f64,
+    pub q: V2,
+    /// Inward normal (plate frame).
+    pub f: V2,
+    /// Smallest decision margin so far (segment, lambda, angle).
+    pub margin: f64,
+}
+
+impl PreparedPart {
+    /// Counts a setup, and every candidate and admissible fixture it gives.
+    pub fn process_setup(&self, setup: &Setup, acc: &mut Accumulator, scratch: &mut Scratch) {
+        acc.counts.setups += 1;
+        let pose = setup.pose;
+        let locs = setup.locators.map(lattice_point);
+        let normals = setup.combo.map(|i| -pose.rotate(self.segments[i].n));
+        let ws = [0, 1, 2].map(|k| wrench(locs[k], normals[k]));
+        let Some(lw) = LocatorWrenches::new(ws) else {
+            return;
+        };
+        let base_margin = setup.margin.min(lw.det.abs() - EPS);
+        scratch.reset_pose();
+        for (j, seg) in self.segments.iter().enumerate() {
+            let f = -pose.rotate(seg.n);
+            let mut cos_ok = [None; 4];
+            for (k, slot) in cos_ok.iter_mut().enumerate() {
+                let c = rot90(k as u8, v2(1.0, 0.0)).dot(&f);
+                if c > EPS && c >= self.cos_max_angle - EPS {
+                    *slot = Some((c - self.cos_max_angle.max(0.0)).abs().min(c - EPS));
+                }
+            }
+            if cos_ok.iter().all(Option::is_none) {
+                continue;
+            }
+            let q0 = pose.apply(seg.origin);
+            let dq = pose.rotate(seg.u);
+            let Some((lo, hi)) = lw.clamp_interval(q0, dq, f, seg.s0 + EPS, seg.s1 - EPS) else {
+                continue;
+            };
+            for (k, angle_margin) in cos_ok.iter().enumerate() {
+                let Some(angle_margin) = *angle_margin else { continue };
+                let k = k as u8;
+                let e = rot90(k, v2(0.0, 1.0));
+                let g0 = e.dot(&q0) - self.clamp.y0;
+                let g1 = e.dot(&dq);
+                let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
+                let (gmin, gmax) = (ga.min(gb), ga.max(gb));
+                let mut line = gmin.ceil() as i64;
+                while (line as f64) <= gmax {
+                    let s = (line as f64 - g0) / g1;
+                    if s > lo && s < hi {
+                        let q = q0 + dq * s;
+                        let lam = lw.lambda(&wrench(q, f));
+                        let lam_margin = lam.min() - EPS;
+                        acc.counts.candidates += 1;
+                        let cand = Candidate {
+                            segment: j,
+                            rotation: k,
+                            line,
+                            s,
+                            q,
+                            f,
+                            margin: base_margin
+                                .min(seg.inner_margin(s))
+                                .min(lam_margin)
+                                .min(angle_margin),
+                        };
+                        if let Some(fx) = self.admit(setup, &normals, &cand, scratch) {
+                            acc.counts.admissible += 1;
+                            acc.top.push(fx);
+                        }
+                    }
+                    line += 1;
+                }
+            }
+        }
+    }
+
+    /// The mount search of SPEC 4: mounts by increasing extension, the first
+    /// that passes every test. `None` if the candidate is not admissible.
+    pub fn admit(
+        &self,
+        setup: &Setup,
+        normals: &[V2; 3],
+        cand: &Candidate,
+        scratch: &mut Scratch,
+    ) -> Option<Fixture> {
+        let locs = setup.locators.map(lattice_point);
+        let mut margin = cand.margin;
+        for l in &locs {
+            let d = (cand.q - *l).norm() - 2.0 * self.r;
+            if d < -EPS {
+                return None;
+            }
+            margin = margin.min(d.abs());
+        }
+        let k = cand.rotation;
+        let d = rot90(k, v2(1.0, 0.0));
+        let dq = d.dot(&cand.q);
+        let c = &self.clamp;
+        let m_hi = (dq - c.t_min + EPS).floor() as i64;
+        let m_lo = (dq - c.t_max - EPS).ceil() as i64;
+        let di = rot90i(k, [1, 0]);
+        let ei = rot90i(k, [0, 1]);
+        let mut along = m_hi;
+        while along >= m_lo {
+            let t = dq - along as f64;
+            let m = [
+                cand.line * ei[0] + along * di[0],
+                cand.line * ei[1] + along * di[1],
+            ];
+            along -= 1;
+            let holes_ok = c.holes.iter().all(|h| {
+                let p = rot90i(k, h.offset);
+                let p = [p[0] + m[0], p[1] + m[1]];
+                !setup.locators.contains(&p)
+                    && (self.pattern == Pattern::Square || h.kind.accepts(p[0], p[1]))
+            });
+            if !holes_ok {
+                continue;
+            }
+            let Some(clear_margin) = scratch.clamp_clear(self, setup, k, m, t) else {
+                continue;
+            };
+            let pts = scratch.plate_points(&setup.locators, c, k, m);
+            let Some(placement) = crate::plate::fit(pts, self.cols, self.rows, self.pattern) else {
+                continue;
+            };
+            let t_margin = (t - c.t_min).min(c.t_max - t).abs();
+            let margin = margin.min(clear_margin).min(t_margin);
+            let pose = setup.pose;
+            let contacts = [0, 1, 2, 3].map(|i| {
+                let (q, seg) = if i < 3 {
+                    (locs[i], setup.combo[i])
+                } else {
+                    (cand.q, cand.segment)
+                };
+                PartContact { q: pose.inverse_apply(q), f: -self.segments[seg].n }
+            });
+            let score = self.metric.score(&contacts).unwrap_or(f64::INFINITY);
+            return Some(Fixture {
+                score,
+                segments: setup.combo,
+                locators: setup.locators,
+                theta: pose.theta,
+                t: [pose.t.x, pose.t.y],
+                clamp_segment: cand.segment,
+                rotation: k,
+                mount: m,
+                extension: t,
+                contact: [cand.q.x, cand.q.y],
+                normals: [
+                    [normals[0].x, normals[0].y],
+                    [normals[1].x, normals[1].y],
+                    [normals[2].x, normals[2].y],
+                    [cand.f.x, cand.f.y],
+                ],
+                borderline: margin < BORDERLINE,
+                placement,
+            });
+        }
+        None
+    }
+}

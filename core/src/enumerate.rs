@@ -1,0 +1,100 @@
+//! The sharding API: enumerate a range of combination indices into a partial
+//! result, and merge partial results. Any split of the range merges to the
+//! same bytes as one run, because counts add and the ranking is a total
+//! order on fixtures that are each computed from their own inputs only.
+
+use crate::admissibility::Scratch;
+use crate::clamp::Accumulator;
+use crate::combinations::{combination_count, combinations_in};
+use crate::prepare::PreparedPart;
+use crate::ranking::{merge_ranked, Fixture};
+use crate::report::Counts;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::ops::Range;
+
+/// Counts and top-k of a piece of one part's combination space.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PartialResult {
+    pub range: Range<u64>,
+    pub counts: Counts,
+    /// Best first; at most `top_k` (all when `top_k == 0`).
+    pub fixtures: Vec<Fixture>,
+}
+
+/// Combinations per rayon task: small enough to balance, large enough that
+/// the merge is cheap.
+const CHUNK: u64 = 32;
+
+impl PreparedPart {
+    pub fn combination_count(&self) -> u64 {
+        combination_count(self.segments.len())
+    }
+
+    /// Enumerates the combinations with indices in `range` on this thread.
+    pub fn enumerate_range_serial(&self, range: Range<u64>) -> PartialResult {
+        let mut acc = Accumulator::new(self.top_k);
+        let mut scratch = Scratch::default();
+        let n = self.segments.len();
+        let end = range.end.min(self.combination_count());
+        for (_, combo) in combinations_in(n, range.start..end) {
+            acc.counts.combinations += 1;
+            self.setups_of_combination(combo, |s| self.process_setup(s, &mut acc, &mut scratch));
+        }
+        acc.counts.segments = n as u64;
+        PartialResult {
+            range,
+            counts: acc.counts,
+            fixtures: acc.top.into_sorted(),
+        }
+    }
+
+    /// Enumerates `range` on the rayon pool (same result as serial).
+    pub fn enumerate_range(&self, range: Range<u64>) -> PartialResult {
+        let end = range.end.min(self.combination_count()).max(range.start);
+        let chunks: Vec<Range<u64>> = (range.start..end)
+            .step_by(CHUNK as usize)
+            .map(|s| s..(s + CHUNK).min(end))
+            .collect();
+        let parts: Vec<PartialResult> = chunks
+            .into_par_iter()
+            .map(|r| self.enumerate_range_serial(r))
+            .collect();
+        let mut out = merge(self.top_k, parts);
+        out.range = range;
+        out.counts.segments = self.segments.len() as u64;
+        out
+    }
+
+    /// The whole part.
+    pub fn enumerate_all(&self) -> PartialResult {
+        self.enumerate_range(0..self.combination_count())
+    }
+}
+
+/// Merges partial results of disjoint ranges of one part.
+pub fn merge(top_k: usize, parts: Vec<PartialResult>) -> PartialResult {
+    let mut counts = Counts::default();
+    let mut start = u64::MAX;
+    let mut end = 0;
+    let mut lists = Vec::with_capacity(parts.len());
+    for p in parts {
+        counts.add(&p.counts);
+        start = start.min(p.range.start);
+        end = end.max(p.range.end);
+        lists.push(p.fixtures);
+    }
+    if start > end {
+        start = end;
+    }
+    PartialResult {
+        range: start..end,
+        counts,
+        fixtures: merge_ranked(lists, top_k),
+    }
+}
+
+/// Convenience: the ranked fixtures of a part, best first.
+pub fn ranked(prep: &PreparedPart) -> Vec<Fixture> {
+    prep.enumerate_all().fixtures
+}

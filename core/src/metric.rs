@@ -1,0 +1,166 @@
+//! Quality metrics (SPEC section 6): lower is better.
+//!
+//! Both built-in metrics share one solve: with the four contact wrenches
+//! `w1..w4` in form closure, the forces that balance an applied wrench `p`
+//! form the ray `lambda0 + s mu`, `mu = (-W^-1 w4, 1) > 0`; the smallest
+//! non-negative point of the ray is the answer for `p`.
+
+use crate::geometry::{cross, V2};
+use nalgebra::{Matrix3, Vector3};
+
+/// A contact in the part frame: centre point (on the grown edge) and inward
+/// unit normal. The centre and the true contact point lie on the same line of
+/// action, so either gives the same wrench.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PartContact {
+    pub q: V2,
+    pub f: V2,
+}
+
+/// A fixture quality metric. Implementations must be deterministic functions
+/// of the contacts, so that shards agree bit for bit.
+pub trait Metric: Send + Sync + std::fmt::Debug {
+    /// Score of a fixture whose contacts (locators 1-3, then clamp) are given
+    /// in the part frame, in lattice units. `None` when the contacts do not
+    /// hold the part (never for a form-closed fixture).
+    fn score(&self, contacts: &[PartContact; 4]) -> Option<f64>;
+    fn name(&self) -> &str;
+}
+
+/// SPEC 6 default: the largest contact force needed to resist any unit
+/// wrench of a 256-point Fibonacci sphere, torques scaled by the radius of
+/// gyration so forces and torques weigh alike.
+#[derive(Debug, Clone)]
+pub struct MaxForceMetric {
+    centroid: V2,
+    rho: f64,
+    directions: Vec<Vector3<f64>>,
+}
+
+impl MaxForceMetric {
+    pub const DIRECTIONS: usize = 256;
+
+    pub fn new(centroid: V2, rho: f64) -> Self {
+        MaxForceMetric {
+            centroid,
+            rho,
+            directions: fibonacci_sphere(Self::DIRECTIONS),
+        }
+    }
+}
+
+/// SPEC 6's applied wrench directions.
+pub fn fibonacci_sphere(n: usize) -> Vec<Vector3<f64>> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
+            let phi = i as f64 * golden;
+            let r = (1.0 - z * z).sqrt();
+            Vector3::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect()
+}
+
+impl Metric for MaxForceMetric {
+    fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
+        let w = contacts.map(|c| {
+            Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho)
+        });
+        max_force(&w, &self.directions)
+    }
+
+    fn name(&self) -> &str {
+        "max-force"
+    }
+}
+
+/// User-given expected wrenches `(F_x, F_y, tau)` in physical units, `tau`
+/// about the part-frame origin.
+#[derive(Debug, Clone)]
+pub struct WrenchListMetric {
+    wrenches: Vec<Vector3<f64>>,
+    /// Catalogue units per lattice unit, to put contact points in physical units.
+    spacing: f64,
+}
+
+impl WrenchListMetric {
+    pub fn new(wrenches: &[[f64; 3]], spacing: f64) -> Self {
+        WrenchListMetric {
+            wrenches: wrenches.iter().map(|w| Vector3::new(w[0], w[1], w[2])).collect(),
+            spacing,
+        }
+    }
+}
+
+impl Metric for WrenchListMetric {
+    fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
+        let w = contacts.map(|c| Vector3::new(c.f.x, c.f.y, cross(c.q * self.spacing, c.f)));
+        max_force(&w, &self.wrenches)
+    }
+
+    fn name(&self) -> &str {
+        "wrench-list"
+    }
+}
+
+/// Largest contact force over the applied wrenches, in closed form.
+pub fn max_force(w: &[Vector3<f64>; 4], applied: &[Vector3<f64>]) -> Option<f64> {
+    let m = Matrix3::from_columns(&[w[0], w[1], w[2]]);
+    let inv = m.try_inverse()?;
+    let l = -(inv * w[3]);
+    let mu = [l[0], l[1], l[2], 1.0];
+    if mu.iter().any(|&x| x <= 0.0) {
+        return None;
+    }
+    let mut worst = 0.0f64;
+    for p in applied {
+        // lambda0 = (-W^-1 p, 0)
+        let l0 = -(inv * p);
+        let l0 = [l0[0], l0[1], l0[2], 0.0];
+        let mut s = f64::NEG_INFINITY;
+        for i in 0..4 {
+            s = s.max(-l0[i] / mu[i]);
+        }
+        for i in 0..4 {
+            worst = worst.max(l0[i] + s * mu[i]);
+        }
+    }
+    Some(worst)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::v2;
+
+    #[test]
+    fn fibonacci_directions_are_unit_and_balanced() {
+        let d = fibonacci_sphere(256);
+        assert_eq!(d.len(), 256);
+        let sum: Vector3<f64> = d.iter().sum();
+        assert!(d.iter().all(|x| (x.norm() - 1.0).abs() < 1e-12));
+        assert!(sum.norm() < 1.0, "{sum}");
+        assert!((d[0].z - (1.0 - 1.0 / 256.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn square_held_at_four_sides() {
+        // Unit square, one contact per side, placed so that two turn it
+        // each way (form closure).
+        let c = [
+            PartContact { q: v2(0.3, 0.0), f: v2(0.0, 1.0) },
+            PartContact { q: v2(1.0, 0.3), f: v2(-1.0, 0.0) },
+            PartContact { q: v2(0.3, 1.0), f: v2(0.0, -1.0) },
+            PartContact { q: v2(0.0, 0.3), f: v2(1.0, 0.0) },
+        ];
+        let m = MaxForceMetric::new(v2(0.5, 0.5), (1.0f64 / 6.0).sqrt());
+        let s = m.score(&c).unwrap();
+        assert!(s.is_finite() && s > 0.5, "{s}");
+        // A pure +x force of magnitude 1 needs at least a force of 1 at the
+        // contact pushing -x.
+        let wl = WrenchListMetric::new(&[[1.0, 0.0, 0.0]], 1.0);
+        let f = wl.score(&c).unwrap();
+        assert!(f >= 1.0 - 1e-12, "{f}");
+    }
+}

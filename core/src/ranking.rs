@@ -1,0 +1,120 @@
+//! Fixtures, their canonical order, and top-k that merges the same however
+//! the work was split (SPEC section 6, "Ranking").
+
+use crate::plate::Placement;
+use serde::{Deserialize, Serialize};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// One admissible fixture in lattice units, canonical frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Fixture {
+    pub score: f64,
+    pub segments: [usize; 3],
+    /// `L1 = (0, 0)`, `L2` in `Q`, `L3`.
+    pub locators: [[i64; 2]; 3],
+    /// Part pose: plate point = `R(theta) p + t`, theta in `[0, 2 pi)`.
+    pub theta: f64,
+    pub t: [f64; 2],
+    pub clamp_segment: usize,
+    /// Quarter turns of the clamp frame.
+    pub rotation: u8,
+    pub mount: [i64; 2],
+    pub extension: f64,
+    /// Clamp tip centre (on the grown segment).
+    pub contact: [f64; 2],
+    /// Inward normals at locators 1-3 and the clamp.
+    pub normals: [[f64; 2]; 4],
+    pub borderline: bool,
+    pub placement: Placement,
+}
+
+impl Fixture {
+    /// SPEC's canonical key `(a, b, c, L2, L3, theta, clamp segment, k, m)`.
+    pub fn key_cmp(&self, o: &Fixture) -> Ordering {
+        self.segments
+            .cmp(&o.segments)
+            .then(self.locators[1].cmp(&o.locators[1]))
+            .then(self.locators[2].cmp(&o.locators[2]))
+            .then(self.theta.total_cmp(&o.theta))
+            .then(self.clamp_segment.cmp(&o.clamp_segment))
+            .then(self.rotation.cmp(&o.rotation))
+            .then(self.mount.cmp(&o.mount))
+    }
+
+    /// Ascending score, then the canonical key.
+    pub fn rank_cmp(&self, o: &Fixture) -> Ordering {
+        self.score.total_cmp(&o.score).then_with(|| self.key_cmp(o))
+    }
+}
+
+/// Heap entry ordered by rank (worst on top of the max-heap).
+#[derive(Debug, Clone)]
+struct Ranked(Fixture);
+
+impl PartialEq for Ranked {
+    fn eq(&self, o: &Self) -> bool {
+        self.0.rank_cmp(&o.0) == Ordering::Equal
+    }
+}
+impl Eq for Ranked {}
+impl PartialOrd for Ranked {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Ranked {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.0.rank_cmp(&o.0)
+    }
+}
+
+/// The best `k` fixtures seen (all when `k == 0`).
+#[derive(Debug, Clone, Default)]
+pub struct TopK {
+    k: usize,
+    heap: BinaryHeap<Ranked>,
+}
+
+impl TopK {
+    pub fn new(k: usize) -> Self {
+        TopK { k, heap: BinaryHeap::new() }
+    }
+
+    /// Whether a fixture of this score could still enter (cheap pre-check
+    /// before building it).
+    pub fn would_accept(&self, score: f64) -> bool {
+        self.k == 0
+            || self.heap.len() < self.k
+            || self.heap.peek().is_some_and(|w| score <= w.0.score)
+    }
+
+    pub fn push(&mut self, f: Fixture) {
+        if self.k != 0 && self.heap.len() >= self.k {
+            if let Some(worst) = self.heap.peek() {
+                if f.rank_cmp(&worst.0) != Ordering::Less {
+                    return;
+                }
+            }
+            self.heap.pop();
+        }
+        self.heap.push(Ranked(f));
+    }
+
+    /// Sorted best first.
+    pub fn into_sorted(self) -> Vec<Fixture> {
+        let mut v: Vec<Fixture> = self.heap.into_iter().map(|r| r.0).collect();
+        v.sort_by(Fixture::rank_cmp);
+        v
+    }
+}
+
+/// Merges ranked lists into the best `k` (all when `k == 0`), sorted.
+pub fn merge_ranked(mut lists: Vec<Vec<Fixture>>, k: usize) -> Vec<Fixture> {
+    let mut all: Vec<Fixture> = lists.drain(..).flatten().collect();
+    all.sort_by(Fixture::rank_cmp);
+    if k != 0 {
+        all.truncate(k);
+    }
+    all
+}

@@ -1,0 +1,165 @@
+//! Locator setups (SPEC section 3): for a segment combination, the lattice
+//! points for locators 2 and 3 and the part poses that touch all three.
+//!
+//! Pruning: `L2` must lie in the annulus of distances between segments a and
+//! b, `L3` in the annuli (a,c) around `L1` and (b,c) around `L2`. Only
+//! lattice points that cannot give a setup are skipped, so the set found is
+//! exactly SPEC's; the brute-force test enumerates without pruning.
+
+use crate::geometry::{v2, V2};
+use crate::input::Pattern;
+use crate::pose::{solve_poses, Line, Pose};
+use crate::prepare::{PairBounds, PreparedPart};
+
+/// Slack on annulus bounds, far above rounding and far below a lattice step.
+const ANNULUS_SLACK: f64 = 1e-7;
+
+/// A locator setup: combination, canonical locators and pose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setup {
+    pub combo: [usize; 3],
+    pub locators: [[i64; 2]; 3],
+    pub pose: Pose,
+    /// Contact parameters of the three locators on their segments.
+    pub s: [f64; 3],
+    /// Smallest distance of a contact from its segment's ends, minus eps.
+    pub margin: f64,
+}
+
+impl PreparedPart {
+    /// Whether `p` is a lattice offset allowed for locators 2 and 3 (grid step
+    /// and, on alternating plates, dowel-hole parity).
+    #[inline]
+    pub fn locator_point_allowed(&self, p: [i64; 2]) -> bool {
+        p[0].rem_euclid(self.grid_step) == 0
+            && p[1].rem_euclid(self.grid_step) == 0
+            && (self.pattern == Pattern::Square || (p[0] + p[1]).rem_euclid(2) == 0)
+    }
+
+    /// Setups of one combination with the given `L2`, `L3` (`L1` = origin),
+    /// with no pruning: the building block that pruned and brute-force
+    /// enumerations share.
+    pub fn setups_for_locators(
+        &self,
+        combo: [usize; 3],
+        l2: [i64; 2],
+        l3: [i64; 2],
+        mut visit: impl FnMut(&Setup),
+    ) {
+        if l3 == [0, 0] || l3 == l2 || l2 == [0, 0] {
+            return;
+        }
+        let segs = combo.map(|i| &self.segments[i]);
+        let lines = segs.map(|s| Line { n: s.n, c: s.c });
+        let locs_i = [[0, 0], l2, l3];
+        let locs = locs_i.map(|p| v2(p[0] as f64, p[1] as f64));
+        let (poses, count) = solve_poses(&lines, &locs);
+        for pose in &poses[..count] {
+            let mut s = [0.0; 3];
+            let mut margin = f64::INFINITY;
+            let mut ok = true;
+            for k in 0..3 {
+                let p = pose.inverse_apply(locs[k]);
+                s[k] = segs[k].u.dot(&(p - segs[k].origin));
+                let m = segs[k].inner_margin(s[k]);
+                if m <= 0.0 {
+                    ok = false;
+                    break;
+                }
+                margin = margin.min(m);
+            }
+            // Locators on one segment are numbered along it.
+            if !ok || (combo[0] == combo[1] && s[0] >= s[1]) || (combo[1] == combo[2] && s[1] >= s[2])
+            {
+                continue;
+            }
+            visit(&Setup { combo, locators: locs_i, pose: *pose, s, margin });
+        }
+    }
+
+    /// Every setup of one combination, pruned by annuli.
+    pub fn setups_of_combination(&self, combo: [usize; 3], mut visit: impl FnMut(&Setup)) {
+        let [a, b, c] = combo;
+        let ab = self.pair(a, b);
+        let ac = self.pair(a, c);
+        let bc = self.pair(b, c);
+        let g = self.grid_step;
+        let (lo2, hi2) = annulus_sq(ab);
+        let imax = ab.dmax.floor() as i64 + 1;
+        // L2 in Q = {i > 0, j >= 0}.
+        let mut i = g;
+        while i <= imax {
+            let mut j = 0;
+            while j <= imax {
+                let l2 = [i, j];
+                let d2 = (i * i + j * j) as f64;
+                if d2 > hi2 {
+                    break;
+                }
+                if d2 >= lo2 && self.locator_point_allowed(l2) {
+                    self.third_locators(combo, l2, ac, bc, &mut visit);
+                }
+                j += g;
+            }
+            i += g;
+        }
+    }
+
+    fn third_locators(
+        &self,
+        combo: [usize; 3],
+        l2: [i64; 2],
+        ac: PairBounds,
+        bc: PairBounds,
+        visit: &mut impl FnMut(&Setup),
+    ) {
+        let g = self.grid_step;
+        let (lo_a, hi_a) = annulus_sq(ac);
+        let (lo_b, hi_b) = annulus_sq(bc);
+        let p2 = v2(l2[0] as f64, l2[1] as f64);
+        let x_lo = (-ac.dmax).max(p2.x - bc.dmax) - 1.0;
+        let x_hi = ac.dmax.min(p2.x + bc.dmax) + 1.0;
+        let mut x = (x_lo / g as f64).floor() as i64 * g;
+        while (x as f64) <= x_hi {
+            let xf = x as f64;
+            // y range from the outer circle around the origin and around L2.
+            let ra = hi_a - xf * xf;
+            let rb = hi_b - (xf - p2.x) * (xf - p2.x);
+            if ra >= 0.0 && rb >= 0.0 {
+                let (ya, yb) = (ra.sqrt(), rb.sqrt());
+                let y_lo = (-ya).max(p2.y - yb);
+                let y_hi = ya.min(p2.y + yb);
+                let mut y = (y_lo / g as f64).floor() as i64 * g;
+                while (y as f64) <= y_hi {
+                    let l3 = [x, y];
+                    let da = (x * x + y * y) as f64;
+                    let q = v2(xf, y as f64) - p2;
+                    let db = q.norm_squared();
+                    if da >= lo_a
+                        && da <= hi_a
+                        && db >= lo_b
+                        && db <= hi_b
+                        && self.locator_point_allowed(l3)
+                    {
+                        self.setups_for_locators(combo, l2, l3, &mut *visit);
+                    }
+                    y += g;
+                }
+            }
+            x += g;
+        }
+    }
+}
+
+/// Squared annulus bounds with slack.
+fn annulus_sq(p: PairBounds) -> (f64, f64) {
+    let lo = (p.dmin - ANNULUS_SLACK).max(0.0);
+    let hi = p.dmax + ANNULUS_SLACK;
+    (lo * lo, hi * hi)
+}
+
+/// Plate position of a lattice point.
+#[inline]
+pub fn lattice_point(p: [i64; 2]) -> V2 {
+    v2(p[0] as f64, p[1] as f64)
+}

@@ -1,0 +1,87 @@
+//! One part end to end, and the conversion of lattice-unit fixtures into the
+//! reported form (catalogue unit, degrees, plate placement).
+
+use crate::enumerate::PartialResult;
+use crate::input::{Case, Kit, Params, Part, Units};
+use crate::prepare::{prepare, PreparedPart};
+use crate::ranking::Fixture;
+use crate::report::{
+    ClampReport, ContactReport, FixtureReport, PlacementReport, PoseReport, SolveResult, Status,
+};
+
+/// Enumerates a part completely; invalid input becomes `status: invalid`.
+pub fn solve(part: &Part, kit: &Kit, params: &Params, units: Units) -> SolveResult {
+    match prepare(part, kit, params, units) {
+        Ok(prep) => {
+            let res = prep.enumerate_all();
+            report(&prep, &res)
+        }
+        Err(e) => SolveResult::invalid(e.to_string()),
+    }
+}
+
+pub fn solve_case(case: &Case) -> SolveResult {
+    solve(&case.part(), &case.kit, &case.params, case.units)
+}
+
+/// The reported result of a (merged) partial result covering the whole part.
+pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
+    let fixtures: Vec<FixtureReport> = res
+        .fixtures
+        .iter()
+        .enumerate()
+        .map(|(i, f)| fixture_report(prep, f, i + 1))
+        .collect();
+    SolveResult {
+        status: if res.counts.admissible > 0 { Status::Ok } else { Status::NoFixture },
+        error: None,
+        counts: Some(res.counts),
+        fixtures,
+    }
+}
+
+pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureReport {
+    let l = prep.spacing;
+    let sc = |p: [f64; 2]| [p[0] * l, p[1] * l];
+    let mut contacts: Vec<ContactReport> = (0..3)
+        .map(|i| ContactReport {
+            point: [f.locators[i][0] as f64 * l, f.locators[i][1] as f64 * l],
+            normal: f.normals[i],
+        })
+        .collect();
+    contacts.push(ContactReport { point: sc(f.contact), normal: f.normals[3] });
+    let clamp_holes = prep
+        .clamp
+        .holes
+        .iter()
+        .map(|h| {
+            let p = crate::geometry::rot90i(f.rotation, h.offset);
+            f.placement.hole([p[0] + f.mount[0], p[1] + f.mount[1]])
+        })
+        .collect();
+    FixtureReport {
+        rank,
+        score: f.score,
+        segments: f.segments,
+        locators: f.locators,
+        pose: PoseReport {
+            x: f.t[0] * l,
+            y: f.t[1] * l,
+            theta_deg: f.theta.to_degrees(),
+        },
+        clamp: ClampReport {
+            segment: f.clamp_segment,
+            rotation_deg: 90 * f.rotation as u32,
+            mount: f.mount,
+            extension: f.extension * l,
+            contact: sc(f.contact),
+        },
+        borderline: f.borderline,
+        contacts,
+        placement: PlacementReport {
+            rotation_deg: 90 * f.placement.rotation as u32,
+            locators: f.locators.map(|p| f.placement.hole(p)),
+            clamp_holes,
+        },
+    }
+}
