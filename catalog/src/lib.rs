@@ -6,7 +6,7 @@
 //! - every part comes back on its own, valid or with its error, so one broken
 //!   part never stops the others.
 
-use fixplan_core::{Kit, Part, Units};
+use fixplan_core::{Kit, Params, Part, Units};
 use std::path::{Path, PathBuf};
 
 /// A catalogue, its parts in manifest order (directory: sorted by file name).
@@ -61,7 +61,16 @@ pub fn builtin_kit_names() -> &'static [&'static str] {
     &[]
 }
 
+/// A kit with its enumeration parameters (defaults filled in), all lengths
+/// in the catalogue's units.
+#[derive(Debug, Clone)]
+pub struct KitSpec {
+    pub name: String,
+    pub kit: Kit,
+    pub params: Params,
+}
+
 /// A built-in kit by name, or a kit TOML file; lengths converted to `units`.
-pub fn load_kit(_name_or_path: &str, _units: Units) -> Result<Kit, CatalogError> {
+pub fn load_kit(_name_or_path: &str, _units: Units) -> Result<KitSpec, CatalogError> {
     unimplemented!("catalog helper implements this")
 }
