@@ -173,6 +173,7 @@ impl Aabb {
 ///
 /// Overlap is decided by proper edge crossings and containment, so that
 /// `min_clearance = 0` can allow touching and forbid overlap as SPEC asks.
+/// Both polygons must be counter-clockwise.
 pub fn polygon_clearance(p: &[V2], q: &[V2]) -> Option<f64> {
     let (n, m) = (p.len(), q.len());
     let mut best2 = f64::INFINITY;
@@ -192,20 +193,28 @@ pub fn polygon_clearance(p: &[V2], q: &[V2]) -> Option<f64> {
         if point_in_polygon(p[0], q) || point_in_polygon(q[0], p) {
             return None;
         }
-    } else if vertex_deep_inside(p, q) || vertex_deep_inside(q, p) {
+    } else if probes_inside(p, q) || probes_inside(q, p) {
         return None;
     }
     Some(best)
 }
 
-fn vertex_deep_inside(p: &[V2], q: &[V2]) -> bool {
+/// Touching boundaries: the interiors overlap iff a point just inside `p`
+/// next to one of its edges (or a vertex) lies inside `q`. Needs CCW `p`.
+fn probes_inside(p: &[V2], q: &[V2]) -> bool {
+    const STEP: f64 = 1e-7;
     let n = p.len();
     (0..n).any(|i| {
-        let a = p[i];
-        let mid = (p[i] + p[(i + 1) % n]) * 0.5;
-        [a, mid]
-            .iter()
-            .any(|&x| point_in_polygon(x, q) && boundary_distance2(x, q) > EPS * EPS)
+        let (a, b) = (p[i], p[(i + 1) % n]);
+        let d = b - a;
+        let len = d.norm();
+        if len == 0.0 {
+            return false;
+        }
+        let inward = v2(-d.y, d.x) / len;
+        let mid = (a + b) * 0.5 + inward * STEP;
+        let deep = |x: V2| point_in_polygon(x, q) && boundary_distance2(x, q) > EPS * EPS;
+        deep(mid) || deep(a)
     })
 }
 

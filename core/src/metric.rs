@@ -150,8 +150,8 @@ mod tests {
         // each way (form closure).
         let c = [
             PartContact { q: v2(0.3, 0.0), f: v2(0.0, 1.0) },
-            PartContact { q: v2(1.0, 0.3), f: v2(-1.0, 0.0) },
-            PartContact { q: v2(0.3, 1.0), f: v2(0.0, -1.0) },
+            PartContact { q: v2(1.0, 0.7), f: v2(-1.0, 0.0) },
+            PartContact { q: v2(0.7, 1.0), f: v2(0.0, -1.0) },
             PartContact { q: v2(0.0, 0.3), f: v2(1.0, 0.0) },
         ];
         let m = MaxForceMetric::new(v2(0.5, 0.5), (1.0f64 / 6.0).sqrt());

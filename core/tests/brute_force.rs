@@ -1,0 +1,91 @@
+//! Completeness: the pruned enumeration finds exactly the fixtures that an
+//! enumeration of every lattice point within the part's diameter finds.
+
+mod support;
+
+use fixplan_core::input::Pattern;
+use proptest::prelude::*;
+use support::*;
+
+fn assert_same(p: &fixplan_core::PreparedPart, what: &str) {
+    let pruned = p.enumerate_all();
+    let brute = brute_force(p);
+    assert_eq!(pruned.counts, brute.counts, "{what}: counts differ");
+    assert_eq!(pruned.fixtures.len(), brute.fixtures.len(), "{what}");
+    for (a, b) in pruned.fixtures.iter().zip(&brute.fixtures) {
+        assert_eq!(a, b, "{what}: fixture differs");
+    }
+}
+
+#[test]
+fn hand_made_shapes_square_and_alternating_with_and_without_access() {
+    let access = vec![vec![[3.0, -1.5], [4.5, -1.5], [4.5, -0.35], [3.0, -0.35]]];
+    let mut total = 0;
+    for (name, shape) in [("L", l_shape()), ("T", t_shape()), ("notched", notched())] {
+        for pattern in [Pattern::Square, Pattern::Alternating] {
+            for acc in [&vec![], &access] {
+                for angle in [45.0, 90.0] {
+                    let p = prep(&part(&shape, acc), &kit(pattern), &params(angle, 1));
+                    let what = format!("{name} {pattern:?} access={} angle={angle}", acc.len());
+                    assert_same(&p, &what);
+                    total += p.enumerate_all().counts.admissible;
+                }
+            }
+        }
+    }
+    // The comparison means something only if fixtures exist.
+    assert!(total > 100, "only {total} fixtures over all hand-made cases");
+}
+
+#[test]
+fn access_constraints_remove_fixtures() {
+    let shape = notched();
+    let k = kit(Pattern::Square);
+    let free = prep(&part(&shape, &[]), &k, &params(90.0, 1)).enumerate_all();
+    let access = vec![vec![[-1.0, 1.0], [1.0, 1.0], [1.0, 2.5], [-1.0, 2.5]]];
+    let p = prep(&part(&shape, &access), &k, &params(90.0, 1));
+    let held = p.enumerate_all();
+    assert!(held.counts.admissible < free.counts.admissible);
+    assert_same(&p, "notched with a large access region");
+}
+
+fn polygon_strategy() -> impl Strategy<Value = (Vec<[f64; 2]>, bool, bool, f64)> {
+    (4usize..=12)
+        .prop_flat_map(|n| {
+            (
+                prop::collection::vec(0.0..std::f64::consts::TAU, n),
+                prop::collection::vec(1.2f64..3.0, n),
+                any::<bool>(),
+                any::<bool>(),
+                prop_oneof![Just(45.0), Just(90.0)],
+            )
+        })
+        .prop_map(|(a, r, alt, acc, ang)| (star([0.3, -0.2], &a, &r), alt, acc, ang))
+        .prop_filter("a valid polygon of at least 4 vertices", |(p, ..)| {
+            p.len() >= 4 && fixplan_core::polygon::validate_polygon(p).is_ok()
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("regressions"),
+        )),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn random_polygons_pruned_equals_brute_force((shape, alt, with_access, angle) in polygon_strategy()) {
+        let pattern = if alt { Pattern::Alternating } else { Pattern::Square };
+        let access = if with_access {
+            let c = shape[0];
+            vec![vec![[c[0] + 0.3, c[1] - 0.4], [c[0] + 1.2, c[1] - 0.1], [c[0] + 0.6, c[1] + 0.9]]]
+        } else {
+            vec![]
+        };
+        // A region may swallow the whole part's outline: that part is still valid.
+        let p = prep(&part(&shape, &access), &kit(pattern), &params(angle, 1));
+        assert_same(&p, &format!("{shape:?}"));
+    }
+}
