@@ -89,3 +89,20 @@ proptest! {
         assert_same(&p, &format!("{shape:?}"));
     }
 }
+
+/// The paper-like bench part with its three access regions, in inches on the
+/// 0.75 in alternating plate: a real case, not just random shapes.
+#[test]
+fn gluegun_bench_case_pruned_equals_brute_force() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/cases/gluegun-28.json");
+    let text = std::fs::read_to_string(path).expect("bench case in examples/cases");
+    let mut case: fixplan_core::Case = serde_json::from_str(&text).expect("valid case");
+    case.params.top_k = 0;
+    for angle in [45.0, 90.0] {
+        case.params.max_clamp_angle_deg = angle;
+        let p = fixplan_core::prepare(&case.part(), &case.kit, &case.params, case.units)
+            .expect("valid case");
+        assert_same(&p, &format!("gluegun at {angle} degrees"));
+        assert!(p.enumerate_all().counts.admissible > 10);
+    }
+}
