@@ -1,0 +1,73 @@
+//! Hot pieces and whole parts. `cargo bench -p fixplan-core`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use fixplan_core::form_closure::{wrench, LocatorWrenches};
+use fixplan_core::geometry::{polygon_clearance, v2};
+use fixplan_core::metric::{MaxForceMetric, Metric, PartContact};
+use fixplan_core::pose::{solve_poses, Line};
+use fixplan_core::{prepare, Case};
+use std::hint::black_box;
+
+fn case(name: &str) -> Case {
+    let path = format!("{}/../examples/cases/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).expect("bench case");
+    let mut c: Case = serde_json::from_str(&text).expect("valid case");
+    c.params.top_k = 0;
+    c
+}
+
+fn pieces(c: &mut Criterion) {
+    let lines = [
+        Line { n: v2(0., -1.), c: 0.5 },
+        Line { n: v2(1., 0.), c: 3.0 },
+        Line { n: v2(-0.6, 0.8), c: 1.0 },
+    ];
+    let locs = [v2(0., 0.), v2(3., 1.), v2(1., 4.)];
+    c.bench_function("pose_solution", |b| b.iter(|| solve_poses(black_box(&lines), black_box(&locs))));
+
+    let ws = [
+        wrench(v2(0.3, 0.0), v2(0.0, 1.0)),
+        wrench(v2(1.0, 0.3), v2(-1.0, 0.0)),
+        wrench(v2(0.7, 1.0), v2(0.0, -1.0)),
+    ];
+    let lw = LocatorWrenches::new(ws).expect("regular");
+    c.bench_function("clamp_interval", |b| {
+        b.iter(|| lw.clamp_interval(black_box(v2(0., 0.)), v2(0., 1.), v2(1., 0.), -10.0, 10.0))
+    });
+
+    let part: Vec<_> = (0..57)
+        .map(|i| {
+            let t = i as f64 / 57.0 * std::f64::consts::TAU;
+            let r = 4.0 + 0.5 * (5.0 * t).sin();
+            v2(r * t.cos(), r * t.sin())
+        })
+        .collect();
+    let body = vec![v2(6.0, -0.5), v2(8.0, -0.5), v2(8.0, 0.5), v2(6.0, 0.5)];
+    c.bench_function("clearance_body_vs_57_edges", |b| {
+        b.iter(|| polygon_clearance(black_box(&body), black_box(&part)))
+    });
+
+    let m = MaxForceMetric::new(v2(0.5, 0.5), 0.4);
+    let contacts = [
+        PartContact { q: v2(0.3, 0.0), f: v2(0.0, 1.0) },
+        PartContact { q: v2(1.0, 0.7), f: v2(-1.0, 0.0) },
+        PartContact { q: v2(0.7, 1.0), f: v2(0.0, -1.0) },
+        PartContact { q: v2(0.0, 0.3), f: v2(1.0, 0.0) },
+    ];
+    c.bench_function("metric_max_force_256", |b| b.iter(|| m.score(black_box(&contacts))));
+}
+
+fn whole_parts(c: &mut Criterion) {
+    let mut g = c.benchmark_group("whole_part_one_thread");
+    g.sample_size(20);
+    for name in ["rectangle-mm", "gluegun-28", "housing-57"] {
+        let k = case(name);
+        let p = prepare(&k.part(), &k.kit, &k.params, k.units).expect("valid case");
+        let n = p.combination_count();
+        g.bench_function(name, |b| b.iter(|| p.enumerate_range_serial(0..n)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, pieces, whole_parts);
+criterion_main!(benches);
