@@ -80,7 +80,11 @@ pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
         .unwrap_or((0, 1, 2));
     let det = cross(lines[i].n, lines[j].n);
     for (slot, &th) in out.iter_mut().zip(thetas.iter()).take(count) {
-        let theta = th.rem_euclid(std::f64::consts::TAU);
+        let mut theta = th.rem_euclid(std::f64::consts::TAU);
+        if theta >= std::f64::consts::TAU {
+            // rem_euclid of a tiny negative angle rounds up to 2 pi.
+            theta = 0.0;
+        }
         let (s, co) = theta.sin_cos();
         // n_k . w = n_k . (R^T L_k) - c_k
         let e = |k: usize| {
