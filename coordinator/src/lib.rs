@@ -1,3 +1,19 @@
 //! The fixplan command line and, later, the coordinator of distributed runs.
+//!
+//! - [`run`]: `fixplan run`, whole catalogues into an MCAP results file;
+//! - [`part_job`]: one part through the shard/merge path of the workers;
+//! - [`mcap_out`], [`results`], [`messages`]: writing and reading results;
+//! - [`scene`], [`draw`], [`render`]: Foxglove scenes and SVG pictures;
+//! - [`show`]: tables and JSON lines from a results file.
 
+pub mod draw;
+pub mod mcap_out;
+pub mod messages;
+pub mod part_job;
+pub mod progress;
+pub mod render;
+pub mod results;
+pub mod run;
+pub mod scene;
+pub mod show;
 pub mod solve_cmd;

@@ -1,5 +1,6 @@
 use anyhow::Result;
 use clap::{Parser, Subcommand};
+use fixplan_coordinator::run::{default_catalog, run, RunOptions};
 use fixplan_coordinator::solve_cmd::solve_file;
 use fixplan_core::Status;
 use std::path::PathBuf;
@@ -7,8 +8,12 @@ use std::path::PathBuf;
 /// Design modular fixtures for planar parts: every fixture of three round
 /// locators and one sliding clamp on a lattice plate that holds the part in
 /// form closure, ranked by quality (Brost & Goldberg 1996, as in SPEC.md).
+///
+/// Start with `fixplan run` (the bundled sample catalogue with the metric-25
+/// kit, into results.mcap), then `fixplan show results.mcap` and
+/// `fixplan render results.mcap --out pictures`.
 #[derive(Parser)]
-#[command(name = "fixplan", version, about, long_about = None)]
+#[command(name = "fixplan", version, about, long_about)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
@@ -27,6 +32,98 @@ enum Cmd {
         #[arg(long)]
         threads: Option<usize>,
     },
+    /// Design fixtures for every part of a catalogue and write the rankings
+    /// to an MCAP file.
+    ///
+    /// Every part is solved in this process (no server), split into shards
+    /// of its segment combinations exactly as distributed workers would do,
+    /// so the results are the same bytes whatever the threads or shards.
+    /// A broken part is reported as `invalid` with its message; the others
+    /// go on. Results stream to OUT.partial part by part and the file is
+    /// renamed to OUT when the run is complete; `--resume` continues a run
+    /// that was interrupted (even by SIGKILL) without redoing finished parts.
+    ///
+    /// Exit code 0 when the run completed (whatever the parts' outcomes).
+    Run {
+        /// The catalogue: a `catalog.toml` manifest or a directory of part
+        /// files. Default: the bundled sample catalogue
+        /// (examples/catalog/catalog.toml).
+        #[arg(long, value_name = "DIR|catalog.toml")]
+        catalog: Option<PathBuf>,
+        /// The kit: a built-in name (`paper-inch`, `metric-25`) or a kit TOML
+        /// file. Its lengths are read in the catalogue's unit.
+        #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
+        kit: String,
+        /// Fixtures kept per part (0 keeps all). Default: the kit's
+        /// parameters (10). A part's own `top_k` in the catalogue wins.
+        #[arg(long, value_name = "N")]
+        top_k: Option<usize>,
+        /// Threads (default: all cores). Results do not depend on it.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
+        /// The results file (MCAP).
+        #[arg(short, long, value_name = "FILE", default_value = "results.mcap")]
+        output: PathBuf,
+        /// Continue the interrupted run found in OUT.partial: its finished
+        /// parts are kept, the others are solved. The catalogue, kit and
+        /// parameters must be the same as when it started.
+        #[arg(long)]
+        resume: bool,
+        /// Segment combinations per shard (default: from a cost estimate,
+        /// about four shards per thread for big parts). Results do not
+        /// depend on it.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+        shard_size: Option<u64>,
+        /// No progress display and no summary table.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Print the ranked fixtures of a results file as tables.
+    Show {
+        /// A results file written by `fixplan run`.
+        results: PathBuf,
+        /// Only this part (its catalogue id).
+        #[arg(long, value_name = "ID")]
+        part: Option<String>,
+        /// Rows per part (0: every kept fixture).
+        #[arg(long, value_name = "N", default_value_t = 5)]
+        top: usize,
+    },
+    /// Print a results file as JSON lines, one per part:
+    /// `{"part": ID, "status": ..., "counts": ..., "fixtures": [...]}`
+    /// (the result format of SPEC Appendix A, plus contacts and plate
+    /// placement per fixture).
+    Export {
+        /// A results file written by `fixplan run`.
+        results: PathBuf,
+        /// JSON lines on standard output (the only format so far).
+        #[arg(long, required = true)]
+        json: bool,
+        /// Only this part (its catalogue id).
+        #[arg(long, value_name = "ID")]
+        part: Option<String>,
+    },
+    /// Draw the fixtures of a results file as SVG pictures, with an
+    /// `index.html` gallery of all parts.
+    ///
+    /// Each picture shows the plate holes around the fixture (dowel holes
+    /// filled, tapped holes dashed), the part in its pose, access regions
+    /// hatched, the locators L1-L3, the clamp body and its plunger at its
+    /// extension, the contact points with their inward normals, and the
+    /// score and plate holes in the caption.
+    Render {
+        /// A results file written by `fixplan run`.
+        results: PathBuf,
+        /// Directory for the SVGs and index.html (created if needed).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Only this part (its catalogue id).
+        #[arg(long, value_name = "ID")]
+        part: Option<String>,
+        /// Pictures per part, best first (0: every kept fixture).
+        #[arg(long, value_name = "N", default_value_t = 3)]
+        top: usize,
+    },
 }
 
 fn main() -> Result<()> {
@@ -34,13 +131,58 @@ fn main() -> Result<()> {
     match cli.cmd {
         Cmd::Solve { case, threads } => {
             if let Some(n) = threads {
-                rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?;
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build_global()?;
             }
             let res = solve_file(&case);
             println!("{}", serde_json::to_string_pretty(&res)?);
             if res.status == Status::Invalid {
                 std::process::exit(2);
             }
+        }
+        Cmd::Run {
+            catalog,
+            kit,
+            top_k,
+            threads,
+            output,
+            resume,
+            shard_size,
+            quiet,
+        } => {
+            let opts = RunOptions {
+                catalog: catalog.unwrap_or_else(default_catalog),
+                kit,
+                top_k,
+                threads,
+                output,
+                resume,
+                shard_size,
+                quiet,
+            };
+            run(&opts)?;
+        }
+        Cmd::Show { results, part, top } => {
+            let stdout = std::io::stdout();
+            fixplan_coordinator::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
+        }
+        Cmd::Export {
+            results,
+            json: _,
+            part,
+        } => {
+            let stdout = std::io::stdout();
+            fixplan_coordinator::show::export_json(&results, part.as_deref(), &mut stdout.lock())?;
+        }
+        Cmd::Render {
+            results,
+            out,
+            part,
+            top,
+        } => {
+            let n = fixplan_coordinator::render::render(&results, &out, part.as_deref(), top)?;
+            eprintln!("{n} pictures and index.html in {}", out.display());
         }
     }
     Ok(())

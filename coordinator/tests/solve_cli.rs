@@ -12,12 +12,23 @@ fn cases() -> std::path::PathBuf {
 
 #[test]
 fn solves_the_appendix_example() {
-    let out = fixplan().arg("solve").arg(cases().join("rectangle-mm.json")).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = fixplan()
+        .arg("solve")
+        .arg(cases().join("rectangle-mm.json"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "ok");
     let fixtures = v["fixtures"].as_array().unwrap();
-    assert!(!fixtures.is_empty() && fixtures.len() <= 3, "top_k 3 in the case file");
+    assert!(
+        !fixtures.is_empty() && fixtures.len() <= 3,
+        "top_k 3 in the case file"
+    );
     assert_eq!(fixtures[0]["rank"], 1);
     assert_eq!(fixtures[0]["locators"][0], serde_json::json!([0, 0]));
     let counts = &v["counts"];
@@ -39,7 +50,10 @@ fn solve_text(name: &str, text: &str) -> (i32, serde_json::Value) {
 #[test]
 fn invalid_inputs_say_what_and_where_without_panicking() {
     let base = std::fs::read_to_string(cases().join("rectangle-mm.json")).unwrap();
-    let bow = base.replace("[[0,0],[80,0],[80,50],[0,50]]", "[[0,0],[80,50],[80,0],[0,50]]");
+    let bow = base.replace(
+        "[[0,0],[80,0],[80,50],[0,50]]",
+        "[[0,0],[80,50],[80,0],[0,50]]",
+    );
     let (code, v) = solve_text("bowtie", &bow);
     assert_eq!(code, 2);
     assert_eq!(v["status"], "invalid");
@@ -49,7 +63,10 @@ fn invalid_inputs_say_what_and_where_without_panicking() {
     let big = base.replace("\"locator_radius\": 6.35", "\"locator_radius\": 15.0");
     let (code, v) = solve_text("radius", &big);
     assert_eq!(code, 2);
-    assert!(v["error"].as_str().unwrap().contains("locator_radius"), "{v}");
+    assert!(
+        v["error"].as_str().unwrap().contains("locator_radius"),
+        "{v}"
+    );
 
     let (code, v) = solve_text("garbage", "{\"units\": \"mm\", \"part\": 3");
     assert_eq!(code, 2);
@@ -65,7 +82,10 @@ fn invalid_inputs_say_what_and_where_without_panicking() {
 fn a_part_smaller_than_the_lattice_has_no_fixture() {
     let base = std::fs::read_to_string(cases().join("rectangle-mm.json")).unwrap();
     let tiny = base
-        .replace("[[0,0],[80,0],[80,50],[0,50]]", "[[0,0],[12,0],[12,8],[0,8]]")
+        .replace(
+            "[[0,0],[80,0],[80,50],[0,50]]",
+            "[[0,0],[12,0],[12,8],[0,8]]",
+        )
         .replace("\"access\": [[[10,40],[30,40],[30,60],[10,60]]],", "");
     let (code, v) = solve_text("tiny", &tiny);
     assert_eq!(code, 0, "{v}");

@@ -1,0 +1,175 @@
+//! The geometry of a fixture as it stands on the physical plate, in the
+//! catalogue's unit with hole `[0, 0]` at the origin: what the SVG pictures
+//! and the Foxglove scene both draw.
+
+use fixplan_core::{FixtureReport, Kit, Pattern, Point};
+
+/// A circle: centre and radius.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    pub c: Point,
+    pub r: f64,
+}
+
+/// A contact: where the part is touched and the inward normal there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    pub at: Point,
+    pub normal: Point,
+}
+
+/// A plate hole: position (plate frame) and whether it is a dowel hole.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hole {
+    pub col: i64,
+    pub row: i64,
+    pub at: Point,
+    pub dowel: bool,
+}
+
+/// Everything to draw for one fixture, in plate coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixtureDrawing {
+    pub part: Vec<Point>,
+    pub access: Vec<Vec<Point>>,
+    pub locators: [Circle; 3],
+    pub clamp_body: Vec<Point>,
+    pub plunger: Vec<Point>,
+    pub tip: Circle,
+    /// Locators 1-3 then the clamp.
+    pub contacts: Vec<Contact>,
+    /// Holes used by the clamp mount.
+    pub clamp_holes: Vec<Point>,
+}
+
+fn rot(theta: f64, p: Point) -> Point {
+    let (s, c) = theta.sin_cos();
+    [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+}
+
+fn rot90(k: u32, p: Point) -> Point {
+    match (k / 90) % 4 {
+        0 => p,
+        1 => [-p[1], p[0]],
+        2 => [-p[0], -p[1]],
+        _ => [p[1], -p[0]],
+    }
+}
+
+fn add(a: Point, b: Point) -> Point {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+/// The plate holes: `(col, row)` at `(col, row) * spacing`.
+pub fn plate_holes(kit: &Kit) -> impl Iterator<Item = Hole> + '_ {
+    let l = kit.spacing;
+    (0..kit.rows as i64).flat_map(move |row| {
+        (0..kit.cols as i64).map(move |col| Hole {
+            col,
+            row,
+            at: [col as f64 * l, row as f64 * l],
+            dowel: kit.pattern == Pattern::Square || (col + row).rem_euclid(2) == 0,
+        })
+    })
+}
+
+/// The plate rectangle (hole centres plus half a spacing all round).
+pub fn plate_outline(kit: &Kit) -> Vec<Point> {
+    let l = kit.spacing;
+    let (w, h) = ((kit.cols as f64 - 0.5) * l, (kit.rows as f64 - 0.5) * l);
+    vec![[-0.5 * l, -0.5 * l], [w, -0.5 * l], [w, h], [-0.5 * l, h]]
+}
+
+/// Places a reported fixture on the plate: the canonical frame is rotated
+/// by the placement rotation and moved so that locator 1 sits in its hole.
+pub fn fixture_drawing(
+    kit: &Kit,
+    outline: &[Point],
+    access: &[Vec<Point>],
+    f: &FixtureReport,
+) -> FixtureDrawing {
+    let l = kit.spacing;
+    let r = kit.locator_radius;
+    let off = f.placement.locators[0];
+    let off = [off[0] as f64 * l, off[1] as f64 * l];
+    let place = |p: Point| add(rot90(f.placement.rotation_deg, p), off);
+    let place_dir = |d: Point| rot90(f.placement.rotation_deg, d);
+    let theta = f.pose.theta_deg.to_radians();
+    let pose = |p: &Point| place(add(rot(theta, *p), [f.pose.x, f.pose.y]));
+    let k = f.clamp.rotation_deg;
+    let mount = [f.clamp.mount[0] as f64 * l, f.clamp.mount[1] as f64 * l];
+    let clamp_pt = |p: &Point, t: f64| place(add(mount, rot90(k, [p[0] + t, p[1]])));
+    let locators = f.locators.map(|p| Circle {
+        c: place([p[0] as f64 * l, p[1] as f64 * l]),
+        r,
+    });
+    let contacts = f
+        .contacts
+        .iter()
+        .map(|c| {
+            let n = place_dir(c.normal);
+            let centre = place(c.point);
+            Contact {
+                at: [centre[0] + r * n[0], centre[1] + r * n[1]],
+                normal: n,
+            }
+        })
+        .collect();
+    FixtureDrawing {
+        part: outline.iter().map(pose).collect(),
+        access: access
+            .iter()
+            .map(|a| a.iter().map(pose).collect())
+            .collect(),
+        locators,
+        clamp_body: kit.clamp.body.iter().map(|p| clamp_pt(p, 0.0)).collect(),
+        plunger: kit
+            .clamp
+            .plunger
+            .iter()
+            .map(|p| clamp_pt(p, f.clamp.extension))
+            .collect(),
+        tip: Circle {
+            c: place(f.clamp.contact),
+            r,
+        },
+        contacts,
+        clamp_holes: f
+            .placement
+            .clamp_holes
+            .iter()
+            .map(|h| [h[0] as f64 * l, h[1] as f64 * l])
+            .collect(),
+    }
+}
+
+/// Bounding box `[min, max]` of the points; `None` if there are none.
+pub fn bounds<'a>(pts: impl IntoIterator<Item = &'a Point>) -> Option<[Point; 2]> {
+    let mut it = pts
+        .into_iter()
+        .filter(|p| p[0].is_finite() && p[1].is_finite());
+    let first = *it.next()?;
+    let mut b = [first, first];
+    for p in it {
+        b[0] = [b[0][0].min(p[0]), b[0][1].min(p[1])];
+        b[1] = [b[1][0].max(p[0]), b[1][1].max(p[1])];
+    }
+    Some(b)
+}
+
+impl FixtureDrawing {
+    /// Bounding box of everything drawn (part, clamp, locators).
+    pub fn bounds(&self) -> [Point; 2] {
+        let mut pts: Vec<Point> = self.part.clone();
+        pts.extend(self.clamp_body.iter().copied());
+        pts.extend(self.plunger.iter().copied());
+        for a in &self.access {
+            pts.extend(a.iter().copied());
+        }
+        for c in self.locators.iter().chain(std::iter::once(&self.tip)) {
+            pts.push([c.c[0] - c.r, c.c[1] - c.r]);
+            pts.push([c.c[0] + c.r, c.c[1] + c.r]);
+        }
+        bounds(&pts).unwrap_or([[0.0, 0.0], [1.0, 1.0]])
+    }
+}

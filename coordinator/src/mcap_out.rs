@@ -1,0 +1,110 @@
+//! Writing a results file: MCAP, zstd chunks, summary and indexes. Every
+//! part is written as one chunk (three messages: part, fixtures, scene) and
+//! flushed, so a run killed at any moment leaves a file whose complete
+//! chunks hold whole parts; `--resume` reads them back.
+
+use crate::messages::*;
+use mcap::records::MessageHeader;
+use mcap::{Compression, WriteOptions, Writer};
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+
+#[derive(Debug, thiserror::Error)]
+pub enum OutError {
+    #[error("MCAP: {0}")]
+    Mcap(#[from] mcap::McapError),
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
+/// The three messages of one part, already serialised.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartMessages {
+    pub index: usize,
+    pub part: Vec<u8>,
+    pub fixtures: Vec<u8>,
+    pub scene: Vec<u8>,
+}
+
+pub struct ResultsWriter {
+    w: Writer<BufWriter<File>>,
+    run: u16,
+    part: u16,
+    fixtures: u16,
+    scene: u16,
+}
+
+/// The write options of every results file (deterministic: single-threaded
+/// zstd, chunks closed only at part boundaries).
+pub fn write_options() -> WriteOptions {
+    WriteOptions::new()
+        .compression(Some(Compression::Zstd))
+        .chunk_size(None)
+        .compression_threads(0)
+        .profile("")
+        .library(format!("fixplan {}", env!("CARGO_PKG_VERSION")))
+}
+
+impl ResultsWriter {
+    /// Starts a file: schemas, channels and the `/fixplan/run` message.
+    pub fn create(file: File, run: &RunMsg) -> Result<ResultsWriter, OutError> {
+        let mut w = write_options().create(BufWriter::new(file))?;
+        let none = BTreeMap::new();
+        let chan = |w: &mut Writer<_>, name: &str, schema: Vec<u8>, topic: &str| {
+            let s = w.add_schema(name, "jsonschema", &schema)?;
+            w.add_channel(s, topic, "json", &none)
+        };
+        let run_ch = chan(&mut w, SCHEMA_RUN, run_schema(), TOPIC_RUN)?;
+        let part = chan(&mut w, SCHEMA_PART, part_schema(), TOPIC_PART)?;
+        let fixtures = chan(&mut w, SCHEMA_FIXTURES, fixtures_schema(), TOPIC_FIXTURES)?;
+        let scene = chan(&mut w, SCHEMA_SCENE, scene_schema(), TOPIC_SCENE)?;
+        let mut out = ResultsWriter {
+            w,
+            run: run_ch,
+            part,
+            fixtures,
+            scene,
+        };
+        let data = serde_json::to_vec(run)?;
+        out.message(out.run, 0, 0, &data)?;
+        out.w.flush()?;
+        Ok(out)
+    }
+
+    fn message(
+        &mut self,
+        channel: u16,
+        seq: u32,
+        log_time: u64,
+        data: &[u8],
+    ) -> Result<(), OutError> {
+        let header = MessageHeader {
+            channel_id: channel,
+            sequence: seq,
+            log_time,
+            publish_time: log_time,
+        };
+        self.w.write_to_known_channel(&header, data)?;
+        Ok(())
+    }
+
+    /// Writes one part's messages as one chunk and flushes it to the file.
+    pub fn write_part(&mut self, m: &PartMessages) -> Result<(), OutError> {
+        let t = m.index as u64 * NS_PER_PART;
+        let seq = m.index as u32;
+        self.message(self.part, seq, t, &m.part)?;
+        self.message(self.fixtures, seq, t, &m.fixtures)?;
+        self.message(self.scene, seq, t, &m.scene)?;
+        self.w.flush()?;
+        Ok(())
+    }
+
+    /// Writes the summary and indexes; the file is complete after this.
+    pub fn finish(mut self) -> Result<File, OutError> {
+        self.w.finish()?;
+        let buf = self.w.into_inner();
+        buf.into_inner()
+            .map_err(|e| OutError::Mcap(mcap::McapError::Io(e.into_error())))
+    }
+}

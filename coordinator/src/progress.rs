@@ -1,0 +1,145 @@
+//! Progress of a run: a bar on a terminal (parts done/total, fixtures found,
+//! elapsed, ETA), one plain line per part otherwise; and the final summary.
+
+use crate::part_job::PartOutcome;
+use fixplan_core::Status;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::time::{Duration, Instant};
+
+/// Totals of a run, for the summary table.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Totals {
+    pub ok: usize,
+    pub no_fixture: usize,
+    pub invalid: usize,
+    /// Admissible fixtures found, over all parts.
+    pub admissible: u64,
+    /// Fixtures kept in the rankings (top-k per part).
+    pub kept: usize,
+    /// Parts taken from an interrupted run's file.
+    pub resumed: usize,
+}
+
+impl Totals {
+    pub fn parts(&self) -> usize {
+        self.ok + self.no_fixture + self.invalid
+    }
+
+    pub fn add(&mut self, status: Status, admissible: u64, kept: usize) {
+        match status {
+            Status::Ok => self.ok += 1,
+            Status::NoFixture => self.no_fixture += 1,
+            Status::Invalid => self.invalid += 1,
+        }
+        self.admissible += admissible;
+        self.kept += kept;
+    }
+}
+
+pub struct Progress {
+    bar: Option<ProgressBar>,
+    total: usize,
+    start: Instant,
+    pub totals: Totals,
+    quiet: bool,
+}
+
+impl Progress {
+    /// A bar if stderr is a terminal, plain lines otherwise (none if quiet).
+    pub fn new(total: usize, quiet: bool) -> Progress {
+        let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+            let b = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+            let style = ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} parts  {msg}  ETA {eta}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+            b.set_style(style);
+            b.enable_steady_tick(Duration::from_millis(200));
+            b
+        });
+        Progress {
+            bar,
+            total,
+            start: Instant::now(),
+            totals: Totals::default(),
+            quiet,
+        }
+    }
+
+    pub fn log(&self, line: &str) {
+        if self.quiet {
+            return;
+        }
+        match &self.bar {
+            Some(b) => b.println(line),
+            None => eprintln!("{line}"),
+        }
+    }
+
+    /// Parts already in the file when resuming.
+    pub fn resumed(&mut self, status: Status, admissible: u64, kept: usize) {
+        self.totals.add(status, admissible, kept);
+        self.totals.resumed += 1;
+        if let Some(b) = &self.bar {
+            b.inc(1);
+            b.reset_eta();
+        }
+    }
+
+    pub fn part_done(&mut self, o: &PartOutcome) {
+        self.totals.add(o.status, o.admissible, o.kept);
+        let done = self.totals.parts();
+        match &self.bar {
+            Some(b) => {
+                if o.status == Status::Invalid {
+                    b.println(format!("invalid: {}", o.error.as_deref().unwrap_or("?")));
+                }
+                b.set_message(format!("{} fixtures found", self.totals.admissible));
+                b.inc(1);
+            }
+            None if !self.quiet => {
+                let what = match o.status {
+                    Status::Ok => format!("ok, {} fixtures", o.admissible),
+                    Status::NoFixture => "no fixture".to_string(),
+                    Status::Invalid => format!("invalid: {}", o.error.as_deref().unwrap_or("?")),
+                };
+                eprintln!(
+                    "[{done}/{}] {}: {what}  ({} fixtures so far, {:.1} s)",
+                    self.total,
+                    o.id,
+                    self.totals.admissible,
+                    self.start.elapsed().as_secs_f64()
+                );
+            }
+            None => {}
+        }
+    }
+
+    pub fn finish(&self) {
+        if let Some(b) = &self.bar {
+            b.finish_and_clear();
+        }
+    }
+
+    pub fn elapsed(&self) -> Duration {
+        self.start.elapsed()
+    }
+}
+
+/// The summary table printed at the end of a run.
+pub fn summary_table(t: &Totals, elapsed: Duration, output: &str) -> String {
+    let mut s = String::new();
+    let row = |s: &mut String, k: &str, v: String| s.push_str(&format!("  {k:<22} {v:>12}\n"));
+    s.push_str(&format!("fixplan run: {} parts -> {output}\n", t.parts()));
+    row(&mut s, "ok", t.ok.to_string());
+    row(&mut s, "no_fixture", t.no_fixture.to_string());
+    row(&mut s, "invalid", t.invalid.to_string());
+    row(&mut s, "fixtures found", t.admissible.to_string());
+    row(&mut s, "fixtures kept (top-k)", t.kept.to_string());
+    if t.resumed > 0 {
+        row(&mut s, "resumed from file", t.resumed.to_string());
+    }
+    row(&mut s, "time", format!("{:.2} s", elapsed.as_secs_f64()));
+    s
+}

@@ -1,0 +1,415 @@
+//! `fixplan render`: one SVG per fixture (plate holes, part in its pose,
+//! access regions shaded, locators, clamp body and plunger at its extension,
+//! contact points and normals, score in the caption) and an `index.html`
+//! gallery of all parts.
+
+use crate::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
+use crate::messages::RunMsg;
+use crate::results::{PartRecord, ResultsFile};
+use anyhow::{bail, Context, Result};
+use fixplan_core::{FixtureReport, Point, Status};
+use std::fmt::Write as _;
+use std::path::Path;
+
+const WIDTH: f64 = 760.0;
+const PAD: f64 = 20.0;
+const CAPTION: f64 = 64.0;
+
+/// Maps plate coordinates (y up) to SVG pixels (y down).
+struct View {
+    x0: f64,
+    y1: f64,
+    k: f64,
+    w: f64,
+    h: f64,
+}
+
+impl View {
+    fn new(b: [Point; 2]) -> View {
+        let (dx, dy) = ((b[1][0] - b[0][0]).max(1e-9), (b[1][1] - b[0][1]).max(1e-9));
+        let k = (WIDTH - 2.0 * PAD) / dx.max(dy * 1.0);
+        let w = dx * k + 2.0 * PAD;
+        let h = dy * k + 2.0 * PAD;
+        View {
+            x0: b[0][0],
+            y1: b[1][1],
+            k,
+            w: w.max(WIDTH),
+            h,
+        }
+    }
+
+    fn p(&self, p: Point) -> (f64, f64) {
+        (
+            (p[0] - self.x0) * self.k + PAD,
+            (self.y1 - p[1]) * self.k + PAD,
+        )
+    }
+
+    fn points(&self, pts: &[Point]) -> String {
+        pts.iter()
+            .map(|&q| {
+                let (x, y) = self.p(q);
+                format!("{x:.2},{y:.2}")
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    fn polygon(&self, out: &mut String, pts: &[Point], style: &str) {
+        let _ = writeln!(out, r#"<polygon points="{}" {style}/>"#, self.points(pts));
+    }
+
+    fn circle(&self, out: &mut String, c: Point, r: f64, style: &str) {
+        let (x, y) = self.p(c);
+        let _ = writeln!(
+            out,
+            r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" {style}/>"#,
+            r * self.k
+        );
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn header(v: &View) -> String {
+    let h = v.h + CAPTION;
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.0} {h:.0}\" \
+         font-family=\"sans-serif\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
+         markerWidth=\"6\" markerHeight=\"6\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" \
+         fill=\"#138a36\"/></marker>\n<pattern id=\"hatch\" patternUnits=\"userSpaceOnUse\" width=\"8\" height=\"8\" \
+         patternTransform=\"rotate(45)\"><rect width=\"8\" height=\"8\" fill=\"#ffb347\" fill-opacity=\"0.35\"/>\
+         <line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"#e07b00\" stroke-width=\"2\"/></pattern></defs>\n\
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+        w = v.w
+    )
+}
+
+fn caption(out: &mut String, v: &View, lines: &[String]) {
+    for (i, l) in lines.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            r##"<text x="{PAD}" y="{:.1}" font-size="{}" fill="#222">{}</text>"##,
+            v.h + 18.0 + 20.0 * i as f64,
+            if i == 0 { 15 } else { 12 },
+            esc(l)
+        );
+    }
+}
+
+/// The SVG of one fixture of a part.
+pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
+    let kit = &run.kit;
+    let d: FixtureDrawing = fixture_drawing(kit, &rec.part.outline, &rec.part.access, f);
+    let l = kit.spacing;
+    let [lo, hi] = d.bounds();
+    let b = [
+        [lo[0] - 0.8 * l, lo[1] - 0.8 * l],
+        [hi[0] + 0.8 * l, hi[1] + 0.8 * l],
+    ];
+    let v = View::new(b);
+    let mut s = header(&v);
+    // Plate: edge and the holes in view (dowel filled, tapped as rings).
+    v.polygon(
+        &mut s,
+        &plate_outline(kit),
+        r##"fill="#eef0f3" stroke="#9aa3ad" stroke-width="1.5""##,
+    );
+    let hole_r = (0.18 * l).min(kit.locator_radius);
+    for h in plate_holes(kit) {
+        if h.at[0] < b[0][0] || h.at[0] > b[1][0] || h.at[1] < b[0][1] || h.at[1] > b[1][1] {
+            continue;
+        }
+        let style = if h.dowel {
+            r##"fill="#b9c0c8" stroke="#7d8893" stroke-width="1""##
+        } else {
+            r##"fill="none" stroke="#7d8893" stroke-width="1.2" stroke-dasharray="2,2""##
+        };
+        v.circle(&mut s, h.at, hole_r, style);
+    }
+    // Part and access regions.
+    v.polygon(
+        &mut s,
+        &d.part,
+        r##"fill="#cfe3f7" fill-opacity="0.9" stroke="#1f5fa8" stroke-width="2""##,
+    );
+    for a in &d.access {
+        v.polygon(
+            &mut s,
+            a,
+            r##"fill="url(#hatch)" stroke="#e07b00" stroke-width="1.5""##,
+        );
+    }
+    // Clamp: body, plunger at its extension, tip; mount holes marked.
+    v.polygon(
+        &mut s,
+        &d.clamp_body,
+        r##"fill="#d9443a" fill-opacity="0.22" stroke="#b0271f" stroke-width="1.5""##,
+    );
+    v.polygon(
+        &mut s,
+        &d.plunger,
+        r##"fill="#d9443a" fill-opacity="0.55" stroke="#b0271f" stroke-width="1.2""##,
+    );
+    v.circle(
+        &mut s,
+        d.tip.c,
+        d.tip.r,
+        r##"fill="#e8776f" stroke="#b0271f" stroke-width="1.5""##,
+    );
+    for h in &d.clamp_holes {
+        v.circle(&mut s, *h, hole_r * 0.6, r##"fill="#b0271f""##);
+    }
+    // Locators with labels.
+    for (i, c) in d.locators.iter().enumerate() {
+        v.circle(
+            &mut s,
+            c.c,
+            c.r,
+            r##"fill="#4a4f57" stroke="#1d2025" stroke-width="1.5""##,
+        );
+        let (x, y) = v.p(c.c);
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.1}" y="{:.1}" font-size="12" fill="white" text-anchor="middle">L{}</text>"#,
+            y + 4.0,
+            i + 1
+        );
+    }
+    // Contacts: points and inward normals.
+    for c in &d.contacts {
+        let (x, y) = v.p(c.at);
+        let e = [
+            c.at[0] + 0.6 * l * c.normal[0],
+            c.at[1] + 0.6 * l * c.normal[1],
+        ];
+        let (ex, ey) = v.p(e);
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x:.2}" y1="{y:.2}" x2="{ex:.2}" y2="{ey:.2}" stroke="#138a36" stroke-width="2" marker-end="url(#arrow)"/>"##
+        );
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{x:.2}" cy="{y:.2}" r="3.5" fill="#138a36"/>"##
+        );
+    }
+    let u = rec.part.units.label();
+    let holes = |h: &[[i64; 2]]| {
+        h.iter()
+            .map(|p| format!("({},{})", p[0], p[1]))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    caption(
+        &mut s,
+        &v,
+        &[
+            format!(
+                "{} — rank {} of {} — score {:.4}{}",
+                rec.part.id,
+                f.rank,
+                rec.fixtures.result.counts.map_or(0, |c| c.admissible),
+                f.score,
+                if f.borderline { " (borderline)" } else { "" }
+            ),
+            format!(
+                "pose ({:.2}, {:.2}) {u}, {:.2}°; clamp rot {}°, extension {:.2} {u}; plate holes: locators {} clamp {}{}",
+                f.pose.x,
+                f.pose.y,
+                f.pose.theta_deg,
+                f.clamp.rotation_deg,
+                f.clamp.extension,
+                holes(&f.placement.locators),
+                holes(&f.placement.clamp_holes),
+                if f.placement.rotation_deg != 0 { " (plate turned 90°)" } else { "" }
+            ),
+        ],
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The SVG of a part without a fixture: its outline and the reason.
+pub fn part_svg(rec: &PartRecord) -> String {
+    let p = &rec.part;
+    let mut pts = p.outline.clone();
+    for a in &p.access {
+        pts.extend(a.iter().copied());
+    }
+    let b = bounds(&pts).unwrap_or([[0.0, 0.0], [1.0, 1.0]]);
+    let m = 0.08 * (b[1][0] - b[0][0]).max(b[1][1] - b[0][1]).max(1e-9);
+    let v = View::new([[b[0][0] - m, b[0][1] - m], [b[1][0] + m, b[1][1] + m]]);
+    let mut s = header(&v);
+    if p.outline.len() >= 2 {
+        v.polygon(
+            &mut s,
+            &p.outline,
+            r##"fill="#cfe3f7" stroke="#1f5fa8" stroke-width="2""##,
+        );
+    }
+    for a in &p.access {
+        v.polygon(
+            &mut s,
+            a,
+            r##"fill="url(#hatch)" stroke="#e07b00" stroke-width="1.5""##,
+        );
+    }
+    let why = match p.status {
+        Status::NoFixture => "no fixture of this kit holds this part".to_string(),
+        _ => p.error.clone().unwrap_or_default(),
+    };
+    caption(
+        &mut s,
+        &v,
+        &[format!("{} — {:?}", p.id, p.status).to_lowercase(), why],
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
+/// A file-name-safe stem for part `index` with id `id`.
+pub fn stem(index: usize, id: &str) -> String {
+    let clean: String = id
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("{index:04}-{clean}")
+}
+
+/// Renders the file into `out_dir`; returns how many SVGs were written.
+pub fn render(path: &Path, out_dir: &Path, part: Option<&str>, top: usize) -> Result<usize> {
+    std::fs::create_dir_all(out_dir)
+        .with_context(|| format!("{}: cannot create", out_dir.display()))?;
+    let file = ResultsFile::open(path)?;
+    let mut html = String::new();
+    let mut count = 0;
+    let mut err: Option<anyhow::Error> = None;
+    let mut found = false;
+    let contents = file.for_each_part(|run, m| {
+        let rec = match PartRecord::decode(&m) {
+            Ok(r) => r,
+            Err(e) => {
+                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                return false;
+            }
+        };
+        if part.is_some_and(|p| p != rec.part.id) {
+            return true;
+        }
+        found = true;
+        match render_part(run, &rec, out_dir, top, &mut html) {
+            Ok(n) => count += n,
+            Err(e) => {
+                err = Some(e);
+                return false;
+            }
+        }
+        true
+    })?;
+    if let Some(e) = err {
+        return Err(e);
+    }
+    if let Some(p) = part {
+        if !found {
+            bail!("{}: no part {p:?}", path.display());
+        }
+    }
+    let run = &contents.run;
+    let page = format!(
+        "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>fixplan: {name}</title>\n<style>\
+         body{{font-family:sans-serif;margin:2em;color:#222}} .part{{margin-bottom:2.5em}} \
+         .fx img{{width:380px;border:1px solid #ccc;margin:4px}} .invalid{{color:#b0271f}} \
+         .no_fixture{{color:#8a6d00}} .ok{{color:#138a36}} code{{background:#f3f3f3}}</style></head><body>\n\
+         <h1>fixplan results: {name}</h1>\n<p>{parts} parts, kit <code>{kit}</code>, catalogue digest \
+         <code>{digest}</code>, fixplan {ver}.{incomplete}</p>\n{html}</body></html>\n",
+        name = esc(&run.catalog.name),
+        parts = contents.parts.len(),
+        kit = esc(&run.kit_name),
+        digest = esc(&run.catalog.digest),
+        ver = esc(&run.version),
+        incomplete = if contents.complete { "" } else { " <b>Incomplete file (interrupted run).</b>" },
+    );
+    let index = out_dir.join("index.html");
+    std::fs::write(&index, page).with_context(|| format!("{}: cannot write", index.display()))?;
+    Ok(count)
+}
+
+fn render_part(
+    run: &RunMsg,
+    rec: &PartRecord,
+    out_dir: &Path,
+    top: usize,
+    html: &mut String,
+) -> Result<usize> {
+    let p = &rec.part;
+    let st = stem(p.index, &p.id);
+    let status = match p.status {
+        Status::Ok => "ok",
+        Status::NoFixture => "no_fixture",
+        Status::Invalid => "invalid",
+    };
+    let _ = writeln!(
+        html,
+        "<div class=\"part\"><h2>{} <span class=\"{status}\">{status}</span></h2>",
+        esc(&p.id)
+    );
+    if let Some(c) = p.counts {
+        let _ = writeln!(
+            html,
+            "<p>{} segments, {} setups, {} candidates, <b>{}</b> admissible fixtures; {} kept.</p>",
+            c.segments, c.setups, c.candidates, c.admissible, p.fixtures
+        );
+    }
+    if let Some(e) = &p.error {
+        let _ = writeln!(html, "<p class=\"invalid\">{}</p>", esc(e));
+    }
+    let _ = write!(html, "<div class=\"fx\">");
+    let fx = &rec.fixtures.result.fixtures;
+    let mut n = 0;
+    if fx.is_empty() {
+        let name = format!("{st}.svg");
+        let f = out_dir.join(&name);
+        std::fs::write(&f, part_svg(rec))
+            .with_context(|| format!("{}: cannot write", f.display()))?;
+        let _ = write!(
+            html,
+            "<a href=\"{name}\"><img src=\"{name}\" alt=\"{}\"></a>",
+            esc(&p.id)
+        );
+        n += 1;
+    }
+    let take = if top == 0 {
+        fx.len()
+    } else {
+        top.min(fx.len())
+    };
+    for f in &fx[..take] {
+        let name = format!("{st}-rank{:02}.svg", f.rank);
+        let path = out_dir.join(&name);
+        std::fs::write(&path, fixture_svg(run, rec, f))
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+        let _ = write!(
+            html,
+            "<a href=\"{name}\"><img src=\"{name}\" alt=\"{} rank {}\" title=\"rank {} score {:.4}\"></a>",
+            esc(&p.id),
+            f.rank,
+            f.rank,
+            f.score
+        );
+        n += 1;
+    }
+    html.push_str("</div></div>\n");
+    Ok(n)
+}

@@ -1,0 +1,148 @@
+//! Reading a results file back, complete or cut short by a kill: the run
+//! message, then each part's messages grouped in catalogue order.
+
+use crate::mcap_out::PartMessages;
+use crate::messages::*;
+use mcap::read::Options;
+use mcap::MessageStream;
+use std::path::Path;
+
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    #[error("{path}: cannot read: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: not a fixplan results file: {message}")]
+    Format { path: String, message: String },
+}
+
+/// A results file read into memory.
+pub struct ResultsFile {
+    pub path: String,
+    bytes: Vec<u8>,
+}
+
+/// What a results file holds.
+pub struct Contents {
+    pub run: RunMsg,
+    /// Indices of the parts whose three messages are all present, in file
+    /// order.
+    pub parts: Vec<usize>,
+    /// False when the file has no summary (an interrupted run).
+    pub complete: bool,
+    /// Why reading stopped early, if it did (a truncated chunk).
+    pub truncated: Option<String>,
+}
+
+impl ResultsFile {
+    pub fn open(path: &Path) -> Result<ResultsFile, ReadError> {
+        let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Ok(ResultsFile {
+            path: path.display().to_string(),
+            bytes,
+        })
+    }
+
+    fn format_err(&self, message: impl Into<String>) -> ReadError {
+        ReadError::Format {
+            path: self.path.clone(),
+            message: message.into(),
+        }
+    }
+
+    /// Streams the messages; calls `on_part` for each part whose messages
+    /// are complete, in order. Stops quietly at a truncated record.
+    pub fn for_each_part(
+        &self,
+        mut on_part: impl FnMut(&RunMsg, PartMessages) -> bool,
+    ) -> Result<Contents, ReadError> {
+        let complete = matches!(mcap::Summary::read(&self.bytes), Ok(Some(_)));
+        let stream = MessageStream::new_with_options(&self.bytes, Options::IgnoreEndMagic.into())
+            .map_err(|e| self.format_err(e.to_string()))?;
+        let mut run: Option<RunMsg> = None;
+        let mut cur: Option<(usize, [Option<Vec<u8>>; 3])> = None;
+        let mut truncated = None;
+        let mut parts = Vec::new();
+        let mut keep_going = true;
+        let flush = |cur: &mut Option<(usize, [Option<Vec<u8>>; 3])>,
+                     run: &Option<RunMsg>,
+                     parts: &mut Vec<usize>,
+                     keep_going: &mut bool,
+                     on_part: &mut dyn FnMut(&RunMsg, PartMessages) -> bool| {
+            if let (Some((index, [Some(part), Some(fixtures), Some(scene)])), Some(run)) =
+                (cur.take(), run)
+            {
+                parts.push(index);
+                if *keep_going {
+                    *keep_going = on_part(
+                        run,
+                        PartMessages {
+                            index,
+                            part,
+                            fixtures,
+                            scene,
+                        },
+                    );
+                }
+            }
+        };
+        for msg in stream {
+            let msg = match msg {
+                Ok(m) => m,
+                Err(e) => {
+                    truncated = Some(e.to_string());
+                    break;
+                }
+            };
+            let slot = match msg.channel.topic.as_str() {
+                TOPIC_RUN => {
+                    let r: RunMsg = serde_json::from_slice(&msg.data)
+                        .map_err(|e| self.format_err(format!("{TOPIC_RUN}: {e}")))?;
+                    run = Some(r);
+                    continue;
+                }
+                TOPIC_PART => 0,
+                TOPIC_FIXTURES => 1,
+                TOPIC_SCENE => 2,
+                _ => continue,
+            };
+            let index = (msg.log_time / NS_PER_PART) as usize;
+            if cur.as_ref().map(|c| c.0) != Some(index) {
+                flush(&mut cur, &run, &mut parts, &mut keep_going, &mut on_part);
+                cur = Some((index, [None, None, None]));
+            }
+            if let Some(c) = cur.as_mut() {
+                c.1[slot] = Some(msg.data.into_owned());
+            }
+        }
+        flush(&mut cur, &run, &mut parts, &mut keep_going, &mut on_part);
+        let run = run.ok_or_else(|| self.format_err(format!("no {TOPIC_RUN} message")))?;
+        Ok(Contents {
+            run,
+            parts,
+            complete,
+            truncated,
+        })
+    }
+}
+
+/// The decoded messages of one part.
+pub struct PartRecord {
+    pub part: PartMsg,
+    pub fixtures: FixturesMsg,
+}
+
+impl PartRecord {
+    pub fn decode(m: &PartMessages) -> Result<PartRecord, serde_json::Error> {
+        Ok(PartRecord {
+            part: serde_json::from_slice(&m.part)?,
+            fixtures: serde_json::from_slice(&m.fixtures)?,
+        })
+    }
+}

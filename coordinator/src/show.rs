@@ -1,0 +1,173 @@
+//! `fixplan show` and `fixplan export`: a results file as terminal tables
+//! or as JSON lines.
+
+use crate::results::{PartRecord, ResultsFile};
+use anyhow::{bail, Result};
+use fixplan_core::Status;
+use std::io::Write;
+use std::path::Path;
+
+fn status_word(s: Status) -> &'static str {
+    match s {
+        Status::Ok => "ok",
+        Status::NoFixture => "no_fixture",
+        Status::Invalid => "invalid",
+    }
+}
+
+fn warn_incomplete(path: &Path, complete: bool, truncated: &Option<String>) {
+    if !complete {
+        eprintln!(
+            "warning: {} has no summary (an interrupted run?); showing the parts it holds{}",
+            path.display(),
+            truncated
+                .as_ref()
+                .map(|t| format!(" (stopped at: {t})"))
+                .unwrap_or_default()
+        );
+    }
+}
+
+/// Prints the ranking of each part (or of `part` only), `top` rows each
+/// (`0`: all kept fixtures).
+pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) -> Result<()> {
+    let file = ResultsFile::open(path)?;
+    let mut found = false;
+    let mut err = None;
+    let contents = file.for_each_part(|run, m| {
+        let rec = match PartRecord::decode(&m) {
+            Ok(r) => r,
+            Err(e) => {
+                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                return false;
+            }
+        };
+        if part.is_some_and(|p| p != rec.part.id) {
+            return true;
+        }
+        found = true;
+        if let Err(e) = print_part(run, &rec, top, out) {
+            err = Some(e);
+            return false;
+        }
+        true
+    })?;
+    if let Some(e) = err {
+        return Err(e);
+    }
+    warn_incomplete(path, contents.complete, &contents.truncated);
+    if let Some(p) = part {
+        if !found {
+            bail!("{}: no part {p:?}", path.display());
+        }
+    } else {
+        writeln!(
+            out,
+            "{} parts; kit {}; catalogue {} ({})",
+            contents.parts.len(),
+            contents.run.kit_name,
+            contents.run.catalog.name,
+            contents.run.catalog.digest
+        )?;
+    }
+    Ok(())
+}
+
+fn print_part(
+    run: &crate::messages::RunMsg,
+    rec: &PartRecord,
+    top: usize,
+    out: &mut dyn Write,
+) -> Result<()> {
+    let p = &rec.part;
+    let u = p.units.label();
+    write!(out, "== {} [{}]", p.id, status_word(p.status))?;
+    if let Some(c) = p.counts {
+        write!(
+            out,
+            "  segments {}  setups {}  candidates {}  admissible {}",
+            c.segments, c.setups, c.candidates, c.admissible
+        )?;
+    }
+    writeln!(out)?;
+    if let Some(e) = &p.error {
+        writeln!(out, "   {e}")?;
+    }
+    for w in &p.warnings {
+        writeln!(out, "   warning: {w}")?;
+    }
+    let fx = &rec.fixtures.result.fixtures;
+    if fx.is_empty() {
+        return Ok(());
+    }
+    let _ = run;
+    let pose = format!("pose x, y ({u}), theta");
+    writeln!(
+        out,
+        "  {:>4} {:>10}  {:<10} {:<24} {pose:>28}  {:<22} ext ({u})",
+        "rank", "score", "segments", "locators (L1 L2 L3)", "clamp seg/rot/mount",
+    )?;
+    let n = if top == 0 {
+        fx.len()
+    } else {
+        top.min(fx.len())
+    };
+    for f in &fx[..n] {
+        let locs = f
+            .locators
+            .iter()
+            .map(|l| format!("{},{}", l[0], l[1]))
+            .collect::<Vec<_>>()
+            .join(" ");
+        writeln!(
+            out,
+            "  {:>4} {:>10.4}  {:<10} {:<24} {:>28}  {:<22} {:.3}{}",
+            f.rank,
+            f.score,
+            format!("{},{},{}", f.segments[0], f.segments[1], f.segments[2]),
+            locs,
+            format!("{:.3}, {:.3}, {:.2}°", f.pose.x, f.pose.y, f.pose.theta_deg),
+            format!(
+                "{}/{}°/{},{}",
+                f.clamp.segment, f.clamp.rotation_deg, f.clamp.mount[0], f.clamp.mount[1]
+            ),
+            f.clamp.extension,
+            if f.borderline { "  (borderline)" } else { "" }
+        )?;
+    }
+    if n < fx.len() {
+        writeln!(out, "  ... {} more kept (--top 0 shows all)", fx.len() - n)?;
+    }
+    Ok(())
+}
+
+/// Prints one JSON line per part: `{"part": ID, ...SPEC Appendix A result}`.
+pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Result<()> {
+    let file = ResultsFile::open(path)?;
+    let mut err = None;
+    let contents = file.for_each_part(|_, m| {
+        if let Some(p) = part {
+            match serde_json::from_slice::<crate::messages::FixturesMsg>(&m.fixtures) {
+                Ok(f) if f.part != p => return true,
+                Ok(_) => {}
+                Err(e) => {
+                    err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                    return false;
+                }
+            }
+        }
+        let r = out
+            .write_all(&m.fixtures)
+            .and_then(|_| out.write_all(b"\n"));
+        if let Err(e) = r {
+            err = Some(e.into());
+            return false;
+        }
+        true
+    })?;
+    if let Some(e) = err {
+        return Err(e);
+    }
+    warn_incomplete(path, contents.complete, &contents.truncated);
+    Ok(())
+}

@@ -1,0 +1,157 @@
+//! `run_loaded` on catalogues built in memory: the results file does not
+//! depend on threads or shard size, invalid parts do not stop the run, and
+//! every channel reads back.
+
+use fixplan_catalog::{Catalog, CatalogPart, KitSpec};
+use fixplan_coordinator::results::{PartRecord, ResultsFile};
+use fixplan_coordinator::run::{run_loaded, RunOptions};
+use fixplan_core::{Case, Part, Status, Units};
+use std::path::{Path, PathBuf};
+
+fn case(name: &str) -> Case {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/cases")
+        .join(name);
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
+    CatalogPart {
+        id: id.into(),
+        file: None,
+        part: Ok(Part {
+            outline,
+            access: vec![],
+        }),
+        warnings: vec![],
+        quantity: 1.0,
+        top_k: None,
+        wrenches: None,
+    }
+}
+
+fn catalog() -> (Catalog, KitSpec) {
+    let c = case("rectangle-mm.json");
+    let mut rect = part("rect", c.part.clone());
+    rect.part = Ok(c.part());
+    let parts = vec![
+        rect,
+        part(
+            "ell",
+            vec![
+                [0.0, 0.0],
+                [90.0, 0.0],
+                [90.0, 30.0],
+                [30.0, 30.0],
+                [30.0, 70.0],
+                [0.0, 70.0],
+            ],
+        ),
+        part(
+            "bowtie",
+            vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
+        ),
+        CatalogPart {
+            part: Err("bad.json: edge 0 crosses edge 2".into()),
+            ..part("broken", vec![])
+        },
+        part("tiny", vec![[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]),
+        part(
+            "hex",
+            vec![
+                [30.0, 0.0],
+                [70.0, 0.0],
+                [95.0, 40.0],
+                [70.0, 80.0],
+                [30.0, 80.0],
+                [5.0, 40.0],
+            ],
+        ),
+    ];
+    let cat = Catalog {
+        name: "mem".into(),
+        units: Units::Mm,
+        source: PathBuf::from("mem"),
+        parts,
+    };
+    let spec = KitSpec {
+        name: "case-kit".into(),
+        kit: c.kit.clone(),
+        params: c.params.clone(),
+    };
+    (cat, spec)
+}
+
+fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
+    RunOptions {
+        catalog: PathBuf::from("mem"),
+        kit: "case-kit".into(),
+        top_k: Some(5),
+        threads: Some(threads),
+        output: out.to_path_buf(),
+        resume: false,
+        shard_size: shard,
+        quiet: true,
+    }
+}
+
+fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
+    let f = ResultsFile::open(path).unwrap();
+    let mut v = Vec::new();
+    let c = f.for_each_part(|_, m| {
+        v.push(m.fixtures.clone());
+        true
+    });
+    assert!(c.unwrap().complete);
+    v
+}
+
+#[test]
+fn same_bytes_whatever_threads_and_shards() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let a = dir.path().join("a.mcap");
+    let b = dir.path().join("b.mcap");
+    let c = dir.path().join("c.mcap");
+    let t = run_loaded(&cat, &spec, &opts(&a, 1, Some(1))).unwrap();
+    run_loaded(&cat, &spec, &opts(&b, 2, None)).unwrap();
+    run_loaded(&cat, &spec, &opts(&c, 3, Some(7))).unwrap();
+    assert_eq!(t.parts(), 6);
+    assert_eq!(t.invalid, 2, "{t:?}");
+    assert!(t.ok >= 3, "{t:?}");
+    assert_eq!(t.no_fixture, 1, "{t:?}");
+    let fa = fixtures_channel(&a);
+    assert_eq!(fa.len(), 6);
+    assert_eq!(fa, fixtures_channel(&b));
+    assert_eq!(fa, fixtures_channel(&c));
+    assert!(!dir.path().join("a.mcap.partial").exists());
+}
+
+#[test]
+fn invalid_parts_carry_their_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let out = dir.path().join("r.mcap");
+    run_loaded(&cat, &spec, &opts(&out, 2, None)).unwrap();
+    let f = ResultsFile::open(&out).unwrap();
+    let mut recs = Vec::new();
+    f.for_each_part(|_, m| {
+        recs.push(PartRecord::decode(&m).unwrap());
+        true
+    })
+    .unwrap();
+    let ids: Vec<_> = recs.iter().map(|r| r.part.id.clone()).collect();
+    assert_eq!(ids, ["rect", "ell", "bowtie", "broken", "tiny", "hex"]);
+    let bow = &recs[2];
+    assert_eq!(bow.part.status, Status::Invalid);
+    let msg = bow.part.error.clone().unwrap();
+    assert!(msg.starts_with("bowtie: "), "{msg}");
+    assert!(msg.contains("cross"), "{msg}");
+    assert_eq!(
+        recs[3].fixtures.result.error.as_deref(),
+        Some("broken: bad.json: edge 0 crosses edge 2")
+    );
+    assert_eq!(recs[4].part.status, Status::NoFixture);
+    assert_eq!(recs[0].part.status, Status::Ok);
+    assert_eq!(recs[0].fixtures.result.fixtures.len(), 5);
+}
