@@ -9,7 +9,10 @@ use fixplan_core::{prepare, Case};
 use std::hint::black_box;
 
 fn case(name: &str) -> Case {
-    let path = format!("{}/../examples/cases/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../examples/cases/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(path).expect("bench case");
     let mut c: Case = serde_json::from_str(&text).expect("valid case");
     c.params.top_k = 0;
@@ -18,12 +21,23 @@ fn case(name: &str) -> Case {
 
 fn pieces(c: &mut Criterion) {
     let lines = [
-        Line { n: v2(0., -1.), c: 0.5 },
-        Line { n: v2(1., 0.), c: 3.0 },
-        Line { n: v2(-0.6, 0.8), c: 1.0 },
+        Line {
+            n: v2(0., -1.),
+            c: 0.5,
+        },
+        Line {
+            n: v2(1., 0.),
+            c: 3.0,
+        },
+        Line {
+            n: v2(-0.6, 0.8),
+            c: 1.0,
+        },
     ];
     let locs = [v2(0., 0.), v2(3., 1.), v2(1., 4.)];
-    c.bench_function("pose_solution", |b| b.iter(|| solve_poses(black_box(&lines), black_box(&locs))));
+    c.bench_function("pose_solution", |b| {
+        b.iter(|| solve_poses(black_box(&lines), black_box(&locs)))
+    });
 
     let ws = [
         wrench(v2(0.3, 0.0), v2(0.0, 1.0)),
@@ -49,12 +63,26 @@ fn pieces(c: &mut Criterion) {
 
     let m = MaxForceMetric::new(v2(0.5, 0.5), 0.4);
     let contacts = [
-        PartContact { q: v2(0.3, 0.0), f: v2(0.0, 1.0) },
-        PartContact { q: v2(1.0, 0.7), f: v2(-1.0, 0.0) },
-        PartContact { q: v2(0.7, 1.0), f: v2(0.0, -1.0) },
-        PartContact { q: v2(0.0, 0.3), f: v2(1.0, 0.0) },
+        PartContact {
+            q: v2(0.3, 0.0),
+            f: v2(0.0, 1.0),
+        },
+        PartContact {
+            q: v2(1.0, 0.7),
+            f: v2(-1.0, 0.0),
+        },
+        PartContact {
+            q: v2(0.7, 1.0),
+            f: v2(0.0, -1.0),
+        },
+        PartContact {
+            q: v2(0.0, 0.3),
+            f: v2(1.0, 0.0),
+        },
     ];
-    c.bench_function("metric_max_force_256", |b| b.iter(|| m.score(black_box(&contacts))));
+    c.bench_function("metric_max_force_256", |b| {
+        b.iter(|| m.score(black_box(&contacts)))
+    });
 }
 
 fn whole_parts(c: &mut Criterion) {

@@ -3,13 +3,43 @@
 //! fixture). Reuses buffers across candidates: the inner loop allocates
 //! nothing once warm.
 
-use crate::geometry::{polygon_clearance, polygon_disk_clearance, rot90, rot90i, v2, Aabb, V2, BORDERLINE, EPS};
+use crate::geometry::{
+    polygon_clearance, polygon_disk_clearance, rot90, rot90i, v2, Aabb, BORDERLINE, EPS, V2,
+};
 use crate::prepare::{ClampGeom, PreparedPart};
 use crate::setups::{lattice_point, Setup};
+
+/// Where the time goes, when asked (`fixplan bench`); nanoseconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Timing {
+    /// Inside setups: form closure, candidates and the mount search,
+    /// including the two below.
+    pub setups_ns: u64,
+    /// Clearance and plate-fit checks.
+    pub admissibility_ns: u64,
+    /// Quality metric.
+    pub metric_ns: u64,
+}
+
+impl Timing {
+    pub fn add(&mut self, o: &Timing) {
+        self.setups_ns += o.setups_ns;
+        self.admissibility_ns += o.admissibility_ns;
+        self.metric_ns += o.metric_ns;
+    }
+}
+
+/// Nanoseconds since `t`, when timing.
+#[inline]
+pub(crate) fn lap(t: Option<std::time::Instant>) -> u64 {
+    t.map_or(0, |t| t.elapsed().as_nanos() as u64)
+}
 
 /// Per-thread buffers.
 #[derive(Debug, Default, Clone)]
 pub struct Scratch {
+    /// Collect [`Timing`] (off by default: it costs a clock read per step).
+    pub timing: Option<Timing>,
     posed: bool,
     part: Vec<V2>,
     part_box: Option<Aabb>,

@@ -2,9 +2,9 @@
 //! axis crosses a segment's form-closure interval, then the mount search by
 //! increasing extension with every admissibility test.
 
-use crate::admissibility::Scratch;
+use crate::admissibility::{lap, Scratch};
 use crate::form_closure::{wrench, LocatorWrenches};
-use crate::geometry::{rot90, rot90i, v2, V2, BORDERLINE, EPS};
+use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::Pattern;
 use crate::metric::PartContact;
 use crate::prepare::PreparedPart;
@@ -21,7 +21,10 @@ pub struct Accumulator {
 
 impl Accumulator {
     pub fn new(top_k: usize) -> Self {
-        Accumulator { counts: Counts::default(), top: TopK::new(top_k) }
+        Accumulator {
+            counts: Counts::default(),
+            top: TopK::new(top_k),
+        }
     }
 }
 
@@ -44,6 +47,15 @@ pub struct Candidate {
 impl PreparedPart {
     /// Counts a setup, and every candidate and admissible fixture it gives.
     pub fn process_setup(&self, setup: &Setup, acc: &mut Accumulator, scratch: &mut Scratch) {
+        let clock = scratch.timing.is_some().then(std::time::Instant::now);
+        self.process_setup_untimed(setup, acc, scratch);
+        let ns = lap(clock);
+        if let Some(t) = scratch.timing.as_mut() {
+            t.setups_ns += ns;
+        }
+    }
+
+    fn process_setup_untimed(&self, setup: &Setup, acc: &mut Accumulator, scratch: &mut Scratch) {
         acc.counts.setups += 1;
         let pose = setup.pose;
         let locs = setup.locators.map(lattice_point);
@@ -72,7 +84,9 @@ impl PreparedPart {
                 continue;
             };
             for (k, angle_margin) in cos_ok.iter().enumerate() {
-                let Some(angle_margin) = *angle_margin else { continue };
+                let Some(angle_margin) = *angle_margin else {
+                    continue;
+                };
                 let k = k as u8;
                 let e = rot90(k, v2(0.0, 1.0));
                 let g0 = e.dot(&q0) - self.clamp.y0;
@@ -153,11 +167,17 @@ impl PreparedPart {
             if !holes_ok {
                 continue;
             }
-            let Some(clear_margin) = scratch.clamp_clear(self, setup, k, m, t) else {
-                continue;
-            };
-            let pts = scratch.plate_points(&setup.locators, c, k, m);
-            let Some(placement) = crate::plate::fit(pts, self.cols, self.rows, self.pattern) else {
+            let clock = scratch.timing.is_some().then(std::time::Instant::now);
+            let clear = scratch.clamp_clear(self, setup, k, m, t);
+            let placement = clear.and_then(|_| {
+                let pts = scratch.plate_points(&setup.locators, c, k, m);
+                crate::plate::fit(pts, self.cols, self.rows, self.pattern)
+            });
+            let ns = lap(clock);
+            if let Some(tm) = scratch.timing.as_mut() {
+                tm.admissibility_ns += ns;
+            }
+            let (Some(clear_margin), Some(placement)) = (clear, placement) else {
                 continue;
             };
             let t_margin = (t - c.t_min).min(c.t_max - t).abs();
@@ -169,9 +189,17 @@ impl PreparedPart {
                 } else {
                     (cand.q, cand.segment)
                 };
-                PartContact { q: pose.inverse_apply(q), f: -self.segments[seg].n }
+                PartContact {
+                    q: pose.inverse_apply(q),
+                    f: -self.segments[seg].n,
+                }
             });
+            let clock = scratch.timing.is_some().then(std::time::Instant::now);
             let score = self.metric.score(&contacts).unwrap_or(f64::INFINITY);
+            let ns = lap(clock);
+            if let Some(tm) = scratch.timing.as_mut() {
+                tm.metric_ns += ns;
+            }
             return Some(Fixture {
                 score,
                 segments: setup.combo,

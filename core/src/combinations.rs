@@ -117,7 +117,9 @@ mod tests {
             let it: Vec<_> = combinations_in(n, 0..u64::MAX).map(|x| x.1).collect();
             assert_eq!(it, v);
             if v.len() > 3 {
-                let mid: Vec<_> = combinations_in(n, 2..v.len() as u64 - 1).map(|x| x.1).collect();
+                let mid: Vec<_> = combinations_in(n, 2..v.len() as u64 - 1)
+                    .map(|x| x.1)
+                    .collect();
                 assert_eq!(mid, v[2..v.len() - 1]);
             }
         }

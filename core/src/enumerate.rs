@@ -3,12 +3,13 @@
 //! same bytes as one run, because counts add and the ranking is a total
 //! order on fixtures that are each computed from their own inputs only.
 
-use crate::admissibility::Scratch;
+use crate::admissibility::{Scratch, Timing};
 use crate::clamp::Accumulator;
 use crate::combinations::{combination_count, combinations_in};
 use crate::prepare::PreparedPart;
 use crate::ranking::{merge_ranked, Fixture};
 use crate::report::Counts;
+use crate::setups::SearchStats;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -22,6 +23,23 @@ pub struct PartialResult {
     pub fixtures: Vec<Fixture>,
 }
 
+/// Where one enumeration spent its work (not part of the result: timings
+/// vary from run to run).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Profile {
+    pub search: SearchStats,
+    pub timing: Timing,
+    pub total_ns: u64,
+}
+
+impl Profile {
+    pub fn add(&mut self, o: &Profile) {
+        self.search.add(&o.search);
+        self.timing.add(&o.timing);
+        self.total_ns += o.total_ns;
+    }
+}
+
 /// Combinations per rayon task: small enough to balance, large enough that
 /// the merge is cheap.
 const CHUNK: u64 = 32;
@@ -33,20 +51,41 @@ impl PreparedPart {
 
     /// Enumerates the combinations with indices in `range` on this thread.
     pub fn enumerate_range_serial(&self, range: Range<u64>) -> PartialResult {
+        self.enumerate_range_profiled(range, false).0
+    }
+
+    /// Like [`Self::enumerate_range_serial`], also saying where the work
+    /// went; `timed` adds clock reads to the inner loop.
+    pub fn enumerate_range_profiled(
+        &self,
+        range: Range<u64>,
+        timed: bool,
+    ) -> (PartialResult, Profile) {
+        let clock = std::time::Instant::now();
         let mut acc = Accumulator::new(self.top_k);
         let mut scratch = Scratch::default();
+        scratch.timing = timed.then(Timing::default);
+        let mut search = SearchStats::default();
         let n = self.segments.len();
         let end = range.end.min(self.combination_count());
         for (_, combo) in combinations_in(n, range.start..end) {
             acc.counts.combinations += 1;
-            self.setups_of_combination(combo, |s| self.process_setup(s, &mut acc, &mut scratch));
+            let s = self
+                .setups_of_combination(combo, |s| self.process_setup(s, &mut acc, &mut scratch));
+            search.add(&s);
         }
         acc.counts.segments = n as u64;
-        PartialResult {
+        let profile = Profile {
+            search,
+            timing: scratch.timing.unwrap_or_default(),
+            total_ns: clock.elapsed().as_nanos() as u64,
+        };
+        let res = PartialResult {
             range,
             counts: acc.counts,
             fixtures: acc.top.into_sorted(),
-        }
+        };
+        (res, profile)
     }
 
     /// Enumerates `range` on the rayon pool (same result as serial).

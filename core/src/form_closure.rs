@@ -1,7 +1,7 @@
 //! Form closure of three locators plus one clamp contact (SPEC section 4),
 //! and the exact interval of clamp contacts on a segment that completes it.
 
-use crate::geometry::{cross, V2, EPS};
+use crate::geometry::{cross, EPS, V2};
 use nalgebra::{Matrix3, Vector3};
 
 /// Planar contact wrench `(f.x, f.y, q x f)`.
@@ -91,7 +91,9 @@ mod tests {
         ];
         let lw = LocatorWrenches::new(ws).unwrap();
         // Clamp along the left side x = 0 pushing +x, q(s) = (0, s).
-        let (lo, hi) = lw.clamp_interval(v2(0., 0.), v2(0., 1.), v2(1., 0.), -10.0, 10.0).unwrap();
+        let (lo, hi) = lw
+            .clamp_interval(v2(0., 0.), v2(0., 1.), v2(1., 0.), -10.0, 10.0)
+            .unwrap();
         for k in 0..200 {
             let s = -2.0 + k as f64 * 0.02;
             let l = lw.lambda(&wrench(v2(0., s), v2(1., 0.)));

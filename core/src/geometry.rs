@@ -281,7 +281,12 @@ mod tests {
     use super::*;
 
     fn square(x0: f64, y0: f64, s: f64) -> Vec<V2> {
-        vec![v2(x0, y0), v2(x0 + s, y0), v2(x0 + s, y0 + s), v2(x0, y0 + s)]
+        vec![
+            v2(x0, y0),
+            v2(x0 + s, y0),
+            v2(x0 + s, y0 + s),
+            v2(x0, y0 + s),
+        ]
     }
 
     #[test]

@@ -103,8 +103,14 @@ impl<'de> Deserialize<'de> for MountHole {
             HoleKind::Any
         }
         Ok(match Raw::deserialize(d)? {
-            Raw::WithKind(i, j, kind) => MountHole { offset: [i, j], kind },
-            Raw::Plain(i, j) => MountHole { offset: [i, j], kind: HoleKind::Any },
+            Raw::WithKind(i, j, kind) => MountHole {
+                offset: [i, j],
+                kind,
+            },
+            Raw::Plain(i, j) => MountHole {
+                offset: [i, j],
+                kind: HoleKind::Any,
+            },
             Raw::Table { offset, kind } => MountHole { offset, kind },
         })
     }

@@ -64,9 +64,8 @@ pub fn fibonacci_sphere(n: usize) -> Vec<Vector3<f64>> {
 
 impl Metric for MaxForceMetric {
     fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
-        let w = contacts.map(|c| {
-            Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho)
-        });
+        let w = contacts
+            .map(|c| Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho));
         max_force(&w, &self.directions)
     }
 
@@ -87,7 +86,10 @@ pub struct WrenchListMetric {
 impl WrenchListMetric {
     pub fn new(wrenches: &[[f64; 3]], spacing: f64) -> Self {
         WrenchListMetric {
-            wrenches: wrenches.iter().map(|w| Vector3::new(w[0], w[1], w[2])).collect(),
+            wrenches: wrenches
+                .iter()
+                .map(|w| Vector3::new(w[0], w[1], w[2]))
+                .collect(),
             spacing,
         }
     }
@@ -149,10 +151,22 @@ mod tests {
         // Unit square, one contact per side, placed so that two turn it
         // each way (form closure).
         let c = [
-            PartContact { q: v2(0.3, 0.0), f: v2(0.0, 1.0) },
-            PartContact { q: v2(1.0, 0.7), f: v2(-1.0, 0.0) },
-            PartContact { q: v2(0.7, 1.0), f: v2(0.0, -1.0) },
-            PartContact { q: v2(0.0, 0.3), f: v2(1.0, 0.0) },
+            PartContact {
+                q: v2(0.3, 0.0),
+                f: v2(0.0, 1.0),
+            },
+            PartContact {
+                q: v2(1.0, 0.7),
+                f: v2(-1.0, 0.0),
+            },
+            PartContact {
+                q: v2(0.7, 1.0),
+                f: v2(0.0, -1.0),
+            },
+            PartContact {
+                q: v2(0.0, 0.3),
+                f: v2(1.0, 0.0),
+            },
         ];
         let m = MaxForceMetric::new(v2(0.5, 0.5), (1.0f64 / 6.0).sqrt());
         let s = m.score(&c).unwrap();

@@ -55,7 +55,10 @@ pub fn fit(pts: &[[i64; 2]], cols: i64, rows: i64, pattern: Pattern) -> Option<P
                 continue;
             }
         }
-        return Some(Placement { rotation, offset: off });
+        return Some(Placement {
+            rotation,
+            offset: off,
+        });
     }
     None
 }

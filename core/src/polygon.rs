@@ -65,7 +65,9 @@ pub fn validate_polygon(points: &[[f64; 2]]) -> Result<Vec<V2>, PolygonError> {
         });
     }
     let area = signed_area(&pts);
-    let scale = pts.iter().fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let scale = pts
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     if area.abs() <= 1e-12 * scale * scale.max(1e-300) || area == 0.0 {
         return Err(PolygonError::ZeroArea);
     }
@@ -96,7 +98,11 @@ pub fn first_self_intersection(pts: &[V2]) -> Option<(usize, usize, V2)> {
                 let u = other_a - shared;
                 let w = other_b - shared;
                 if cross(u, w) == 0.0 && u.dot(&w) > 0.0 {
-                    let p = if u.norm_squared() < w.norm_squared() { other_a } else { other_b };
+                    let p = if u.norm_squared() < w.norm_squared() {
+                        other_a
+                    } else {
+                        other_b
+                    };
                     return Some((i, j, p));
                 }
                 continue;
@@ -157,7 +163,12 @@ mod tests {
         let e = validate_polygon(&bow).unwrap_err();
         assert_eq!(
             e,
-            PolygonError::SelfIntersection { first: 0, second: 2, x: 1.0, y: 1.0 }
+            PolygonError::SelfIntersection {
+                first: 0,
+                second: 2,
+                x: 1.0,
+                y: 1.0
+            }
         );
         assert_eq!(e.to_string(), "edge 0 crosses edge 2 at (1, 1)");
         assert!(matches!(
@@ -166,7 +177,11 @@ mod tests {
         ));
         assert!(matches!(
             validate_polygon(&[[0., 0.], [1., 0.], [1., 1.], [1., 0.]]),
-            Err(PolygonError::RepeatedVertex { first: 1, second: 3, .. })
+            Err(PolygonError::RepeatedVertex {
+                first: 1,
+                second: 3,
+                ..
+            })
         ));
     }
 }

@@ -41,7 +41,12 @@ pub struct Line {
 /// Up to two poses; degenerate configurations (all normals parallel, or a
 /// locator triangle that leaves the angle free) give none.
 pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
-    let empty = Pose { theta: 0.0, cos: 1.0, sin: 0.0, t: V2::zeros() };
+    let empty = Pose {
+        theta: 0.0,
+        cos: 1.0,
+        sin: 0.0,
+        t: V2::zeros(),
+    };
     let mut out = [empty; 2];
     let [n1, n2, n3] = [lines[0].n, lines[1].n, lines[2].n];
     // Weights with sum_k lam_k n_k = 0 (cofactors of the 3x3 determinant).
@@ -69,7 +74,11 @@ pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
     }
     let phi = b.atan2(a);
     let delta = ratio.clamp(-1.0, 1.0).acos();
-    let thetas = if delta == 0.0 { [phi, phi] } else { [phi - delta, phi + delta] };
+    let thetas = if delta == 0.0 {
+        [phi, phi]
+    } else {
+        [phi - delta, phi + delta]
+    };
     let count = if delta == 0.0 { 1 } else { 2 };
     // Back-substitute with the best-conditioned pair of lines.
     let pairs = [(0usize, 1usize, 2usize), (1, 2, 0), (0, 2, 1)];
@@ -94,7 +103,12 @@ pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
         let (ei, ej) = (e(i), e(j));
         let (ni, nj) = (lines[i].n, lines[j].n);
         let w = V2::new((ei * nj.y - ej * ni.y) / det, (ni.x * ej - nj.x * ei) / det);
-        *slot = Pose { theta, cos: co, sin: s, t: rot(co, s, w) };
+        *slot = Pose {
+            theta,
+            cos: co,
+            sin: s,
+            t: rot(co, s, w),
+        };
     }
     (out, count)
 }
@@ -109,21 +123,39 @@ mod tests {
         // Three lines of a triangle-ish part, a known pose, locators placed
         // on the posed lines: the solver must find that pose among its roots.
         let lines = [
-            Line { n: v2(0., -1.), c: 0.5 },
-            Line { n: v2(1., 0.), c: 3.0 },
-            Line { n: v2(-0.6, 0.8), c: 1.0 },
+            Line {
+                n: v2(0., -1.),
+                c: 0.5,
+            },
+            Line {
+                n: v2(1., 0.),
+                c: 3.0,
+            },
+            Line {
+                n: v2(-0.6, 0.8),
+                c: 1.0,
+            },
         ];
-        let truth = Pose { theta: 0.7, cos: 0.7f64.cos(), sin: 0.7f64.sin(), t: v2(1.3, -0.4) };
-        let pts = [v2(1.0, -0.5), v2(3.0, 1.2), v2(-0.6 + 0.8 * 2.0, 0.8 + 0.6 * 2.0)];
+        let truth = Pose {
+            theta: 0.7,
+            cos: 0.7f64.cos(),
+            sin: 0.7f64.sin(),
+            t: v2(1.3, -0.4),
+        };
+        let pts = [
+            v2(1.0, -0.5),
+            v2(3.0, 1.2),
+            v2(-0.6 + 0.8 * 2.0, 0.8 + 0.6 * 2.0),
+        ];
         for (l, p) in lines.iter().zip(pts) {
             assert!((l.n.dot(&p) - l.c).abs() < 1e-12);
         }
         let locs = pts.map(|p| truth.apply(p));
         let (poses, k) = solve_poses(&lines, &locs);
         assert!(k >= 1);
-        let hit = poses[..k].iter().any(|p| {
-            (p.theta - 0.7).abs() < 1e-9 && (p.t - truth.t).norm() < 1e-9
-        });
+        let hit = poses[..k]
+            .iter()
+            .any(|p| (p.theta - 0.7).abs() < 1e-9 && (p.t - truth.t).norm() < 1e-9);
         assert!(hit, "{poses:?}");
         for p in &poses[..k] {
             for (l, loc) in lines.iter().zip(locs) {
@@ -135,9 +167,18 @@ mod tests {
     #[test]
     fn parallel_normals_are_degenerate() {
         let lines = [
-            Line { n: v2(0., -1.), c: 0.0 },
-            Line { n: v2(0., -1.), c: 0.0 },
-            Line { n: v2(0., 1.), c: 2.0 },
+            Line {
+                n: v2(0., -1.),
+                c: 0.0,
+            },
+            Line {
+                n: v2(0., -1.),
+                c: 0.0,
+            },
+            Line {
+                n: v2(0., 1.),
+                c: 2.0,
+            },
         ];
         let (_, k) = solve_poses(&lines, &[v2(0., 0.), v2(1., 0.), v2(0., 2.)]);
         assert_eq!(k, 0);

@@ -79,7 +79,10 @@ pub fn validate_kit(kit: &Kit) -> Result<(), PrepareError> {
         return err(format!("spacing {} must be a positive number", kit.spacing));
     }
     if kit.cols < 1 || kit.rows < 1 {
-        return err(format!("plate of {} x {} holes is empty", kit.cols, kit.rows));
+        return err(format!(
+            "plate of {} x {} holes is empty",
+            kit.cols, kit.rows
+        ));
     }
     let r = kit.locator_radius;
     if !finite_pos(r) {
@@ -170,9 +173,8 @@ pub fn prepare(
     validate_kit(kit)?;
     validate_params(params, units)?;
     let l = kit.spacing;
-    let scale = |pts: &[[f64; 2]]| -> Vec<[f64; 2]> {
-        pts.iter().map(|p| [p[0] / l, p[1] / l]).collect()
-    };
+    let scale =
+        |pts: &[[f64; 2]]| -> Vec<[f64; 2]> { pts.iter().map(|p| [p[0] / l, p[1] / l]).collect() };
     // Validate in the user's unit so error coordinates are the user's.
     validate_polygon(&part.outline).map_err(PrepareError::Outline)?;
     let outline = validate_polygon(&scale(&part.outline)).map_err(PrepareError::Outline)?;
@@ -205,7 +207,8 @@ pub fn prepare(
     let c = &kit.clamp;
     let clamp_poly = |pts: &[[f64; 2]]| -> Vec<V2> {
         // Already validated; normalise to CCW.
-        validate_polygon(&scale(pts)).unwrap_or_else(|_| pts.iter().map(|p| v2(p[0] / l, p[1] / l)).collect())
+        validate_polygon(&scale(pts))
+            .unwrap_or_else(|_| pts.iter().map(|p| v2(p[0] / l, p[1] / l)).collect())
     };
     let clamp = ClampGeom {
         holes: c.mount_holes.clone(),

@@ -1,7 +1,7 @@
 //! Usable segments: the straight pieces of the grown part's true boundary
 //! (SPEC section 2), where a locator or the clamp tip can touch the part.
 
-use crate::geometry::{cross, point_in_polygon, v2, V2, EPS};
+use crate::geometry::{cross, point_in_polygon, v2, EPS, V2};
 
 /// One usable segment in the part frame (lattice units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -232,10 +232,20 @@ mod tests {
     fn narrow_slot_removes_both_walls() {
         // A slot of width 0.4 < 2r cut into a block: its walls cannot be touched.
         let p = pts(&[
-            [0., 0.], [6., 0.], [6., 4.], [3.2, 4.], [3.2, 1.], [2.8, 1.], [2.8, 4.], [0., 4.],
+            [0., 0.],
+            [6., 0.],
+            [6., 4.],
+            [3.2, 4.],
+            [3.2, 1.],
+            [2.8, 1.],
+            [2.8, 4.],
+            [0., 4.],
         ]);
         let s = usable_segments(&p, &[], 0.25, 0.0);
-        assert!(s.iter().all(|g| g.edge != 3 && g.edge != 4 && g.edge != 5), "{s:?}");
+        assert!(
+            s.iter().all(|g| g.edge != 3 && g.edge != 4 && g.edge != 5),
+            "{s:?}"
+        );
     }
 
     #[test]

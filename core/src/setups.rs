@@ -38,16 +38,17 @@ impl PreparedPart {
 
     /// Setups of one combination with the given `L2`, `L3` (`L1` = origin),
     /// with no pruning: the building block that pruned and brute-force
-    /// enumerations share.
+    /// enumerations share. Returns the number of pose solutions computed
+    /// (kept or not), for the pruning statistics.
     pub fn setups_for_locators(
         &self,
         combo: [usize; 3],
         l2: [i64; 2],
         l3: [i64; 2],
         mut visit: impl FnMut(&Setup),
-    ) {
+    ) -> usize {
         if l3 == [0, 0] || l3 == l2 || l2 == [0, 0] {
-            return;
+            return 0;
         }
         let segs = combo.map(|i| &self.segments[i]);
         let lines = segs.map(|s| Line { n: s.n, c: s.c });
@@ -69,16 +70,30 @@ impl PreparedPart {
                 margin = margin.min(m);
             }
             // Locators on one segment are numbered along it.
-            if !ok || (combo[0] == combo[1] && s[0] >= s[1]) || (combo[1] == combo[2] && s[1] >= s[2])
+            if !ok
+                || (combo[0] == combo[1] && s[0] >= s[1])
+                || (combo[1] == combo[2] && s[1] >= s[2])
             {
                 continue;
             }
-            visit(&Setup { combo, locators: locs_i, pose: *pose, s, margin });
+            visit(&Setup {
+                combo,
+                locators: locs_i,
+                pose: *pose,
+                s,
+                margin,
+            });
         }
+        count
     }
 
     /// Every setup of one combination, pruned by annuli.
-    pub fn setups_of_combination(&self, combo: [usize; 3], mut visit: impl FnMut(&Setup)) {
+    pub fn setups_of_combination(
+        &self,
+        combo: [usize; 3],
+        mut visit: impl FnMut(&Setup),
+    ) -> SearchStats {
+        let mut stats = SearchStats::default();
         let [a, b, c] = combo;
         let ab = self.pair(a, b);
         let ac = self.pair(a, c);
@@ -97,12 +112,13 @@ impl PreparedPart {
                     break;
                 }
                 if d2 >= lo2 && self.locator_point_allowed(l2) {
-                    self.third_locators(combo, l2, ac, bc, &mut visit);
+                    self.third_locators(combo, l2, ac, bc, &mut stats, &mut visit);
                 }
                 j += g;
             }
             i += g;
         }
+        stats
     }
 
     fn third_locators(
@@ -111,6 +127,7 @@ impl PreparedPart {
         l2: [i64; 2],
         ac: PairBounds,
         bc: PairBounds,
+        stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
         let g = self.grid_step;
@@ -141,13 +158,31 @@ impl PreparedPart {
                         && db <= hi_b
                         && self.locator_point_allowed(l3)
                     {
-                        self.setups_for_locators(combo, l2, l3, &mut *visit);
+                        stats.locator_triples += 1;
+                        stats.pose_solutions +=
+                            self.setups_for_locators(combo, l2, l3, &mut *visit) as u64;
                     }
                     y += g;
                 }
             }
             x += g;
         }
+    }
+}
+
+/// How much work the pruned search did (for `fixplan bench`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct SearchStats {
+    /// `(L2, L3)` pairs that survived pruning and were solved for poses.
+    pub locator_triples: u64,
+    /// Pose solutions computed (kept as setups or not).
+    pub pose_solutions: u64,
+}
+
+impl SearchStats {
+    pub fn add(&mut self, o: &SearchStats) {
+        self.locator_triples += o.locator_triples;
+        self.pose_solutions += o.pose_solutions;
     }
 }
 

@@ -33,7 +33,11 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
         .map(|(i, f)| fixture_report(prep, f, i + 1))
         .collect();
     SolveResult {
-        status: if res.counts.admissible > 0 { Status::Ok } else { Status::NoFixture },
+        status: if res.counts.admissible > 0 {
+            Status::Ok
+        } else {
+            Status::NoFixture
+        },
         error: None,
         counts: Some(res.counts),
         fixtures,
@@ -49,7 +53,10 @@ pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureR
             normal: f.normals[i],
         })
         .collect();
-    contacts.push(ContactReport { point: sc(f.contact), normal: f.normals[3] });
+    contacts.push(ContactReport {
+        point: sc(f.contact),
+        normal: f.normals[3],
+    });
     let clamp_holes = prep
         .clamp
         .holes

@@ -34,7 +34,10 @@ fn hand_made_shapes_square_and_alternating_with_and_without_access() {
         }
     }
     // The comparison means something only if fixtures exist.
-    assert!(total > 100, "only {total} fixtures over all hand-made cases");
+    assert!(
+        total > 100,
+        "only {total} fixtures over all hand-made cases"
+    );
 }
 
 #[test]
@@ -97,7 +100,10 @@ proptest! {
 /// 0.75 in alternating plate: a real case, not just random shapes.
 #[test]
 fn gluegun_bench_case_pruned_equals_brute_force() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/cases/gluegun-28.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/cases/gluegun-28.json"
+    );
     let text = std::fs::read_to_string(path).expect("bench case in examples/cases");
     let mut case: fixplan_core::Case = serde_json::from_str(&text).expect("valid case");
     case.params.top_k = 0;
@@ -115,7 +121,10 @@ fn gluegun_bench_case_pruned_equals_brute_force() {
 #[test]
 #[ignore]
 fn housing_bench_case_pruned_equals_brute_force() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/cases/housing-57.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/cases/housing-57.json"
+    );
     let text = std::fs::read_to_string(path).expect("bench case in examples/cases");
     let mut case: fixplan_core::Case = serde_json::from_str(&text).expect("valid case");
     case.params.top_k = 0;

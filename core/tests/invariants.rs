@@ -18,7 +18,14 @@ use support::*;
 type Key = ([usize; 3], [i64; 2], [i64; 2], usize, u8, [i64; 2]);
 
 fn key(f: &Fixture) -> Key {
-    (f.segments, f.locators[1], f.locators[2], f.clamp_segment, f.rotation, f.mount)
+    (
+        f.segments,
+        f.locators[1],
+        f.locators[2],
+        f.clamp_segment,
+        f.rotation,
+        f.mount,
+    )
 }
 
 fn by_key(fs: &[Fixture]) -> BTreeMap<Key, Vec<&Fixture>> {
@@ -33,7 +40,12 @@ fn moved(shape: &[[f64; 2]], angle: f64, shift: [f64; 2]) -> Vec<[f64; 2]> {
     let (s, c) = angle.sin_cos();
     shape
         .iter()
-        .map(|p| [c * p[0] - s * p[1] + shift[0], s * p[0] + c * p[1] + shift[1]])
+        .map(|p| {
+            [
+                c * p[0] - s * p[1] + shift[0],
+                s * p[0] + c * p[1] + shift[1],
+            ]
+        })
         .collect()
 }
 
@@ -169,7 +181,11 @@ fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
         sin: f.theta.sin(),
         t: v2(f.t[0], f.t[1]),
     };
-    let mut points: Vec<V2> = f.locators.iter().map(|l| v2(l[0] as f64, l[1] as f64)).collect();
+    let mut points: Vec<V2> = f
+        .locators
+        .iter()
+        .map(|l| v2(l[0] as f64, l[1] as f64))
+        .collect();
     points.push(v2(f.contact[0], f.contact[1]));
     let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
     let mut w = [Vector3::zeros(); 4];
@@ -177,7 +193,10 @@ fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
         let seg = &p.segments[segs[i]];
         let local = pose.inverse_apply(points[i]);
         // On the grown edge line, strictly inside the segment.
-        assert!((seg.n.dot(&local) - seg.c).abs() < 1e-7, "contact {i} off its line");
+        assert!(
+            (seg.n.dot(&local) - seg.c).abs() < 1e-7,
+            "contact {i} off its line"
+        );
         let s = seg.u.dot(&(local - seg.origin));
         assert!(s > seg.s0 && s < seg.s1, "contact {i} outside its segment");
         let normal = pose.rotate(-seg.n);
@@ -237,8 +256,17 @@ fn metric_closed_form_equals_direct_min_max() {
         let rho = (j / fixplan_core::geometry::signed_area(&p.part)).sqrt();
         let dirs = fibonacci_sphere(256);
         for f in p.enumerate_all().fixtures.iter().step_by(7) {
-            let pose = Pose { theta: f.theta, cos: f.theta.cos(), sin: f.theta.sin(), t: v2(f.t[0], f.t[1]) };
-            let mut pts: Vec<V2> = f.locators.iter().map(|l| v2(l[0] as f64, l[1] as f64)).collect();
+            let pose = Pose {
+                theta: f.theta,
+                cos: f.theta.cos(),
+                sin: f.theta.sin(),
+                t: v2(f.t[0], f.t[1]),
+            };
+            let mut pts: Vec<V2> = f
+                .locators
+                .iter()
+                .map(|l| v2(l[0] as f64, l[1] as f64))
+                .collect();
             pts.push(v2(f.contact[0], f.contact[1]));
             let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
             let w = [0, 1, 2, 3].map(|i| {
@@ -277,7 +305,12 @@ fn user_wrench_list_scores_in_force_units() {
 #[test]
 fn part_smaller_than_the_lattice_has_no_fixture() {
     let tiny = [[0.0, 0.0], [0.6, 0.0], [0.6, 0.4], [0.0, 0.4]];
-    let res = fixplan_core::solve(&part(&tiny, &[]), &kit(Pattern::Square), &params(90.0, 1), fixplan_core::Units::Mm);
+    let res = fixplan_core::solve(
+        &part(&tiny, &[]),
+        &kit(Pattern::Square),
+        &params(90.0, 1),
+        fixplan_core::Units::Mm,
+    );
     assert_eq!(res.status, fixplan_core::Status::NoFixture);
     assert_eq!(res.counts.unwrap().admissible, 0);
     assert!(res.fixtures.is_empty());
@@ -285,7 +318,11 @@ fn part_smaller_than_the_lattice_has_no_fixture() {
 
 #[test]
 fn combination_count_matches_segments() {
-    let p = prep(&part(&notched(), &[]), &kit(Pattern::Square), &params(45.0, 1));
+    let p = prep(
+        &part(&notched(), &[]),
+        &kit(Pattern::Square),
+        &params(45.0, 1),
+    );
     let r = p.enumerate_all();
     assert_eq!(r.counts.combinations, combination_count(p.segments.len()));
     assert_eq!(r.counts.segments, p.segments.len() as u64);

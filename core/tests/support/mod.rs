@@ -20,8 +20,14 @@ pub fn kit(pattern: Pattern) -> Kit {
         locator_radius: 0.25 * s,
         clamp: Clamp {
             mount_holes: vec![
-                MountHole { offset: [0, 0], kind: HoleKind::Dowel },
-                MountHole { offset: [1, 0], kind: HoleKind::Tapped },
+                MountHole {
+                    offset: [0, 0],
+                    kind: HoleKind::Dowel,
+                },
+                MountHole {
+                    offset: [1, 0],
+                    kind: HoleKind::Tapped,
+                },
             ],
             axis_offset: 0.0,
             travel: [1.5 * s, 2.75 * s],
@@ -43,7 +49,10 @@ pub fn params(max_angle: f64, grid_step: u32) -> Params {
 }
 
 pub fn part(outline: &[[f64; 2]], access: &[Vec<[f64; 2]>]) -> Part {
-    Part { outline: outline.to_vec(), access: access.to_vec() }
+    Part {
+        outline: outline.to_vec(),
+        access: access.to_vec(),
+    }
 }
 
 pub fn prep(p: &Part, k: &Kit, pr: &Params) -> PreparedPart {
@@ -61,18 +70,39 @@ pub fn star(centre: [f64; 2], angles: &[f64], radii: &[f64]) -> Vec<[f64; 2]> {
 }
 
 pub fn l_shape() -> Vec<[f64; 2]> {
-    vec![[0., 0.], [4.3, 0.], [4.3, 1.7], [1.6, 1.7], [1.6, 4.1], [0., 4.1]]
+    vec![
+        [0., 0.],
+        [4.3, 0.],
+        [4.3, 1.7],
+        [1.6, 1.7],
+        [1.6, 4.1],
+        [0., 4.1],
+    ]
 }
 
 pub fn t_shape() -> Vec<[f64; 2]> {
     vec![
-        [1.9, 0.], [3.3, 0.], [3.3, 3.], [5.2, 3.], [5.2, 4.4], [0., 4.4], [0., 3.], [1.9, 3.],
+        [1.9, 0.],
+        [3.3, 0.],
+        [3.3, 3.],
+        [5.2, 3.],
+        [5.2, 4.4],
+        [0., 4.4],
+        [0., 3.],
+        [1.9, 3.],
     ]
 }
 
 pub fn notched() -> Vec<[f64; 2]> {
     vec![
-        [0., 0.], [2.1, 0.], [2.1, 0.9], [2.9, 0.9], [2.9, 0.], [5.0, 0.], [5.0, 3.2], [3.4, 3.6],
+        [0., 0.],
+        [2.1, 0.],
+        [2.1, 0.9],
+        [2.9, 0.9],
+        [2.9, 0.],
+        [5.0, 0.],
+        [5.0, 3.2],
+        [3.4, 3.6],
         [0., 3.2],
     ]
 }
@@ -117,5 +147,9 @@ pub fn brute_force(p: &PreparedPart) -> PartialResult {
     }
     acc.counts.segments = n as u64;
     let count = p.combination_count();
-    PartialResult { range: 0..count, counts: acc.counts, fixtures: acc.top.into_sorted() }
+    PartialResult {
+        range: 0..count,
+        counts: acc.counts,
+        fixtures: acc.top.into_sorted(),
+    }
 }
