@@ -1,6 +1,22 @@
-//! Runs shards (combination ranges) of prepared parts. The embedded run and,
-//! later, the distributed workers go through this one entry point so that
-//! both produce the same bytes.
+//! Runs shards (combination ranges) of prepared parts. The embedded run and
+//! the distributed workers go through this one entry point ([`run_shard`])
+//! so that both produce the same bytes.
+//!
+//! The distributed side:
+//! - [`protocol`]: versioned messages and their framing;
+//! - [`part_input`]: a part's inputs on the wire, and its digest;
+//! - [`zenoh_link`]: zenoh configuration, key expressions, request/reply;
+//! - [`iox`]: iceoryx2 request/reply through shared memory on one host;
+//! - [`agent`]: the `fixplan worker` loop;
+//! - [`host`]: host ids and unique names; [`log`]: log lines.
+
+pub mod agent;
+pub mod host;
+pub mod iox;
+pub mod log;
+pub mod part_input;
+pub mod protocol;
+pub mod zenoh_link;
 
 use fixplan_core::{PartialResult, PreparedPart};
 use std::ops::Range;

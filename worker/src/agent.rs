@@ -1,0 +1,381 @@
+//! `fixplan worker`: join a coordinator, pull shards, enumerate them, send
+//! the results back; leave at the end of the run (or wait for the next one
+//! with `stay`).
+
+use crate::host::{host_id, unique_name};
+use crate::iox::IoxClient;
+use crate::part_input::{digest, short_hex, PartInput};
+use crate::protocol::{
+    encode_as, Assign, DataPath, Digest, Frame, Join, Msg, ShardDone, ShardFailed, TransportChoice,
+    PROTOCOL_VERSION,
+};
+use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
+use crate::{info, warn};
+use fixplan_core::PreparedPart;
+use std::collections::HashMap;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use thiserror::Error;
+use zenoh::Wait;
+
+/// Misbehaviours for tests of the coordinator's checks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Fault {
+    /// Halve the score of the best fixture of every result.
+    CorruptScore,
+    /// Sleep this long before sending each result.
+    SlowMs(u64),
+}
+
+impl std::str::FromStr for Fault {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "corrupt-score" {
+            return Ok(Fault::CorruptScore);
+        }
+        if let Some(ms) = s.strip_prefix("slow:") {
+            return ms
+                .parse()
+                .map(Fault::SlowMs)
+                .map_err(|e| format!("{s}: {e}"));
+        }
+        Err(format!("unknown fault {s:?} (corrupt-score, slow:MS)"))
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct WorkerOptions {
+    pub zenoh: ZenohOptions,
+    pub key_prefix: String,
+    pub threads: Option<usize>,
+    pub transport: TransportChoice,
+    /// Wait for the next run instead of exiting when a run is over.
+    pub stay: bool,
+    /// Name in logs and liveliness (default: host-pid-nonce).
+    pub name: Option<String>,
+    /// Protocol version to claim (tests of the version check).
+    pub protocol_version: u16,
+    pub fault: Option<Fault>,
+}
+
+impl Default for WorkerOptions {
+    fn default() -> Self {
+        WorkerOptions {
+            zenoh: ZenohOptions::default(),
+            key_prefix: "fixplan".into(),
+            threads: None,
+            transport: TransportChoice::Auto,
+            stay: false,
+            name: None,
+            protocol_version: PROTOCOL_VERSION,
+            fault: None,
+        }
+    }
+}
+
+#[derive(Debug, Error)]
+pub enum WorkerError {
+    #[error("{0}")]
+    Link(#[from] LinkError),
+    #[error("the coordinator refused this worker: {0}")]
+    Refused(String),
+    #[error("cannot start the thread pool: {0}")]
+    Pool(String),
+}
+
+/// What a worker did, for its exit line.
+#[derive(Debug, Clone, Default)]
+pub struct WorkerSummary {
+    pub shards: u64,
+    pub parts_prepared: u64,
+}
+
+enum DataLink {
+    Zenoh,
+    Iox(IoxClient),
+}
+
+struct Agent {
+    opts: WorkerOptions,
+    name: String,
+    keys: Keys,
+    session: zenoh::Session,
+    pool: rayon::ThreadPool,
+    cache: HashMap<Digest, Arc<Result<PreparedPart, String>>>,
+    summary: WorkerSummary,
+}
+
+fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".into())
+}
+
+const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
+/// A coordinator silent for this long is presumed gone: join again.
+const SILENCE: Duration = Duration::from_secs(15);
+
+impl Agent {
+    fn role(&self) -> String {
+        format!("worker {}", self.name)
+    }
+
+    fn send(&self, link: &DataLink, msg: &Msg) -> Result<Frame, LinkError> {
+        let bytes = encode_as(self.opts.protocol_version, msg)
+            .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+        match link {
+            DataLink::Zenoh => request(&self.session, &self.keys.work(), bytes, REQUEST_TIMEOUT),
+            DataLink::Iox(c) => c.request(&bytes, REQUEST_TIMEOUT),
+        }
+    }
+
+    fn join(&self) -> Result<Frame, LinkError> {
+        let j = Join {
+            worker: self.name.clone(),
+            host_id: host_id(),
+            pid: std::process::id(),
+            threads: self.pool.current_num_threads() as u32,
+            transport: self.opts.transport,
+            software: env!("CARGO_PKG_VERSION").into(),
+        };
+        let bytes = encode_as(self.opts.protocol_version, &Msg::Join(j))
+            .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+        request(
+            &self.session,
+            &self.keys.join(),
+            bytes,
+            Duration::from_secs(3),
+        )
+    }
+
+    fn prepared(&mut self, a: &Assign) -> Arc<Result<PreparedPart, String>> {
+        if let Some(p) = self.cache.get(&a.digest) {
+            return p.clone();
+        }
+        let p = match &a.input {
+            None => Err("the coordinator sent no input for an unknown part".to_string()),
+            Some(bytes) if digest(bytes) != a.digest => {
+                Err("part input does not match its digest".to_string())
+            }
+            Some(bytes) => PartInput::decode(bytes)
+                .map_err(|e| e.to_string())
+                .and_then(|i| i.prepare().map_err(|e| e.to_string())),
+        };
+        self.summary.parts_prepared += 1;
+        let p = Arc::new(p);
+        // Only cache what the coordinator sent: a missing input is retried.
+        if a.input.is_some() {
+            self.cache.insert(a.digest, p.clone());
+        }
+        p
+    }
+
+    fn work_on(&mut self, a: Assign) -> Msg {
+        let prep = self.prepared(&a);
+        let prep = match prep.as_ref() {
+            Ok(p) => p,
+            Err(m) => {
+                return Msg::Failed(ShardFailed {
+                    worker: self.name.clone(),
+                    shard_id: a.shard_id,
+                    message: m.clone(),
+                });
+            }
+        };
+        let t0 = Instant::now();
+        let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.pool
+                .install(|| crate::run_shard(prep, a.range.clone()))
+        }));
+        match out {
+            Ok(mut result) => {
+                if self.opts.fault == Some(Fault::CorruptScore) {
+                    if let Some(f) = result.fixtures.first_mut() {
+                        f.score *= 0.5;
+                    }
+                }
+                if let Some(Fault::SlowMs(ms)) = self.opts.fault {
+                    std::thread::sleep(Duration::from_millis(ms));
+                }
+                Msg::Result(Box::new(ShardDone {
+                    worker: self.name.clone(),
+                    shard_id: a.shard_id,
+                    digest: a.digest,
+                    micros: t0.elapsed().as_micros() as u64,
+                    result,
+                }))
+            }
+            Err(p) => Msg::Failed(ShardFailed {
+                worker: self.name.clone(),
+                shard_id: a.shard_id,
+                message: format!("internal error in the enumeration: {}", panic_text(p)),
+            }),
+        }
+    }
+
+    /// Works for one coordinator until it says Done (true) or goes silent
+    /// or asks for a new join (false).
+    fn serve_run(&mut self, link: DataLink) -> Result<bool, WorkerError> {
+        let mut last_heard = Instant::now();
+        loop {
+            let reply = self.send(
+                &link,
+                &Msg::Pull {
+                    worker: self.name.clone(),
+                },
+            );
+            let msg = match reply {
+                Ok(Frame::Msg(m)) => m,
+                Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
+                Err(e) => {
+                    if last_heard.elapsed() > SILENCE {
+                        warn!(
+                            self.role(),
+                            "the coordinator is silent ({e}); joining again"
+                        );
+                        return Ok(false);
+                    }
+                    std::thread::sleep(Duration::from_millis(200));
+                    continue;
+                }
+            };
+            last_heard = Instant::now();
+            match msg {
+                Msg::Assign(a) => {
+                    let (id, range, d) = (a.shard_id, a.range.clone(), a.digest);
+                    let out = self.work_on(a);
+                    self.summary.shards += 1;
+                    match self.send(&link, &out) {
+                        Ok(Frame::Msg(Msg::Ack { accepted, note })) => {
+                            if !accepted {
+                                warn!(
+                                    self.role(),
+                                    "shard {id} ({} {range:?}) not taken: {note}",
+                                    short_hex(&d)
+                                );
+                            }
+                        }
+                        Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
+                        Ok(Frame::Msg(m)) => {
+                            warn!(self.role(), "unexpected reply to a result: {m:?}")
+                        }
+                        Err(e) => warn!(self.role(), "result of shard {id} not acknowledged: {e}"),
+                    }
+                }
+                Msg::Idle { retry_ms } => {
+                    std::thread::sleep(Duration::from_millis(retry_ms.clamp(1, 2000)))
+                }
+                Msg::Done => return Ok(true),
+                Msg::Rejoin => return Ok(false),
+                m => warn!(self.role(), "unexpected reply to a pull: {m:?}"),
+            }
+        }
+    }
+
+    fn run(&mut self) -> Result<(), WorkerError> {
+        let mut waiting_since = Instant::now();
+        let mut said_waiting = false;
+        let mut finished_run: Option<String> = None;
+        loop {
+            let welcome = match self.join() {
+                Ok(Frame::Msg(Msg::Welcome(w))) => w,
+                Ok(Frame::Msg(Msg::Done)) => {
+                    if !self.opts.stay && finished_run.is_none() {
+                        info!(self.role(), "the run is already over");
+                        return Ok(());
+                    }
+                    std::thread::sleep(Duration::from_millis(500));
+                    continue;
+                }
+                Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
+                Ok(Frame::Msg(m)) => {
+                    warn!(self.role(), "unexpected reply to join: {m:?}");
+                    std::thread::sleep(Duration::from_millis(500));
+                    continue;
+                }
+                Err(LinkError::Decode(e)) => {
+                    return Err(WorkerError::Refused(format!(
+                        "cannot read the coordinator's reply: {e}"
+                    )));
+                }
+                Err(e) => {
+                    if !said_waiting && waiting_since.elapsed() > Duration::from_secs(2) {
+                        info!(
+                            self.role(),
+                            "waiting for a coordinator on {} ({e})",
+                            self.keys.join()
+                        );
+                        said_waiting = true;
+                    }
+                    std::thread::sleep(Duration::from_millis(300));
+                    continue;
+                }
+            };
+            if finished_run.as_deref() == Some(welcome.run_id.as_str()) {
+                std::thread::sleep(Duration::from_millis(500));
+                continue;
+            }
+            let link = match &welcome.data {
+                DataPath::Zenoh => DataLink::Zenoh,
+                DataPath::Iceoryx2 { prefix, service } => {
+                    DataLink::Iox(IoxClient::open(prefix, service)?)
+                }
+            };
+            info!(
+                self.role(),
+                "joined run {} ({} threads, shards over {})",
+                welcome.run_id,
+                self.pool.current_num_threads(),
+                match welcome.data {
+                    DataPath::Zenoh => "zenoh",
+                    DataPath::Iceoryx2 { .. } => "iceoryx2",
+                }
+            );
+            if self.serve_run(link)? {
+                info!(
+                    self.role(),
+                    "run {} is over: {} shards done", welcome.run_id, self.summary.shards
+                );
+                if !self.opts.stay {
+                    return Ok(());
+                }
+                finished_run = Some(welcome.run_id.clone());
+                self.cache.clear();
+            }
+            waiting_since = Instant::now();
+            said_waiting = false;
+        }
+    }
+}
+
+/// Runs a worker until its run is over (or forever with `stay`).
+pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
+    crate::log::init();
+    crate::iox::quiet_logs();
+    let name = opts.name.clone().unwrap_or_else(|| unique_name("w"));
+    let keys = Keys::new(&opts.key_prefix);
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = opts.threads {
+        pool = pool.num_threads(n);
+    }
+    let pool = pool.build().map_err(|e| WorkerError::Pool(e.to_string()))?;
+    let session = open(&opts.zenoh)?;
+    let _token = session
+        .liveliness()
+        .declare_token(keys.alive(&name))
+        .wait()
+        .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+    let mut agent = Agent {
+        opts,
+        name,
+        keys,
+        session,
+        pool,
+        cache: HashMap::new(),
+        summary: WorkerSummary::default(),
+    };
+    let r = agent.run();
+    let _ = agent.session.close().wait();
+    r.map(|_| agent.summary)
+}

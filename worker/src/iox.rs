@@ -1,0 +1,324 @@
+//! iceoryx2: shard requests and results between processes of one host,
+//! through shared memory.
+//!
+//! One request-response service `SERVICE` (`[u8]` -> `[u8]`, the same
+//! frames as over zenoh) with the coordinator as its only server, plus two
+//! event services for wake-ups: `SERVICE/req` (workers notify, the
+//! coordinator listens) and `SERVICE/resp` (the coordinator notifies, the
+//! workers listen). A request is encoded straight into a loaned
+//! shared-memory slice; replies are decoded in place.
+//!
+//! Each run gets its own iceoryx2 global prefix (`fxp<pid>x<nonce>_`), so
+//! runs and tests never meet; [`remove_stale`] deletes the resources of
+//! runs whose coordinator died. Nodes use `SignalHandlingMode::Disabled`:
+//! nobody calls `Node::wait`, and SIGTERM/SIGINT keep their default action,
+//! so `systemctl stop`, Kubernetes and `kill` stop a worker at once; the
+//! coordinator's liveliness and lease handling re-queue its shard.
+
+use crate::protocol::{decode, Frame};
+use crate::zenoh_link::LinkError;
+use iceoryx2::port::client::Client;
+use iceoryx2::port::listener::Listener;
+use iceoryx2::port::notifier::Notifier;
+use iceoryx2::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+type Ipc = ipc::Service;
+const MAX_CLIENTS: usize = 256;
+const SLICE_HINT: usize = 4096;
+/// Start of every prefix this crate creates.
+pub const PREFIX_HEAD: &str = "fxp";
+
+fn err<E: std::fmt::Debug>(what: &str) -> impl FnOnce(E) -> LinkError + '_ {
+    move |e| LinkError::Iceoryx2(format!("{what}: {e:?}"))
+}
+
+/// Silences iceoryx2's own logging below errors (it warns about a missing
+/// config file otherwise).
+pub fn quiet_logs() {
+    set_log_level(LogLevel::Error);
+}
+
+/// A prefix unique to this process and moment.
+pub fn new_prefix() -> String {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.subsec_nanos())
+        .unwrap_or(0);
+    format!("{PREFIX_HEAD}{}x{:08x}_", std::process::id(), nanos)
+}
+
+pub fn config(prefix: &str) -> Result<Config, LinkError> {
+    let mut c = Config::default();
+    c.global.prefix = FileName::new(prefix.as_bytes()).map_err(err("prefix"))?;
+    Ok(c)
+}
+
+fn node(prefix: &str) -> Result<Node<Ipc>, LinkError> {
+    NodeBuilder::new()
+        .config(&config(prefix)?)
+        .signal_handling_mode(SignalHandlingMode::Disabled)
+        .create::<Ipc>()
+        .map_err(err("node"))
+}
+
+fn name(s: &str) -> Result<ServiceName, LinkError> {
+    ServiceName::new(s).map_err(err("service name"))
+}
+
+/// The worker's end.
+pub struct IoxClient {
+    client: Client<Ipc, [u8], (), [u8], ()>,
+    notifier: Notifier<Ipc>,
+    listener: Listener<Ipc>,
+    // Dropped last: the ports above belong to it.
+    _node: Node<Ipc>,
+}
+
+impl IoxClient {
+    /// Opens the coordinator's services (retrying briefly: an open that
+    /// races a dead-node cleanup can fail once).
+    pub fn open(prefix: &str, service: &str) -> Result<IoxClient, LinkError> {
+        let mut last = None;
+        for _ in 0..20 {
+            match Self::try_open(prefix, service) {
+                Ok(c) => return Ok(c),
+                Err(e) => last = Some(e),
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Err(last.unwrap_or(LinkError::NoReply))
+    }
+
+    fn try_open(prefix: &str, service: &str) -> Result<IoxClient, LinkError> {
+        let node = node(prefix)?;
+        let rr = node
+            .service_builder(&name(service)?)
+            .request_response::<[u8], [u8]>()
+            .open()
+            .map_err(err("open request-response service"))?;
+        let client = rr
+            .client_builder()
+            .initial_max_slice_len(SLICE_HINT)
+            .allocation_strategy(AllocationStrategy::PowerOfTwo)
+            .create()
+            .map_err(err("client"))?;
+        let req = node
+            .service_builder(&name(&format!("{service}/req"))?)
+            .event()
+            .open()
+            .map_err(err("open request event"))?;
+        let notifier = req.notifier_builder().create().map_err(err("notifier"))?;
+        let resp = node
+            .service_builder(&name(&format!("{service}/resp"))?)
+            .event()
+            .open()
+            .map_err(err("open response event"))?;
+        let listener = resp.listener_builder().create().map_err(err("listener"))?;
+        Ok(IoxClient {
+            client,
+            notifier,
+            listener,
+            _node: node,
+        })
+    }
+
+    /// One request, one reply.
+    pub fn request(&self, bytes: &[u8], timeout: Duration) -> Result<Frame, LinkError> {
+        let req = self
+            .client
+            .loan_slice_uninit(bytes.len())
+            .map_err(err("loan"))?;
+        let pending = req.write_from_slice(bytes).send().map_err(err("send"))?;
+        self.notifier.notify().map_err(err("notify"))?;
+        let deadline = Instant::now() + timeout;
+        loop {
+            if let Some(resp) = pending.receive().map_err(err("receive"))? {
+                return Ok(decode(resp.payload())?);
+            }
+            let now = Instant::now();
+            if now >= deadline || !pending.is_connected() {
+                return Err(LinkError::NoReply);
+            }
+            let wait = (deadline - now).min(Duration::from_millis(20));
+            self.listener
+                .timed_wait(|_| {}, wait)
+                .map_err(err("wait"))?;
+        }
+    }
+}
+
+/// The coordinator's end: serves requests until `stop`, answering each
+/// with `handle(request bytes)`. `cleanup` asks for a dead-node sweep (a
+/// worker vanished). Returns when `stop` is set.
+pub fn serve(
+    prefix: &str,
+    service: &str,
+    ready: impl FnOnce(),
+    stop: &AtomicBool,
+    cleanup: &AtomicBool,
+    mut handle: impl FnMut(&[u8]) -> Vec<u8>,
+) -> Result<(), LinkError> {
+    let node = node(prefix)?;
+    let rr = node
+        .service_builder(&name(service)?)
+        .request_response::<[u8], [u8]>()
+        .max_clients(MAX_CLIENTS)
+        .max_servers(1)
+        .max_nodes(MAX_CLIENTS + 2)
+        .max_active_requests_per_client(2)
+        .max_response_buffer_size(2)
+        .create()
+        .map_err(err("create request-response service"))?;
+    let server = rr
+        .server_builder()
+        .initial_max_slice_len(SLICE_HINT)
+        .allocation_strategy(AllocationStrategy::PowerOfTwo)
+        .create()
+        .map_err(err("server"))?;
+    let req = node
+        .service_builder(&name(&format!("{service}/req"))?)
+        .event()
+        .max_notifiers(MAX_CLIENTS)
+        .max_listeners(1)
+        .max_nodes(MAX_CLIENTS + 2)
+        .create()
+        .map_err(err("create request event"))?;
+    let listener = req.listener_builder().create().map_err(err("listener"))?;
+    let resp = node
+        .service_builder(&name(&format!("{service}/resp"))?)
+        .event()
+        .max_notifiers(1)
+        .max_listeners(MAX_CLIENTS)
+        .max_nodes(MAX_CLIENTS + 2)
+        .create()
+        .map_err(err("create response event"))?;
+    let notifier = resp.notifier_builder().create().map_err(err("notifier"))?;
+    ready();
+    while !stop.load(Ordering::SeqCst) {
+        if cleanup.swap(false, Ordering::SeqCst) {
+            node.try_cleanup_dead_nodes();
+        }
+        listener
+            .timed_wait(|_| {}, Duration::from_millis(20))
+            .map_err(err("wait"))?;
+        let mut answered = false;
+        while let Some(active) = server.receive().map_err(err("receive"))? {
+            let reply = handle(active.payload());
+            match active.loan_slice_uninit(reply.len()) {
+                Ok(r) => {
+                    if let Err(e) = r.write_from_slice(&reply).send() {
+                        crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
+                    }
+                }
+                Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
+            }
+            answered = true;
+        }
+        if answered {
+            let _ = notifier.notify();
+        }
+    }
+    Ok(())
+}
+
+/// Paths of the files iceoryx2 keeps for the prefixes of this crate:
+/// `/dev/shm/fxp*` and `<iceoryx2 root>/**/fxp*`.
+fn our_files() -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    let root = Config::default().global.root_path().to_string();
+    let mut dirs = vec![
+        std::path::PathBuf::from("/dev/shm"),
+        std::path::PathBuf::from(root),
+    ];
+    while let Some(d) = dirs.pop() {
+        let Ok(rd) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in rd.flatten() {
+            let p = e.path();
+            if e.file_type().map(|t| t.is_dir()).unwrap_or(false) && !d.starts_with("/dev/shm") {
+                dirs.push(p);
+            } else if e.file_name().to_string_lossy().starts_with(PREFIX_HEAD) {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// The prefix a file belongs to, and its creator's pid.
+fn prefix_of(file_name: &str) -> Option<(String, u32)> {
+    let rest = file_name.strip_prefix(PREFIX_HEAD)?;
+    let x = rest.find('x')?;
+    let pid: u32 = rest[..x].parse().ok()?;
+    let us = rest.find('_')?;
+    Some((file_name[..PREFIX_HEAD.len() + us + 1].to_string(), pid))
+}
+
+/// Removes the iceoryx2 resources of one prefix: dead nodes through
+/// iceoryx2's own cleanup, then any file left with that prefix.
+pub fn remove_prefix(prefix: &str) {
+    if let Ok(cfg) = config(prefix) {
+        let _ = Node::<Ipc>::list(&cfg, |state| {
+            if let NodeState::Dead(view) = state {
+                let _ = view.try_remove_stale_resources();
+            }
+            CallbackProgression::Continue
+        });
+    }
+    for p in our_files() {
+        let n = p
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if n.starts_with(prefix) {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+}
+
+/// Removes the resources of runs whose coordinator process is gone.
+/// Returns the prefixes cleaned.
+pub fn remove_stale() -> Vec<String> {
+    let mut stale = std::collections::BTreeSet::new();
+    for p in our_files() {
+        let n = p
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if let Some((prefix, pid)) = prefix_of(&n) {
+            if !std::path::Path::new(&format!("/proc/{pid}")).exists() {
+                stale.insert(prefix);
+            }
+        }
+    }
+    for p in &stale {
+        remove_prefix(p);
+    }
+    stale.into_iter().collect()
+}
+
+/// Whether any file of `prefix` is left (for tests).
+pub fn files_left(prefix: &str) -> Vec<std::path::PathBuf> {
+    our_files()
+        .into_iter()
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with(prefix))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn prefix_parse() {
+        assert_eq!(
+            super::prefix_of("fxp123xdeadbeef_iox2_abc"),
+            Some(("fxp123xdeadbeef_".into(), 123))
+        );
+        assert_eq!(super::prefix_of("iox2_abc"), None);
+    }
+}

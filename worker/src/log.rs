@@ -1,0 +1,27 @@
+//! Plain log lines on standard error, with the time since start and the
+//! process role (`coordinator`, `worker NAME`).
+
+use std::sync::OnceLock;
+use std::time::Instant;
+
+static START: OnceLock<Instant> = OnceLock::new();
+
+/// Starts the clock (idempotent).
+pub fn init() {
+    START.get_or_init(Instant::now);
+}
+
+pub fn line(level: &str, role: &str, msg: &str) {
+    let t = START.get_or_init(Instant::now).elapsed().as_secs_f64();
+    eprintln!("[{t:9.3}s {level} {role}] {msg}");
+}
+
+#[macro_export]
+macro_rules! info {
+    ($role:expr, $($arg:tt)*) => { $crate::log::line("INFO", &$role, &format!($($arg)*)) };
+}
+
+#[macro_export]
+macro_rules! warn {
+    ($role:expr, $($arg:tt)*) => { $crate::log::line("WARN", &$role, &format!($($arg)*)) };
+}

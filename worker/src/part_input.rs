@@ -1,0 +1,156 @@
+//! What a worker needs to prepare a part itself: outline, access regions,
+//! kit, parameters and unit, in a binary wire form that crosses processes
+//! bit for bit. `prepare` is deterministic, so a worker that prepares the
+//! same input holds the same [`PreparedPart`] as the coordinator.
+
+use crate::protocol::Digest;
+use fixplan_core::{
+    prepare, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, PrepareError, PreparedPart,
+    Units,
+};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest as _, Sha256};
+use thiserror::Error;
+
+/// One part of a distributed run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartInput {
+    pub part: Part,
+    pub kit: Kit,
+    pub params: Params,
+    pub units: Units,
+}
+
+#[derive(Debug, Error)]
+#[error("part input: {0}")]
+pub struct InputError(String);
+
+// `Kit`'s serde form reads mount holes in several spellings (untagged),
+// which a binary format cannot; the wire form spells them one way.
+#[derive(Serialize, Deserialize)]
+struct WireClamp {
+    mount_holes: Vec<(i64, i64, HoleKind)>,
+    axis_offset: f64,
+    travel: [f64; 2],
+    body: Vec<[f64; 2]>,
+    plunger: Vec<[f64; 2]>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct WireKit {
+    spacing: f64,
+    cols: u32,
+    rows: u32,
+    pattern: Pattern,
+    locator_radius: f64,
+    clamp: WireClamp,
+}
+
+#[derive(Serialize, Deserialize)]
+struct WireInput {
+    part: Part,
+    kit: WireKit,
+    params: Params,
+    units: Units,
+}
+
+impl PartInput {
+    /// The wire bytes (postcard).
+    pub fn encode(&self) -> Result<Vec<u8>, InputError> {
+        let k = &self.kit;
+        let w = WireInput {
+            part: self.part.clone(),
+            kit: WireKit {
+                spacing: k.spacing,
+                cols: k.cols,
+                rows: k.rows,
+                pattern: k.pattern,
+                locator_radius: k.locator_radius,
+                clamp: WireClamp {
+                    mount_holes: k
+                        .clamp
+                        .mount_holes
+                        .iter()
+                        .map(|h| (h.offset[0], h.offset[1], h.kind))
+                        .collect(),
+                    axis_offset: k.clamp.axis_offset,
+                    travel: k.clamp.travel,
+                    body: k.clamp.body.clone(),
+                    plunger: k.clamp.plunger.clone(),
+                },
+            },
+            params: self.params.clone(),
+            units: self.units,
+        };
+        postcard::to_allocvec(&w).map_err(|e| InputError(e.to_string()))
+    }
+
+    pub fn decode(bytes: &[u8]) -> Result<PartInput, InputError> {
+        let w: WireInput = postcard::from_bytes(bytes).map_err(|e| InputError(e.to_string()))?;
+        let c = w.kit.clamp;
+        Ok(PartInput {
+            part: w.part,
+            kit: Kit {
+                spacing: w.kit.spacing,
+                cols: w.kit.cols,
+                rows: w.kit.rows,
+                pattern: w.kit.pattern,
+                locator_radius: w.kit.locator_radius,
+                clamp: Clamp {
+                    mount_holes: c
+                        .mount_holes
+                        .into_iter()
+                        .map(|(i, j, kind)| MountHole {
+                            offset: [i, j],
+                            kind,
+                        })
+                        .collect(),
+                    axis_offset: c.axis_offset,
+                    travel: c.travel,
+                    body: c.body,
+                    plunger: c.plunger,
+                },
+            },
+            params: w.params,
+            units: w.units,
+        })
+    }
+
+    pub fn prepare(&self) -> Result<PreparedPart, PrepareError> {
+        prepare(&self.part, &self.kit, &self.params, self.units)
+    }
+}
+
+/// SHA-256 of wire bytes.
+pub fn digest(bytes: &[u8]) -> Digest {
+    Sha256::digest(bytes).into()
+}
+
+/// A digest in hex, for logs.
+pub fn short_hex(d: &Digest) -> String {
+    d[..6].iter().map(|b| format!("{b:02x}")).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wire_round_trip_is_exact() {
+        let case: fixplan_core::Case =
+            serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json")).unwrap();
+        let mut params = case.params.clone();
+        params.wrenches = Some(vec![[0.1, 1.0 / 3.0, -7.25e-3]]);
+        let input = PartInput {
+            part: case.part(),
+            kit: case.kit.clone(),
+            params,
+            units: case.units,
+        };
+        let b = input.encode().unwrap();
+        let back = PartInput::decode(&b).unwrap();
+        assert_eq!(back, input);
+        assert_eq!(back.encode().unwrap(), b);
+        assert!(PartInput::decode(&b[..b.len() / 2]).is_err());
+    }
+}

@@ -1,0 +1,300 @@
+//! The messages between coordinator and workers, and their framing.
+//!
+//! Every message is one frame: the magic `FX`, the protocol version
+//! (`u16`, little endian), a kind byte and a body. The version is checked
+//! before anything else is read. Kind [`KIND_REFUSED`] carries a plain UTF-8
+//! text in every protocol version, so that a peer of another version can
+//! still be told, clearly, why it was refused. Every other kind carries a
+//! [`Msg`] encoded with `postcard` (binary, so floats cross processes bit
+//! for bit).
+
+use fixplan_core::PartialResult;
+use serde::{Deserialize, Serialize};
+use std::ops::Range;
+use thiserror::Error;
+
+/// The version of this protocol. A peer speaking another one is refused.
+pub const PROTOCOL_VERSION: u16 = 1;
+const MAGIC: [u8; 2] = *b"FX";
+const HEADER: usize = 5;
+const KIND_MSG: u8 = 1;
+/// A refusal: plain UTF-8 text, the same in every protocol version.
+pub const KIND_REFUSED: u8 = 0xFF;
+
+/// SHA-256 of a part's wire input: the name under which workers cache it.
+pub type Digest = [u8; 32];
+
+/// Which transport carries shard requests and results.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum TransportChoice {
+    /// iceoryx2 when the worker is on the coordinator's host, else zenoh.
+    #[default]
+    Auto,
+    Zenoh,
+    Iceoryx2,
+}
+
+impl std::str::FromStr for TransportChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(TransportChoice::Auto),
+            "zenoh" => Ok(TransportChoice::Zenoh),
+            "iceoryx2" => Ok(TransportChoice::Iceoryx2),
+            _ => Err(format!("unknown transport {s:?} (auto, zenoh or iceoryx2)")),
+        }
+    }
+}
+
+impl std::fmt::Display for TransportChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            TransportChoice::Auto => "auto",
+            TransportChoice::Zenoh => "zenoh",
+            TransportChoice::Iceoryx2 => "iceoryx2",
+        })
+    }
+}
+
+/// A worker asks to take part in the run (zenoh, `PREFIX/join`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Join {
+    pub worker: String,
+    /// Identifies the host and its `/dev/shm` (see [`crate::host::host_id`]).
+    pub host_id: String,
+    pub pid: u32,
+    pub threads: u32,
+    pub transport: TransportChoice,
+    /// fixplan version of the worker, for messages.
+    pub software: String,
+}
+
+/// Where the worker sends its shard requests after joining.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DataPath {
+    Zenoh,
+    /// iceoryx2 request-response service `service` under the global prefix
+    /// `prefix`, with the event services `service/req` and `service/resp`.
+    Iceoryx2 {
+        prefix: String,
+        service: String,
+    },
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Welcome {
+    pub run_id: String,
+    pub data: DataPath,
+    /// How long a shard may stay out before it is given to another worker.
+    pub lease_ms: u64,
+}
+
+/// One shard to enumerate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Assign {
+    pub shard_id: u64,
+    pub digest: Digest,
+    pub range: Range<u64>,
+    /// The part's wire input ([`crate::part_input::PartInput::encode`]),
+    /// only the first time this worker gets a shard of the part.
+    pub input: Option<Vec<u8>>,
+}
+
+/// A finished shard.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ShardDone {
+    pub worker: String,
+    pub shard_id: u64,
+    pub digest: Digest,
+    pub micros: u64,
+    pub result: PartialResult,
+}
+
+/// A shard the worker could not enumerate (a panic, or an input it could
+/// not prepare): the part becomes `invalid` with this message.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ShardFailed {
+    pub worker: String,
+    pub shard_id: u64,
+    pub message: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Msg {
+    Join(Join),
+    Welcome(Welcome),
+    /// Asks for work.
+    Pull {
+        worker: String,
+    },
+    Assign(Assign),
+    /// Nothing to do now; ask again after this long.
+    Idle {
+        retry_ms: u64,
+    },
+    /// The run is over.
+    Done,
+    /// The coordinator does not know this worker (declared dead, or another
+    /// run): join again.
+    Rejoin,
+    Result(Box<ShardDone>),
+    Failed(ShardFailed),
+    /// Reply to a result: whether it was taken (false for a duplicate or a
+    /// rejected one; `note` says which).
+    Ack {
+        accepted: bool,
+        note: String,
+    },
+}
+
+/// A decoded frame.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Frame {
+    Msg(Msg),
+    Refused(String),
+}
+
+#[derive(Debug, Error, PartialEq)]
+pub enum DecodeError {
+    #[error("not a fixplan message ({0} bytes, no FX header)")]
+    NotFixplan(usize),
+    #[error("protocol version {got}, this side speaks version {PROTOCOL_VERSION}")]
+    Version { got: u16 },
+    #[error("unknown message kind {0}")]
+    Kind(u8),
+    #[error("malformed message: {0}")]
+    Body(String),
+}
+
+#[derive(Debug, Error)]
+#[error("cannot encode message: {0}")]
+pub struct EncodeError(String);
+
+fn header(version: u16, kind: u8) -> Vec<u8> {
+    let mut v = Vec::with_capacity(256);
+    v.extend_from_slice(&MAGIC);
+    v.extend_from_slice(&version.to_le_bytes());
+    v.push(kind);
+    v
+}
+
+/// Encodes a message in this protocol version.
+pub fn encode(msg: &Msg) -> Result<Vec<u8>, EncodeError> {
+    encode_as(PROTOCOL_VERSION, msg)
+}
+
+/// Encodes a message claiming another protocol version (for tests of the
+/// version check).
+pub fn encode_as(version: u16, msg: &Msg) -> Result<Vec<u8>, EncodeError> {
+    let v = header(version, KIND_MSG);
+    postcard::to_extend(msg, v).map_err(|e| EncodeError(e.to_string()))
+}
+
+/// A refusal, readable by a peer of any protocol version.
+pub fn encode_refused(reason: &str) -> Vec<u8> {
+    let mut v = header(PROTOCOL_VERSION, KIND_REFUSED);
+    v.extend_from_slice(reason.as_bytes());
+    v
+}
+
+/// Decodes a frame: header and version first, then the body.
+pub fn decode(bytes: &[u8]) -> Result<Frame, DecodeError> {
+    if bytes.len() < HEADER || bytes[..2] != MAGIC {
+        return Err(DecodeError::NotFixplan(bytes.len()));
+    }
+    let version = u16::from_le_bytes([bytes[2], bytes[3]]);
+    let kind = bytes[4];
+    let body = &bytes[HEADER..];
+    if kind == KIND_REFUSED {
+        return Ok(Frame::Refused(String::from_utf8_lossy(body).into_owned()));
+    }
+    if version != PROTOCOL_VERSION {
+        return Err(DecodeError::Version { got: version });
+    }
+    if kind != KIND_MSG {
+        return Err(DecodeError::Kind(kind));
+    }
+    match postcard::from_bytes::<Msg>(body) {
+        Ok(m) => Ok(Frame::Msg(m)),
+        Err(e) => Err(DecodeError::Body(e.to_string())),
+    }
+}
+
+/// The coordinator's answer to a frame it cannot read.
+pub fn refusal_for(err: &DecodeError) -> String {
+    match err {
+        DecodeError::Version { got } => format!(
+            "refused: this coordinator speaks fixplan protocol version {PROTOCOL_VERSION} (fixplan {}), \
+             the worker speaks version {got}; run the same fixplan version on both",
+            env!("CARGO_PKG_VERSION")
+        ),
+        e => format!("refused: {e}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixplan_core::report::Counts;
+
+    #[test]
+    fn round_trip_and_version() {
+        let m = Msg::Pull {
+            worker: "w1".into(),
+        };
+        let b = encode(&m).unwrap();
+        assert_eq!(decode(&b), Ok(Frame::Msg(m.clone())));
+        let b2 = encode_as(PROTOCOL_VERSION + 1, &m).unwrap();
+        assert_eq!(
+            decode(&b2),
+            Err(DecodeError::Version {
+                got: PROTOCOL_VERSION + 1
+            })
+        );
+        assert!(matches!(
+            decode(b"garbage"),
+            Err(DecodeError::NotFixplan(_))
+        ));
+        let mut cut = b.clone();
+        cut.truncate(HEADER + 1);
+        assert!(matches!(decode(&cut), Err(DecodeError::Body(_))));
+        let r = encode_refused("no");
+        assert_eq!(decode(&r), Ok(Frame::Refused("no".into())));
+    }
+
+    #[test]
+    fn floats_cross_bit_exact() {
+        let xs = [
+            0.1f64,
+            1.0 / 3.0,
+            f64::MIN_POSITIVE,
+            1e-310,
+            -0.0,
+            123456.789e-7,
+            f64::MAX,
+        ];
+        let pr = PartialResult {
+            range: 3..9,
+            counts: Counts::default(),
+            fixtures: vec![],
+        };
+        for x in xs {
+            let m = Msg::Idle {
+                retry_ms: x.to_bits(),
+            };
+            let b = encode(&m).unwrap();
+            assert_eq!(decode(&b), Ok(Frame::Msg(m)));
+            let v: Vec<f64> =
+                postcard::from_bytes(&postcard::to_allocvec(&vec![x]).unwrap()).unwrap();
+            assert_eq!(v[0].to_bits(), x.to_bits());
+        }
+        let m = Msg::Result(Box::new(ShardDone {
+            worker: "w".into(),
+            shard_id: 1,
+            digest: [7; 32],
+            micros: 5,
+            result: pr,
+        }));
+        assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
+    }
+}
