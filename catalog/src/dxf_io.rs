@@ -380,13 +380,11 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
     pair(0, "ENDSEC");
     pair(0, "SECTION");
     pair(2, "ENTITIES");
-    let mut handle = 0x100;
     let polys =
         std::iter::once(("PART", &part.outline)).chain(part.access.iter().map(|a| ("ACCESS", a)));
-    for (layer, pts) in polys {
+    for (handle, (layer, pts)) in (0x100..).zip(polys) {
         pair(0, "LWPOLYLINE");
         pair(5, &format!("{handle:X}"));
-        handle += 1;
         pair(100, "AcDbEntity");
         pair(8, layer);
         pair(100, "AcDbPolyline");
