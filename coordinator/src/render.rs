@@ -6,6 +6,7 @@
 use crate::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
 use crate::messages::RunMsg;
 use crate::results::{PartRecord, ResultsFile};
+use crate::show::status_word;
 use anyhow::{bail, Context, Result};
 use fixplan_core::{FixtureReport, Point, Status};
 use std::fmt::Write as _;
@@ -13,7 +14,7 @@ use std::path::Path;
 
 const WIDTH: f64 = 760.0;
 const PAD: f64 = 20.0;
-const CAPTION: f64 = 64.0;
+const CAPTION: f64 = 80.0;
 
 /// Maps plate coordinates (y up) to SVG pixels (y down).
 struct View {
@@ -219,12 +220,11 @@ pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String 
                 if f.borderline { " (borderline)" } else { "" }
             ),
             format!(
-                "pose ({:.2}, {:.2}) {u}, {:.2}°; clamp rot {}°, extension {:.2} {u}; plate holes: locators {} clamp {}{}",
-                f.pose.x,
-                f.pose.y,
-                f.pose.theta_deg,
-                f.clamp.rotation_deg,
-                f.clamp.extension,
+                "pose x {:.2} {u}, y {:.2} {u}, theta {:.2}°; clamp rotation {}°, extension {:.2} {u}",
+                f.pose.x, f.pose.y, f.pose.theta_deg, f.clamp.rotation_deg, f.clamp.extension,
+            ),
+            format!(
+                "plate holes [col,row]: locators {}, clamp {}{}",
                 holes(&f.placement.locators),
                 holes(&f.placement.clamp_holes),
                 if f.placement.rotation_deg != 0 { " (plate turned 90°)" } else { "" }
@@ -242,9 +242,20 @@ pub fn part_svg(rec: &PartRecord) -> String {
     for a in &p.access {
         pts.extend(a.iter().copied());
     }
-    let b = bounds(&pts).unwrap_or([[0.0, 0.0], [1.0, 1.0]]);
-    let m = 0.08 * (b[1][0] - b[0][0]).max(b[1][1] - b[0][1]).max(1e-9);
-    let v = View::new([[b[0][0] - m, b[0][1] - m], [b[1][0] + m, b[1][1] + m]]);
+    // No outline (it could not be read): a caption alone.
+    let v = match bounds(&pts) {
+        Some(b) => {
+            let m = 0.08 * (b[1][0] - b[0][0]).max(b[1][1] - b[0][1]).max(1e-9);
+            View::new([[b[0][0] - m, b[0][1] - m], [b[1][0] + m, b[1][1] + m]])
+        }
+        None => View {
+            x0: 0.0,
+            y1: 0.0,
+            k: 1.0,
+            w: WIDTH,
+            h: 10.0,
+        },
+    };
     let mut s = header(&v);
     if p.outline.len() >= 2 {
         v.polygon(
@@ -355,11 +366,7 @@ fn render_part(
 ) -> Result<usize> {
     let p = &rec.part;
     let st = stem(p.index, &p.id);
-    let status = match p.status {
-        Status::Ok => "ok",
-        Status::NoFixture => "no_fixture",
-        Status::Invalid => "invalid",
-    };
+    let status = status_word(p.status);
     let _ = writeln!(
         html,
         "<div class=\"part\"><h2>{} <span class=\"{status}\">{status}</span></h2>",

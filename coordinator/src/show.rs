@@ -7,7 +7,7 @@ use fixplan_core::Status;
 use std::io::Write;
 use std::path::Path;
 
-fn status_word(s: Status) -> &'static str {
+pub fn status_word(s: Status) -> &'static str {
     match s {
         Status::Ok => "ok",
         Status::NoFixture => "no_fixture",

@@ -1,0 +1,632 @@
+//! `fixplan run`, `show`, `export` and `render` through the built binary:
+//! the sample catalogue, export against `solve`, resume after a real
+//! SIGKILL, invalid parts, and the MCAP file read back channel by channel
+//! (Rust reader here, Python's `mcap` package when it is installed).
+
+use fixplan_coordinator::messages::*;
+use fixplan_coordinator::results::ResultsFile;
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn fixplan() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_fixplan"))
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn ok(out: Output) -> Output {
+    assert!(
+        out.status.success(),
+        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+/// A manifest of inline parts in `dir`.
+fn manifest(dir: &Path, units: &str, parts: &[(&str, Vec<[f64; 2]>)]) -> PathBuf {
+    let mut s = format!("name = \"test\"\nunits = \"{units}\"\n\n");
+    for (id, pts) in parts {
+        s.push_str(&format!(
+            "[[part]]\nid = \"{id}\"\noutline = {}\n\n",
+            serde_json::to_string(pts).unwrap()
+        ));
+    }
+    let p = dir.join("catalog.toml");
+    std::fs::write(&p, s).unwrap();
+    p
+}
+
+fn small_parts() -> Vec<(&'static str, Vec<[f64; 2]>)> {
+    vec![
+        (
+            "plate",
+            vec![[0.0, 0.0], [80.0, 0.0], [80.0, 50.0], [0.0, 50.0]],
+        ),
+        (
+            "ell",
+            vec![
+                [0.0, 0.0],
+                [90.0, 0.0],
+                [90.0, 30.0],
+                [30.0, 30.0],
+                [30.0, 70.0],
+                [0.0, 70.0],
+            ],
+        ),
+        (
+            "bowtie",
+            vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
+        ),
+        (
+            "hex",
+            vec![
+                [30.0, 0.0],
+                [70.0, 0.0],
+                [95.0, 40.0],
+                [70.0, 80.0],
+                [30.0, 80.0],
+                [5.0, 40.0],
+            ],
+        ),
+        ("tiny", vec![[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]),
+    ]
+}
+
+/// The gluegun outline (bench case), in mm, scaled by `1 + i/100`: parts
+/// that take a noticeable fraction of a second each.
+fn gluegun_parts(n: usize) -> Vec<(String, Vec<[f64; 2]>)> {
+    let case: Value = serde_json::from_str(
+        &std::fs::read_to_string(repo().join("examples/cases/gluegun-28.json")).unwrap(),
+    )
+    .unwrap();
+    let pts: Vec<[f64; 2]> = serde_json::from_value(case["part"].clone()).unwrap();
+    (0..n)
+        .map(|i| {
+            let s = 25.4 * (1.0 + i as f64 / 100.0);
+            (
+                format!("g{i:02}"),
+                pts.iter().map(|p| [p[0] * s, p[1] * s]).collect(),
+            )
+        })
+        .collect()
+}
+
+fn export_lines(results: &Path) -> Vec<Value> {
+    let out = ok(fixplan()
+        .arg("export")
+        .arg(results)
+        .arg("--json")
+        .output()
+        .unwrap());
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+fn run_small(dir: &Path) -> (PathBuf, Output) {
+    let cat = manifest(dir, "mm", &small_parts());
+    let res = dir.join("r.mcap");
+    let out = fixplan()
+        .args(["run", "--kit", "metric-25", "--top-k", "4", "--catalog"])
+        .arg(&cat)
+        .arg("-o")
+        .arg(&res)
+        .output()
+        .unwrap();
+    (res, ok(out))
+}
+
+#[test]
+fn runs_the_sample_catalogue_by_default() {
+    let sample = repo().join("examples/catalog/catalog.toml");
+    assert!(
+        sample.is_file(),
+        "the sample catalogue {} is missing",
+        sample.display()
+    );
+    let dir = tempfile::tempdir().unwrap();
+    // No --catalog, no --kit, no -o: the sample with metric-25 into results.mcap.
+    let out = ok(fixplan()
+        .arg("run")
+        .current_dir(dir.path())
+        .output()
+        .unwrap());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("fixtures found"), "{stdout}");
+    let res = dir.path().join("results.mcap");
+    assert!(res.is_file());
+    assert!(!dir.path().join("results.mcap.partial").exists());
+    let lines = export_lines(&res);
+    let file = ResultsFile::open(&res).unwrap();
+    let mut ids = Vec::new();
+    let c = file
+        .for_each_part(|_, m| {
+            ids.push(serde_json::from_slice::<PartMsg>(&m.part).unwrap().id);
+            true
+        })
+        .unwrap();
+    assert!(c.complete);
+    assert_eq!(c.run.kit_name, "metric-25");
+    assert_eq!(c.run.catalog.parts, lines.len());
+    assert_eq!(ids.len(), lines.len());
+    assert!(
+        lines.iter().any(|l| l["status"] == "ok"),
+        "no part of the sample has a fixture"
+    );
+    let shown = ok(fixplan().arg("show").arg(&res).output().unwrap());
+    assert!(String::from_utf8_lossy(&shown.stdout).contains(&ids[0]));
+}
+
+/// Each exported line equals `fixplan solve` on a case file made of the
+/// part, the run's kit and parameters.
+#[test]
+fn export_matches_solve_for_each_part() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let file = ResultsFile::open(&res).unwrap();
+    let mut parts = Vec::new();
+    let c = file
+        .for_each_part(|_, m| {
+            parts.push(serde_json::from_slice::<PartMsg>(&m.part).unwrap());
+            true
+        })
+        .unwrap();
+    let lines = export_lines(&res);
+    assert_eq!(lines.len(), 5);
+    for (p, line) in parts.iter().zip(&lines) {
+        assert_eq!(line["part"], p.id.as_str());
+        let mut expected = line.clone();
+        expected.as_object_mut().unwrap().remove("part");
+        if p.status == fixplan_core::Status::Invalid {
+            assert!(line["error"].as_str().unwrap().contains(&p.id), "{line}");
+            continue;
+        }
+        let case = serde_json::json!({"units": p.units, "part": p.outline, "access": p.access,
+            "kit": c.run.kit, "params": c.run.params});
+        let case_path = dir.path().join(format!("{}.json", p.id));
+        std::fs::write(&case_path, case.to_string()).unwrap();
+        let solved = ok(fixplan().arg("solve").arg(&case_path).output().unwrap());
+        let solved: Value = serde_json::from_slice(&solved.stdout).unwrap();
+        assert_eq!(solved, expected, "part {}", p.id);
+    }
+}
+
+#[test]
+fn invalid_parts_are_reported_while_the_others_finish() {
+    let dir = tempfile::tempdir().unwrap();
+    // A directory catalogue: two good JSON parts and a broken one.
+    let cat = dir.path().join("parts");
+    std::fs::create_dir(&cat).unwrap();
+    let write = |name: &str, v: Value| std::fs::write(cat.join(name), v.to_string()).unwrap();
+    write(
+        "a-plate.json",
+        serde_json::json!({"part": [[0,0],[80,0],[80,50],[0,50]]}),
+    );
+    write(
+        "b-bowtie.json",
+        serde_json::json!({"part": [[0,0],[50,50],[50,0],[0,50]]}),
+    );
+    write(
+        "c-ell.json",
+        serde_json::json!({"part": [[0,0],[90,0],[90,30],[30,30],[30,70],[0,70]]}),
+    );
+    std::fs::write(cat.join("d-garbage.json"), "{not json").unwrap();
+    let res = dir.path().join("r.mcap");
+    let out = ok(fixplan()
+        .args(["run", "--kit", "metric-25", "--catalog"])
+        .arg(&cat)
+        .arg("-o")
+        .arg(&res)
+        .output()
+        .unwrap());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stderr.contains("b-bowtie") && stderr.contains("cross"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("d-garbage"), "{stderr}");
+    assert!(
+        stdout.contains("invalid                           2"),
+        "{stdout}"
+    );
+    let lines = export_lines(&res);
+    let status: Vec<_> = lines
+        .iter()
+        .map(|l| (l["part"].clone(), l["status"].clone()))
+        .collect();
+    assert_eq!(
+        status,
+        [
+            ("a-plate".into(), "ok".into()),
+            ("b-bowtie".into(), "invalid".into()),
+            ("c-ell".into(), "ok".into()),
+            ("d-garbage".into(), "invalid".into())
+        ]
+    );
+    let err = lines[1]["error"].as_str().unwrap();
+    assert!(err.contains("b-bowtie") && err.contains("edge"), "{err}");
+}
+
+fn complete_parts(partial: &Path) -> usize {
+    match ResultsFile::open(partial) {
+        Ok(f) => f
+            .for_each_part(|_, _| true)
+            .map(|c| c.parts.len())
+            .unwrap_or(0),
+        Err(_) => 0,
+    }
+}
+
+#[test]
+fn resumes_after_sigkill() {
+    let dir = tempfile::tempdir().unwrap();
+    let parts = gluegun_parts(10);
+    let refs: Vec<(&str, Vec<[f64; 2]>)> =
+        parts.iter().map(|(i, p)| (i.as_str(), p.clone())).collect();
+    let cat = manifest(dir.path(), "mm", &refs);
+    let res = dir.path().join("r.mcap");
+    let partial = dir.path().join("r.mcap.partial");
+    let base = |threads: &str, out: &Path| {
+        let mut c = fixplan();
+        c.args([
+            "run",
+            "--kit",
+            "metric-25",
+            "--threads",
+            threads,
+            "--catalog",
+        ])
+        .arg(&cat)
+        .arg("-o")
+        .arg(out);
+        c
+    };
+    let mut child = base("1", &res)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    let mut done_before_kill = 0;
+    while t0.elapsed() < Duration::from_secs(120) {
+        done_before_kill = complete_parts(&partial);
+        if done_before_kill >= 2 {
+            break;
+        }
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before it could be killed"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    // SIGKILL: no chance to clean up.
+    unsafe {
+        libc::kill(child.id() as i32, libc::SIGKILL);
+    }
+    let status = child.wait().unwrap();
+    assert!(!status.success());
+    assert!(!res.exists(), "killed run must not leave a finished file");
+    let after_kill = complete_parts(&partial);
+    assert!(
+        after_kill >= done_before_kill && after_kill < 10,
+        "{after_kill} parts in the partial file"
+    );
+    assert!(mcap::Summary::read(&std::fs::read(&partial).unwrap())
+        .ok()
+        .flatten()
+        .is_none());
+
+    let out = ok(base("2", &res).arg("--resume").output().unwrap());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&format!("{after_kill} parts already done")),
+        "{stderr}"
+    );
+    // No finished part was redone: the log names only the others.
+    for (id, _) in &parts[..after_kill] {
+        assert!(
+            !stderr.contains(&format!("] {id}:")),
+            "{id} redone:\n{stderr}"
+        );
+    }
+    for (id, _) in &parts[after_kill..] {
+        assert!(
+            stderr.contains(&format!("] {id}:")),
+            "{id} missing:\n{stderr}"
+        );
+    }
+    assert!(res.is_file() && !partial.exists());
+
+    // Each part exactly once, and the same rankings as an uninterrupted run.
+    let reference = dir.path().join("ref.mcap");
+    ok(base("2", &reference).output().unwrap());
+    let got = export_lines(&res);
+    let ids: Vec<_> = got
+        .iter()
+        .map(|l| l["part"].as_str().unwrap().to_string())
+        .collect();
+    let want: Vec<_> = parts.iter().map(|(i, _)| i.clone()).collect();
+    assert_eq!(ids, want);
+    assert_eq!(got, export_lines(&reference));
+    // The fixtures channel is the same bytes.
+    let bytes = |p: &Path| {
+        let mut v = Vec::new();
+        ResultsFile::open(p)
+            .unwrap()
+            .for_each_part(|_, m| {
+                v.push(m.fixtures);
+                true
+            })
+            .unwrap();
+        v
+    };
+    assert_eq!(bytes(&res), bytes(&reference));
+}
+
+#[test]
+fn resume_refuses_a_different_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    // Pretend the finished file was interrupted, then resume with other params.
+    std::fs::rename(&res, dir.path().join("r.mcap.partial")).unwrap();
+    let out = fixplan()
+        .args([
+            "run",
+            "--kit",
+            "metric-25",
+            "--top-k",
+            "3",
+            "--resume",
+            "--catalog",
+        ])
+        .arg(dir.path().join("catalog.toml"))
+        .arg("-o")
+        .arg(&res)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("different run"));
+    // With the same parameters everything is taken from the file.
+    let out = ok(fixplan()
+        .args([
+            "run",
+            "--kit",
+            "metric-25",
+            "--top-k",
+            "4",
+            "--resume",
+            "--catalog",
+        ])
+        .arg(dir.path().join("catalog.toml"))
+        .arg("-o")
+        .arg(&res)
+        .output()
+        .unwrap());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("5 parts already done"));
+    assert_eq!(export_lines(&res).len(), 5);
+}
+
+/// The file read back with the `mcap` crate: summary, indexes, zstd chunks,
+/// four channels with JSON Schemas, every message valid JSON.
+#[test]
+fn mcap_reads_back_channel_by_channel() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let bytes = std::fs::read(&res).unwrap();
+    let summary = mcap::Summary::read(&bytes).unwrap().expect("summary");
+    assert!(!summary.chunk_indexes.is_empty());
+    assert!(summary
+        .chunk_indexes
+        .iter()
+        .all(|c| c.compression == "zstd"));
+    let mut topics: BTreeMap<String, (String, String, String)> = BTreeMap::new();
+    for ch in summary.channels.values() {
+        let s = ch.schema.as_ref().expect("schema");
+        assert_eq!(s.encoding, "jsonschema");
+        let schema: Value = serde_json::from_slice(&s.data).expect("schema is JSON");
+        assert_eq!(schema["title"], s.name.as_str());
+        topics.insert(
+            ch.topic.clone(),
+            (
+                s.name.clone(),
+                s.encoding.clone(),
+                ch.message_encoding.clone(),
+            ),
+        );
+    }
+    let names: Vec<_> = topics
+        .iter()
+        .map(|(t, (s, _, e))| format!("{t} {s} {e}"))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "/fixplan/fixtures fixplan.Fixtures json",
+            "/fixplan/part fixplan.Part json",
+            "/fixplan/run fixplan.Run json",
+            "/fixplan/scene foxglove.SceneUpdate json"
+        ]
+    );
+    let stats = summary.stats.as_ref().expect("statistics");
+    assert_eq!(stats.message_count, 1 + 3 * 5);
+    // Channel by channel, through the chunk indexes (seeking reader path).
+    let mut per_topic: BTreeMap<String, Vec<Value>> = BTreeMap::new();
+    for ci in &summary.chunk_indexes {
+        for m in summary.stream_chunk(&bytes, ci).unwrap() {
+            let m = m.unwrap();
+            let v: Value = serde_json::from_slice(&m.data).unwrap();
+            per_topic
+                .entry(m.channel.topic.clone())
+                .or_default()
+                .push(v);
+        }
+    }
+    assert_eq!(per_topic["/fixplan/run"].len(), 1);
+    assert_eq!(per_topic["/fixplan/run"][0]["kit_name"], "metric-25");
+    for t in ["/fixplan/part", "/fixplan/fixtures", "/fixplan/scene"] {
+        assert_eq!(per_topic[t].len(), 5, "{t}");
+    }
+    let part = &per_topic["/fixplan/part"][1];
+    assert_eq!(part["id"], "ell");
+    assert_eq!(part["outline"].as_array().unwrap().len(), 6);
+    let fx = &per_topic["/fixplan/fixtures"][0];
+    assert_eq!(fx["fixtures"].as_array().unwrap().len(), 4);
+    assert!(fx["fixtures"][0]["placement"]["locators"].is_array());
+    let scene = &per_topic["/fixplan/scene"][0];
+    let ids: Vec<_> = scene["entities"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["id"].clone())
+        .collect();
+    assert_eq!(ids, ["plate", "part", "fixture"]);
+    let part_entity = &scene["entities"][1];
+    assert_eq!(part_entity["frame_id"], "plate");
+    assert_eq!(part_entity["lines"][0]["type"], 1);
+    assert_eq!(
+        part_entity["lines"][0]["points"].as_array().unwrap().len(),
+        4
+    );
+    // log time = part index, in seconds.
+    let mut times = Vec::new();
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        if m.channel.topic == TOPIC_FIXTURES {
+            times.push(m.log_time);
+        }
+    }
+    assert_eq!(times, (0..5).map(|i| i * NS_PER_PART).collect::<Vec<_>>());
+}
+
+/// A reader written by others: Python's `mcap` package reads every channel.
+#[test]
+fn python_mcap_reader_reads_every_channel() {
+    let probe = Command::new("python3")
+        .args(["-c", "import mcap.reader"])
+        .output();
+    if !matches!(probe, Ok(ref o) if o.status.success()) {
+        eprintln!("SKIPPED: python3 with the `mcap` package is not available (pip install mcap)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let script = r#"
+import json, sys
+from mcap.reader import make_reader
+counts = {}
+with open(sys.argv[1], "rb") as f:
+    reader = make_reader(f)
+    summary = reader.get_summary()
+    assert summary is not None and summary.statistics.message_count == 16
+    for schema, channel, message in reader.iter_messages():
+        assert schema.encoding == "jsonschema" and channel.message_encoding == "json"
+        json.loads(schema.data)
+        json.loads(message.data)
+        counts[channel.topic] = counts.get(channel.topic, 0) + 1
+print(json.dumps(counts, sort_keys=True))
+"#;
+    let out = ok(Command::new("python3")
+        .args(["-c", script])
+        .arg(&res)
+        .output()
+        .unwrap());
+    let counts: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        counts,
+        serde_json::json!({"/fixplan/fixtures": 5, "/fixplan/part": 5, "/fixplan/run": 1, "/fixplan/scene": 5})
+    );
+}
+
+#[test]
+fn show_and_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let out = ok(fixplan()
+        .arg("show")
+        .arg(&res)
+        .args(["--part", "ell", "--top", "2"])
+        .output()
+        .unwrap());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("== ell [ok]") && text.contains("rank") && text.contains("2 more kept"),
+        "{text}"
+    );
+    assert!(!text.contains("hex"));
+    let out = ok(fixplan().arg("show").arg(&res).output().unwrap());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("== bowtie [invalid]") && text.contains("== tiny [no_fixture]"),
+        "{text}"
+    );
+
+    let pics = dir.path().join("pics");
+    ok(fixplan()
+        .arg("render")
+        .arg(&res)
+        .arg("--out")
+        .arg(&pics)
+        .args(["--top", "2"])
+        .output()
+        .unwrap());
+    let mut files: Vec<String> = std::fs::read_dir(&pics)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(
+        files,
+        [
+            "0000-plate-rank01.svg",
+            "0000-plate-rank02.svg",
+            "0001-ell-rank01.svg",
+            "0001-ell-rank02.svg",
+            "0002-bowtie.svg",
+            "0003-hex-rank01.svg",
+            "0003-hex-rank02.svg",
+            "0004-tiny.svg",
+            "index.html"
+        ]
+    );
+    let svg = std::fs::read_to_string(pics.join("0001-ell-rank01.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert!(svg.contains("score") && svg.contains(">L3<"));
+    let html = std::fs::read_to_string(pics.join("index.html")).unwrap();
+    assert!(html.contains("0003-hex-rank02.svg") && html.contains("edge 0 crosses edge 2"));
+
+    let err = fixplan()
+        .arg("show")
+        .arg(&res)
+        .args(["--part", "nope"])
+        .output()
+        .unwrap();
+    assert!(!err.status.success());
+}
+
+#[test]
+fn help_teaches_the_options() {
+    let out = ok(fixplan().args(["run", "--help"]).output().unwrap());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for flag in [
+        "--catalog",
+        "--kit",
+        "--top-k",
+        "--threads",
+        "--output",
+        "--resume",
+        "metric-25",
+    ] {
+        assert!(text.contains(flag), "{flag} missing from:\n{text}");
+    }
+}
