@@ -26,7 +26,7 @@
 use crate::units::parse_units;
 use crate::{CatalogError, KitSpec};
 use fixplan_core::prepare::validate_kit;
-use fixplan_core::{Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, Units};
+use fixplan_core::{Clamp, HoleKind, Kit, MountHole, Params, Pattern, Units};
 use std::path::Path;
 
 /// The kit of Brost & Goldberg's examples (1996, section VII: "an 18 x 18
@@ -215,18 +215,8 @@ fn finish(
         min_clearance: Some(params.min_clearance_or_default(units)),
         ..params
     };
-    // Core checks parameters only as part of `prepare`; a unit square one
-    // lattice step wide is the cheapest part that reaches that check.
-    let l = kit.spacing;
-    let probe = Part {
-        outline: rect(0.0, 0.0, l, l),
-        access: Vec::new(),
-    };
-    if let Err(e @ fixplan_core::PrepareError::Params(_)) =
-        fixplan_core::prepare(&probe, &kit, &params, units)
-    {
-        return Err(invalid(path, format!("kit {name}: {e}")));
-    }
+    fixplan_core::prepare::validate_params(&params, units)
+        .map_err(|e| invalid(path, format!("kit {name}: {e}")))?;
     Ok(KitSpec { name, kit, params })
 }
 

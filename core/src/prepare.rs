@@ -134,7 +134,9 @@ pub fn validate_kit(kit: &Kit) -> Result<(), PrepareError> {
     Ok(())
 }
 
-fn validate_params(p: &Params, units: Units) -> Result<(), PrepareError> {
+/// Checks the enumeration parameters (angle range, non-negative lengths,
+/// grid step, finite wrenches).
+pub fn validate_params(p: &Params, units: Units) -> Result<(), PrepareError> {
     let err = |m: String| Err(PrepareError::Params(m));
     let a = p.max_clamp_angle_deg;
     if !(a.is_finite() && a > 0.0 && a <= 90.0) {
