@@ -17,6 +17,8 @@ use crate::setups::{lattice_point, Setup};
 pub struct Accumulator {
     pub counts: Counts,
     pub top: TopK,
+    /// Lowest score admitted so far (for `--good-enough`).
+    pub best_score: f64,
 }
 
 impl Accumulator {
@@ -24,6 +26,7 @@ impl Accumulator {
         Accumulator {
             counts: Counts::default(),
             top: TopK::new(top_k),
+            best_score: f64::INFINITY,
         }
     }
 }
@@ -115,6 +118,7 @@ impl PreparedPart {
                         };
                         if let Some(fx) = self.admit(setup, &normals, &cand, scratch) {
                             acc.counts.admissible += 1;
+                            acc.best_score = acc.best_score.min(fx.score);
                             acc.top.push(fx);
                         }
                     }

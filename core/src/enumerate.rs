@@ -61,6 +61,28 @@ impl PreparedPart {
         range: Range<u64>,
         timed: bool,
     ) -> (PartialResult, Profile) {
+        let (res, profile, _) = self.enumerate_range_inner(range, timed, None);
+        (res, profile)
+    }
+
+    /// Enumerates `range` in order and stops after the first combination
+    /// that admits a fixture scoring `good_enough` or better; returns the
+    /// result of the combinations done and that combination's index.
+    pub fn enumerate_range_until(
+        &self,
+        range: Range<u64>,
+        good_enough: f64,
+    ) -> (PartialResult, Option<u64>) {
+        let (res, _, hit) = self.enumerate_range_inner(range, false, Some(good_enough));
+        (res, hit)
+    }
+
+    fn enumerate_range_inner(
+        &self,
+        range: Range<u64>,
+        timed: bool,
+        good_enough: Option<f64>,
+    ) -> (PartialResult, Profile, Option<u64>) {
         let clock = std::time::Instant::now();
         let mut acc = Accumulator::new(self.top_k);
         let mut scratch = Scratch::default();
@@ -68,11 +90,18 @@ impl PreparedPart {
         let mut search = SearchStats::default();
         let n = self.segments.len();
         let end = range.end.min(self.combination_count());
-        for (_, combo) in combinations_in(n, range.start..end) {
+        let mut hit = None;
+        let mut done_to = end;
+        for (index, combo) in combinations_in(n, range.start..end) {
             acc.counts.combinations += 1;
             let s = self
                 .setups_of_combination(combo, |s| self.process_setup(s, &mut acc, &mut scratch));
             search.add(&s);
+            if good_enough.is_some_and(|g| acc.best_score <= g) {
+                hit = Some(index);
+                done_to = index + 1;
+                break;
+            }
         }
         acc.counts.segments = n as u64;
         let profile = Profile {
@@ -81,11 +110,15 @@ impl PreparedPart {
             total_ns: clock.elapsed().as_nanos() as u64,
         };
         let res = PartialResult {
-            range,
+            range: if hit.is_some() {
+                range.start..done_to
+            } else {
+                range
+            },
             counts: acc.counts,
             fixtures: acc.top.into_sorted(),
         };
-        (res, profile)
+        (res, profile, hit)
     }
 
     /// Enumerates `range` on the rayon pool (same result as serial).
@@ -103,6 +136,49 @@ impl PreparedPart {
         out.range = range;
         out.counts.segments = self.segments.len() as u64;
         out
+    }
+
+    /// `--good-enough`: the enumeration of the shortest prefix of `range`
+    /// (in combination order) that admits a fixture scoring `good_enough`
+    /// or better, in parallel. The prefix, hence the result, does not depend
+    /// on threads or chunking: chunks run concurrently, the first hit in
+    /// index order wins and later chunks are dropped. Returns the hit index.
+    pub fn enumerate_until(
+        &self,
+        range: Range<u64>,
+        good_enough: f64,
+    ) -> (PartialResult, Option<u64>) {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        let end = range.end.min(self.combination_count()).max(range.start);
+        let first_hit = AtomicU64::new(u64::MAX);
+        let chunks: Vec<Range<u64>> = (range.start..end)
+            .step_by(CHUNK as usize)
+            .map(|s| s..(s + CHUNK).min(end))
+            .collect();
+        let parts: Vec<(PartialResult, Option<u64>)> = chunks
+            .into_par_iter()
+            .filter_map(|r| {
+                // A chunk wholly after a known hit cannot matter.
+                if r.start > first_hit.load(Ordering::Relaxed) {
+                    return None;
+                }
+                let (res, hit) = self.enumerate_range_until(r, good_enough);
+                if let Some(h) = hit {
+                    first_hit.fetch_min(h, Ordering::Relaxed);
+                }
+                Some((res, hit))
+            })
+            .collect();
+        let stop = parts.iter().filter_map(|p| p.1).min();
+        let kept: Vec<PartialResult> = parts
+            .into_iter()
+            .map(|p| p.0)
+            .filter(|p| stop.is_none_or(|s| p.range.start <= s))
+            .collect();
+        let mut out = merge(self.top_k, kept);
+        out.range = range.start..stop.map_or(range.end, |s| s + 1);
+        out.counts.segments = self.segments.len() as u64;
+        (out, stop)
     }
 
     /// The whole part.

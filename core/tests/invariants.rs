@@ -327,3 +327,35 @@ fn combination_count_matches_segments() {
     assert_eq!(r.counts.combinations, combination_count(p.segments.len()));
     assert_eq!(r.counts.segments, p.segments.len() as u64);
 }
+
+#[test]
+fn good_enough_stops_at_the_same_place_serial_or_parallel() {
+    let p = prep(
+        &part(&notched(), &[]),
+        &kit(Pattern::Square),
+        &params(90.0, 1),
+    );
+    let n = p.combination_count();
+    let full = p.enumerate_all();
+    let best = full.fixtures[0].score;
+    let worst = full.fixtures.last().unwrap().score;
+    // Lenient: the first fixture found is good enough, and it stops early.
+    let (par, hit) = p.enumerate_until(0..n, worst);
+    let (ser, hit_s) = p.enumerate_range_until(0..n, worst);
+    assert_eq!(hit, hit_s);
+    let h = hit.expect("some fixture is good enough");
+    assert!(h + 1 < n, "stopped at {h} of {n}");
+    assert_eq!(par.counts, ser.counts);
+    assert_eq!(par.fixtures, ser.fixtures);
+    assert_eq!(par.counts.combinations, h + 1);
+    assert!(par.fixtures[0].score <= worst);
+    assert_eq!(par.counts, p.enumerate_range(0..h + 1).counts);
+    // Strict: nothing beats the best, so it runs to the end like a full run.
+    let (all, none) = p.enumerate_until(0..n, best - 1.0);
+    assert_eq!(none, None);
+    assert_eq!(all.counts, full.counts);
+    assert_eq!(all.fixtures, full.fixtures);
+    // At the best score exactly it finds the best fixture.
+    let (b, _) = p.enumerate_until(0..n, best);
+    assert_eq!(b.fixtures[0], full.fixtures[0]);
+}
