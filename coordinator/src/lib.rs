@@ -6,6 +6,7 @@
 //! - [`scene`], [`draw`], [`render`]: Foxglove scenes and SVG pictures;
 //! - [`show`]: tables and JSON lines from a results file.
 
+pub mod cluster;
 pub mod draw;
 pub mod mcap_out;
 pub mod messages;

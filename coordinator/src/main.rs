@@ -77,7 +77,25 @@ enum Cmd {
         /// No progress display and no summary table.
         #[arg(short, long)]
         quiet: bool,
+        #[command(flatten)]
+        cluster: fixplan_coordinator::cluster::cli::RunClusterArgs,
     },
+    /// Coordinate a distributed run: shard every part of a catalogue over
+    /// the workers that join (`fixplan worker`), verify and merge their
+    /// results, and write the same results file as `fixplan run`.
+    ///
+    /// Workers pull shards over zenoh (iceoryx2 shared memory for workers
+    /// on this host), may join or leave at any time, and a lost worker's
+    /// shards are handed out again. See deploy/README.md.
+    Coordinator(fixplan_coordinator::cluster::cli::CoordinatorArgs),
+    /// Work for a coordinator: `fixplan worker --connect tcp/HOST:7447`.
+    ///
+    /// Exits when the run is over (or stays with --stay); exit code 3 when
+    /// the coordinator refuses it (e.g. another protocol version).
+    Worker(fixplan_coordinator::cluster::cli::WorkerArgs),
+    /// Measure the cluster: catalogue throughput with 1 and 2 local workers,
+    /// coordinator time and bytes per shard, zenoh vs iceoryx2 round trip.
+    BenchCluster(fixplan_coordinator::cluster::bench::BenchArgs),
     /// Print the ranked fixtures of a results file as tables.
     Show {
         /// A results file written by `fixplan run`.
@@ -150,6 +168,7 @@ fn main() -> Result<()> {
             resume,
             shard_size,
             quiet,
+            cluster,
         } => {
             let opts = RunOptions {
                 catalog: catalog.unwrap_or_else(default_catalog),
@@ -161,8 +180,17 @@ fn main() -> Result<()> {
                 shard_size,
                 quiet,
             };
-            run(&opts)?;
+            if cluster.workers.is_some() {
+                fixplan_coordinator::cluster::cli::run_main(&opts, &cluster)?;
+            } else {
+                run(&opts)?;
+            }
         }
+        Cmd::Coordinator(a) => {
+            fixplan_coordinator::cluster::cli::coordinator_main(&a, default_catalog())?;
+        }
+        Cmd::Worker(a) => fixplan_coordinator::cluster::cli::worker_main(&a)?,
+        Cmd::BenchCluster(a) => fixplan_coordinator::cluster::bench::bench_main(&a)?,
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             fixplan_coordinator::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;

@@ -91,20 +91,10 @@ pub fn run_part(
     cp: &CatalogPart,
 ) -> Result<PartOutcome, serde_json::Error> {
     let mut timing = Timing::default();
-    let (outline, access) = match &cp.part {
-        Ok(p) => (p.outline.clone(), p.access.clone()),
-        Err(_) => (Vec::new(), Vec::new()),
-    };
     let result = match &cp.part {
         Err(msg) => SolveResult::invalid(name_part(&cp.id, msg)),
         Ok(part) => {
-            let mut params = ctx.params.clone();
-            if let Some(k) = cp.top_k {
-                params.top_k = k;
-            }
-            if cp.wrenches.is_some() {
-                params.wrenches = cp.wrenches.clone();
-            }
+            let params = part_params(ctx, cp);
             let t0 = Instant::now();
             let prepared = prepare(part, ctx.kit, &params, ctx.units);
             timing.prepare_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -130,6 +120,34 @@ pub fn run_part(
                 }
             }
         }
+    };
+    part_outcome(ctx, index, cp, result, timing)
+}
+
+/// The run's parameters with the part's own `top_k` and wrenches.
+pub fn part_params(ctx: &JobContext, cp: &CatalogPart) -> Params {
+    let mut params = ctx.params.clone();
+    if let Some(k) = cp.top_k {
+        params.top_k = k;
+    }
+    if cp.wrenches.is_some() {
+        params.wrenches = cp.wrenches.clone();
+    }
+    params
+}
+
+/// The messages and summary of a part solved elsewhere (the embedded path
+/// above, or the workers of a distributed run).
+pub fn part_outcome(
+    ctx: &JobContext,
+    index: usize,
+    cp: &CatalogPart,
+    result: SolveResult,
+    timing: Timing,
+) -> Result<PartOutcome, serde_json::Error> {
+    let (outline, access) = match &cp.part {
+        Ok(p) => (p.outline.clone(), p.access.clone()),
+        Err(_) => (Vec::new(), Vec::new()),
     };
     let best = result.fixtures.first();
     let part_msg = PartMsg {

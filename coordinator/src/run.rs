@@ -161,6 +161,18 @@ pub fn run(opts: &RunOptions) -> Result<Totals> {
 /// [`run`] on a catalogue and kit already loaded (`opts.catalog` and
 /// `opts.kit` are only recorded).
 pub fn run_loaded(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> Result<Totals> {
+    run_loaded_with(catalog, spec, opts, None)
+}
+
+/// [`run_loaded`], with the parts solved by the workers of a cluster
+/// (`fixplan coordinator`, `fixplan run --workers N`) when `cluster` is
+/// given: the same file, byte for byte in the fixture channel.
+pub fn run_loaded_with(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    opts: &RunOptions,
+    cluster: Option<&crate::cluster::ClusterOptions>,
+) -> Result<Totals> {
     fixplan_core::prepare::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
     let mut params = spec.params.clone();
     if let Some(k) = opts.top_k {
@@ -239,8 +251,21 @@ pub fn run_loaded(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> Resul
     let gate = (Mutex::new(start), Condvar::new());
     let (tx, rx) = mpsc::channel::<(usize, Result<PartOutcome, serde_json::Error>)>();
     let mut failure: Option<anyhow::Error> = None;
+    let jobs = match cluster {
+        Some(c) => Some(crate::cluster::catalog_run::start(
+            &ctx,
+            &catalog.parts,
+            start,
+            c,
+        )?),
+        None => None,
+    };
     std::thread::scope(|s| {
-        for _ in 0..drivers {
+        if let Some(jobs) = jobs {
+            let (tx, ctx, parts) = (tx.clone(), &ctx, &catalog.parts);
+            s.spawn(move || jobs.deliver(ctx, parts, &tx));
+        }
+        for _ in 0..if cluster.is_some() { 0 } else { drivers } {
             let tx = tx.clone();
             let (next, abort, gate, pool, ctx, parts) =
                 (&next, &abort, &gate, &pool, &ctx, &catalog.parts);

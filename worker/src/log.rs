@@ -1,10 +1,17 @@
 //! Plain log lines on standard error, with the time since start and the
 //! process role (`coordinator`, `worker NAME`).
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 use std::time::Instant;
 
 static START: OnceLock<Instant> = OnceLock::new();
+static QUIET: AtomicBool = AtomicBool::new(false);
+
+/// Only warnings from now on.
+pub fn set_quiet(q: bool) {
+    QUIET.store(q, Ordering::SeqCst);
+}
 
 /// Starts the clock (idempotent).
 pub fn init() {
@@ -12,6 +19,9 @@ pub fn init() {
 }
 
 pub fn line(level: &str, role: &str, msg: &str) {
+    if level == "INFO" && QUIET.load(Ordering::SeqCst) {
+        return;
+    }
     let t = START.get_or_init(Instant::now).elapsed().as_secs_f64();
     eprintln!("[{t:9.3}s {level} {role}] {msg}");
 }

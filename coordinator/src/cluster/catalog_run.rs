@@ -1,0 +1,96 @@
+//! A catalogue through the cluster: the parts of `fixplan run` from
+//! `start` on go to [`run_distributed`]; their results come back in order
+//! and become the same part messages as the embedded run's.
+
+use super::{run_distributed, ClusterError, ClusterOptions, Distributed, PartInput};
+use crate::messages::Timing;
+use crate::part_job::{part_outcome, part_params, run_part, JobContext, PartOutcome};
+use fixplan_catalog::CatalogPart;
+use fixplan_core::{report, SolveResult};
+use std::sync::mpsc::Sender;
+
+/// The distributed parts of a catalogue run.
+pub struct CatalogJobs {
+    dist: Distributed,
+    /// Catalogue index of each distributed part.
+    map: Vec<usize>,
+    /// Parts that need no enumeration (unreadable files).
+    direct: Vec<usize>,
+}
+
+/// Starts the coordinator for the parts `start..` of a catalogue.
+pub fn start(
+    ctx: &JobContext,
+    parts: &[CatalogPart],
+    start: usize,
+    opts: &ClusterOptions,
+) -> Result<CatalogJobs, ClusterError> {
+    let mut inputs = Vec::new();
+    let mut map = Vec::new();
+    let mut direct = Vec::new();
+    for (i, cp) in parts.iter().enumerate().skip(start) {
+        match &cp.part {
+            Ok(part) => {
+                inputs.push(PartInput {
+                    part: part.clone(),
+                    kit: ctx.kit.clone(),
+                    params: part_params(ctx, cp),
+                    units: ctx.units,
+                });
+                map.push(i);
+            }
+            Err(_) => direct.push(i),
+        }
+    }
+    let dist = run_distributed(inputs, opts.clone())?;
+    Ok(CatalogJobs { dist, map, direct })
+}
+
+impl CatalogJobs {
+    /// Sends every part's outcome to `tx` (in catalogue order for the
+    /// distributed ones), then ends the run.
+    pub fn deliver(
+        mut self,
+        ctx: &JobContext,
+        parts: &[CatalogPart],
+        tx: &Sender<(usize, Result<PartOutcome, serde_json::Error>)>,
+    ) {
+        for &i in &self.direct {
+            if tx.send((i, run_part(ctx, i, &parts[i]))).is_err() {
+                return;
+            }
+        }
+        let t0 = std::time::Instant::now();
+        while let Some((j, r)) = self.dist.next() {
+            let i = self.map[j];
+            let cp = &parts[i];
+            let result = match r {
+                Ok((prep, merged)) => report(&prep, &merged),
+                Err(msg) => SolveResult::invalid(format!("{}: {msg}", cp.id)),
+            };
+            let timing = Timing {
+                enumerate_ms: t0.elapsed().as_secs_f64() * 1e3,
+                ..Timing::default()
+            };
+            if tx
+                .send((i, part_outcome(ctx, i, cp, result, timing)))
+                .is_err()
+            {
+                break;
+            }
+        }
+        let s = self.dist.finish();
+        fixplan_worker::info!(
+            "coordinator",
+            "run over: {} shards, {} results ({} duplicate, {} rejected), {} re-queued, {} workers joined, {} lost, {} fixtures re-derived",
+            s.shards,
+            s.results,
+            s.duplicates,
+            s.rejected,
+            s.requeued,
+            s.workers_joined,
+            s.workers_lost,
+            s.fixtures_rederived
+        );
+    }
+}

@@ -1,0 +1,207 @@
+//! Command-line arguments of `fixplan coordinator`, `fixplan worker` and
+//! the `--workers` option of `fixplan run`, and their entry points.
+
+use super::{ClusterOptions, TransportChoice};
+use crate::progress::Totals;
+use crate::run::{run_loaded_with, RunOptions};
+use anyhow::{Context, Result};
+use clap::Args;
+use fixplan_catalog::{load_catalog, load_kit};
+use fixplan_worker::agent::{run_worker, Fault, WorkerError, WorkerOptions};
+use fixplan_worker::protocol::PROTOCOL_VERSION;
+use fixplan_worker::zenoh_link::ZenohOptions;
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// How to reach the other processes (zenoh).
+#[derive(Args, Debug, Clone, Default)]
+pub struct NetArgs {
+    /// zenoh endpoint to listen on, e.g. `tcp/0.0.0.0:7447`,
+    /// `tls/0.0.0.0:7447`, `unixsock-stream//tmp/fixplan.sock` (repeatable).
+    #[arg(long, value_name = "ENDPOINT")]
+    pub listen: Vec<String>,
+    /// zenoh endpoint to connect to: the coordinator or a zenoh router,
+    /// e.g. `tcp/coordinator-host:7447` (repeatable).
+    #[arg(long, value_name = "ENDPOINT")]
+    pub connect: Vec<String>,
+    /// zenoh mode: `peer` (default) or `client` (through a router).
+    #[arg(long, value_name = "MODE")]
+    pub mode: Option<String>,
+    /// A zenoh configuration file (JSON5: TLS, access control, routers);
+    /// `--listen`/`--connect` override its endpoints.
+    #[arg(long, value_name = "FILE")]
+    pub zenoh_config: Option<PathBuf>,
+    /// Key-expression prefix: one per run when runs share a network.
+    #[arg(long, value_name = "PREFIX", default_value = "fixplan")]
+    pub key_prefix: String,
+    /// Transport of shard requests and results: `auto` (iceoryx2 shared
+    /// memory for a worker on the coordinator's host, zenoh otherwise),
+    /// `zenoh` or `iceoryx2` (forced, for tests and benchmarks).
+    #[arg(long, value_name = "auto|zenoh|iceoryx2", default_value = "auto")]
+    pub transport: TransportChoice,
+}
+
+impl NetArgs {
+    fn zenoh(&self) -> ZenohOptions {
+        ZenohOptions {
+            mode: self.mode.clone(),
+            listen: self.listen.clone(),
+            connect: self.connect.clone(),
+            config_file: self.zenoh_config.clone(),
+        }
+    }
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct CoordinatorArgs {
+    #[command(flatten)]
+    pub net: NetArgs,
+    /// The catalogue (as for `fixplan run`; default: the sample catalogue).
+    #[arg(long, value_name = "DIR|catalog.toml")]
+    pub catalog: Option<PathBuf>,
+    /// The kit: a built-in name or a kit TOML file.
+    #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
+    pub kit: String,
+    /// Fixtures kept per part (0 keeps all).
+    #[arg(long, value_name = "N")]
+    pub top_k: Option<usize>,
+    /// The results file (MCAP), the same as `fixplan run` writes.
+    #[arg(short, long, value_name = "FILE", default_value = "results.mcap")]
+    pub output: PathBuf,
+    /// Workers to wait for before the first shard is handed out.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub min_workers: usize,
+    /// Continue the interrupted run found in OUT.partial.
+    #[arg(long)]
+    pub resume: bool,
+    /// Segment combinations per shard (default: from a cost estimate).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub shard_size: Option<u64>,
+    /// Worker threads expected in all, for the shard sizes (default: 4x
+    /// this host's cores).
+    #[arg(long, value_name = "N")]
+    pub expected_threads: Option<usize>,
+    /// Seconds a shard may stay with one worker before it is handed out
+    /// again.
+    #[arg(long, value_name = "SECONDS", default_value_t = 300)]
+    pub lease: u64,
+    /// Worker processes to start on this host as well.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub workers: usize,
+    /// No progress display, summary table or info logs.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct WorkerArgs {
+    #[command(flatten)]
+    pub net: NetArgs,
+    /// Enumeration threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Stay for the next run instead of exiting when a run is over.
+    #[arg(long)]
+    pub stay: bool,
+    /// Name in logs (default: HOST-PID-NONCE).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Warnings only.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Claim another protocol version (tests of the version check).
+    #[arg(long, hide = true, default_value_t = PROTOCOL_VERSION)]
+    pub protocol_version: u16,
+    /// Misbehave (tests of the coordinator's checks): corrupt-score, slow:MS.
+    #[arg(long, hide = true)]
+    pub fault: Option<Fault>,
+}
+
+/// `--workers` and `--transport` of `fixplan run`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct RunClusterArgs {
+    /// Solve the parts in N worker processes on this host, coordinated over
+    /// zenoh and iceoryx2 exactly as across hosts (same results).
+    #[arg(long, value_name = "N")]
+    pub workers: Option<usize>,
+    /// With --workers: transport of shard requests and results.
+    #[arg(long, value_name = "auto|zenoh|iceoryx2", default_value = "auto")]
+    pub transport: TransportChoice,
+}
+
+/// `fixplan run`, with `--workers N` through the cluster.
+pub fn run_main(opts: &RunOptions, cluster: &RunClusterArgs) -> Result<Totals> {
+    let catalog = load_catalog(&opts.catalog)?;
+    let spec = load_kit(&opts.kit, catalog.units)?;
+    let copts = cluster.workers.filter(|&n| n > 0).map(|n| ClusterOptions {
+        key_prefix: fixplan_worker::host::unique_name("fixplan-run"),
+        transport: cluster.transport,
+        min_workers: 1,
+        shard_size: opts.shard_size,
+        local_workers: n,
+        worker_threads: opts.threads.map(|t| (t / n).max(1)),
+        quiet: true,
+        ..ClusterOptions::default()
+    });
+    run_loaded_with(&catalog, &spec, opts, copts.as_ref())
+}
+
+/// `fixplan coordinator`.
+pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result<Totals> {
+    fixplan_worker::log::set_quiet(a.quiet);
+    let mut zenoh = a.net.zenoh();
+    if zenoh.listen.is_empty() && zenoh.connect.is_empty() && zenoh.config_file.is_none() {
+        zenoh.listen = vec!["tcp/0.0.0.0:7447".into()];
+    }
+    let opts = RunOptions {
+        catalog: a.catalog.clone().unwrap_or(default_catalog),
+        kit: a.kit.clone(),
+        top_k: a.top_k,
+        threads: None,
+        output: a.output.clone(),
+        resume: a.resume,
+        shard_size: a.shard_size,
+        quiet: a.quiet,
+    };
+    let catalog = load_catalog(&opts.catalog)?;
+    let spec = load_kit(&opts.kit, catalog.units)?;
+    let cores = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1);
+    let copts = ClusterOptions {
+        zenoh,
+        key_prefix: a.net.key_prefix.clone(),
+        transport: a.net.transport,
+        min_workers: a.min_workers,
+        shard_size: a.shard_size,
+        lease: Duration::from_secs(a.lease.max(1)),
+        local_workers: a.workers,
+        expected_threads: Some(a.expected_threads.unwrap_or(4 * cores)),
+        quiet: a.quiet,
+        ..ClusterOptions::default()
+    };
+    run_loaded_with(&catalog, &spec, &opts, Some(&copts)).context("coordinator")
+}
+
+/// `fixplan worker`: exit code 3 when refused.
+pub fn worker_main(a: &WorkerArgs) -> Result<()> {
+    fixplan_worker::log::set_quiet(a.quiet);
+    let opts = WorkerOptions {
+        zenoh: a.net.zenoh(),
+        key_prefix: a.net.key_prefix.clone(),
+        threads: a.threads,
+        transport: a.net.transport,
+        stay: a.stay,
+        name: a.name.clone(),
+        protocol_version: a.protocol_version,
+        fault: a.fault,
+    };
+    match run_worker(opts) {
+        Ok(_) => Ok(()),
+        Err(WorkerError::Refused(r)) => {
+            eprintln!("fixplan worker: {r}");
+            std::process::exit(3);
+        }
+        Err(e) => Err(e.into()),
+    }
+}

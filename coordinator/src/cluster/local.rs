@@ -1,0 +1,76 @@
+//! Worker processes started by the coordinator on its own host
+//! (`fixplan run --workers N`), stopped when the run ends, killed if they
+//! outstay it.
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+pub struct LocalWorkers {
+    children: Vec<Child>,
+}
+
+/// What a local worker is started with.
+pub struct LocalSpec<'a> {
+    pub exe: &'a Path,
+    pub connect: &'a str,
+    pub key_prefix: &'a str,
+    pub transport: &'a str,
+    pub threads: usize,
+    pub quiet: bool,
+}
+
+impl LocalWorkers {
+    pub fn spawn(spec: &LocalSpec, n: usize) -> std::io::Result<LocalWorkers> {
+        let mut w = LocalWorkers {
+            children: Vec::new(),
+        };
+        for _ in 0..n {
+            let mut c = Command::new(spec.exe);
+            c.args([
+                "worker",
+                "--connect",
+                spec.connect,
+                "--key-prefix",
+                spec.key_prefix,
+            ])
+            .args([
+                "--transport",
+                spec.transport,
+                "--threads",
+                &spec.threads.to_string(),
+            ])
+            .stdin(Stdio::null());
+            if spec.quiet {
+                c.arg("--quiet");
+            }
+            w.children.push(c.spawn()?);
+        }
+        Ok(w)
+    }
+
+    /// Waits up to `grace` for the workers to leave, then kills the rest.
+    pub fn stop(&mut self, grace: Duration) {
+        let until = Instant::now() + grace;
+        for c in &mut self.children {
+            loop {
+                match c.try_wait() {
+                    Ok(Some(_)) | Err(_) => break,
+                    Ok(None) if Instant::now() >= until => {
+                        let _ = c.kill();
+                        let _ = c.wait();
+                        break;
+                    }
+                    Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+                }
+            }
+        }
+        self.children.clear();
+    }
+}
+
+impl Drop for LocalWorkers {
+    fn drop(&mut self) {
+        self.stop(Duration::ZERO);
+    }
+}

@@ -1,0 +1,313 @@
+//! Distributed runs: the coordinator shards each part's combination space,
+//! workers (`fixplan worker`, crate `fixplan-worker`) pull shards over
+//! zenoh, or iceoryx2 shared memory on the coordinator's host, and the
+//! coordinator verifies and merges the results into the same bytes as the
+//! embedded run.
+//!
+//! - [`run_distributed`]: parts in, merged per-part results out, in order;
+//! - [`plan`]: shard sizes from a cost estimate;
+//! - [`state`]: queue, leases, workers, merging (transport-free);
+//! - [`verify`]: the checks of a shard result (fixtures re-derived);
+//! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
+//! - [`local`]: worker processes on this host (`fixplan run --workers N`);
+//! - [`catalog_run`]: `fixplan coordinator` and `fixplan run --workers N`;
+//! - [`bench`]: `fixplan bench-cluster`.
+
+pub mod bench;
+pub mod catalog_run;
+pub mod cli;
+pub mod local;
+pub mod plan;
+pub mod runtime;
+pub mod state;
+pub mod verify;
+
+use fixplan_core::{PartialResult, PreparedPart};
+use fixplan_worker::part_input::digest;
+pub use fixplan_worker::part_input::PartInput;
+pub use fixplan_worker::protocol::TransportChoice;
+use fixplan_worker::zenoh_link::ZenohOptions;
+use fixplan_worker::{info, iox};
+use rayon::prelude::*;
+use runtime::Runtime;
+use state::{Core, PartDone, PartSlot, Settings, Stats};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
+use std::sync::Arc;
+use std::time::Duration;
+use thiserror::Error;
+
+#[derive(Debug, Error)]
+pub enum ClusterError {
+    #[error("zenoh: {0}")]
+    Zenoh(String),
+    #[error("iceoryx2: {0}")]
+    Iceoryx2(String),
+    #[error("cannot start a local worker: {0}")]
+    Spawn(String),
+    #[error("{0}")]
+    Link(#[from] fixplan_worker::zenoh_link::LinkError),
+    #[error("part {0}: {1}")]
+    Input(usize, String),
+}
+
+/// How to run the coordinator.
+#[derive(Debug, Clone)]
+pub struct ClusterOptions {
+    /// Listen/connect endpoints, mode and config file. With no endpoint at
+    /// all and local workers, a private unix socket is used.
+    pub zenoh: ZenohOptions,
+    /// Key-expression prefix of the run (several runs can share a network).
+    pub key_prefix: String,
+    pub transport: TransportChoice,
+    /// Workers to wait for before handing out the first shard.
+    pub min_workers: usize,
+    /// Combinations per shard (default: from the cost estimate).
+    pub shard_size: Option<u64>,
+    /// How long a shard may stay with one worker.
+    pub lease: Duration,
+    /// Worker processes to start on this host.
+    pub local_workers: usize,
+    /// Threads of each local worker (default: cores / local workers).
+    pub worker_threads: Option<usize>,
+    /// The `fixplan` executable for local workers (default: this one).
+    pub worker_exe: Option<PathBuf>,
+    /// Worker threads expected in all, for the shard sizes (default: the
+    /// local workers' threads, or this host's cores).
+    pub expected_threads: Option<usize>,
+    /// Less logging (local workers too).
+    pub quiet: bool,
+}
+
+impl Default for ClusterOptions {
+    fn default() -> Self {
+        ClusterOptions {
+            zenoh: ZenohOptions::default(),
+            key_prefix: "fixplan".into(),
+            transport: TransportChoice::Auto,
+            min_workers: 1,
+            shard_size: None,
+            lease: Duration::from_secs(300),
+            local_workers: 0,
+            worker_threads: None,
+            worker_exe: None,
+            expected_threads: None,
+            quiet: false,
+        }
+    }
+}
+
+fn cores() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+}
+
+/// Merged per-part results in input order, as the workers deliver them.
+pub struct Distributed {
+    rx: Receiver<PartDone>,
+    pending: BTreeMap<usize, Result<(Arc<PreparedPart>, PartialResult), String>>,
+    next: usize,
+    total: usize,
+    runtime: Option<Runtime>,
+    final_stats: Stats,
+}
+
+impl Distributed {
+    /// Run figures so far.
+    pub fn stats(&self) -> Stats {
+        self.runtime
+            .as_ref()
+            .map(|r| r.core.stats())
+            .unwrap_or_else(|| self.final_stats.clone())
+    }
+
+    /// Ends the run: tells the workers, stops local ones, frees shared memory.
+    pub fn finish(&mut self) -> Stats {
+        if let Some(mut r) = self.runtime.take() {
+            r.shutdown(Duration::from_secs(3));
+            self.final_stats = r.core.stats();
+        }
+        self.final_stats.clone()
+    }
+}
+
+impl Iterator for Distributed {
+    type Item = (usize, Result<(PreparedPart, PartialResult), String>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.next >= self.total {
+            self.finish();
+            return None;
+        }
+        loop {
+            if let Some(r) = self.pending.remove(&self.next) {
+                let i = self.next;
+                self.next += 1;
+                let r = r.map(|(p, m)| (Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()), m));
+                return Some((i, r));
+            }
+            match self.rx.recv_timeout(Duration::from_secs(30)) {
+                Ok((i, r)) => {
+                    self.pending.insert(i, r);
+                }
+                Err(RecvTimeoutError::Timeout) => {
+                    info!(
+                        "coordinator",
+                        "waiting for workers: part {} of {} not done yet",
+                        self.next + 1,
+                        self.total
+                    );
+                }
+                Err(RecvTimeoutError::Disconnected) => return None,
+            }
+        }
+    }
+}
+
+/// Distributes `parts` over workers. Returns at once; the iterator yields
+/// `(index, Ok((prepared part, merged result)))` or `(index, Err(message))`
+/// in index order, each equal byte for byte to the embedded run's.
+/// Error messages are those of the embedded path without the part name:
+/// the `prepare` error, or `internal error in the enumeration: ...`.
+pub fn run_distributed(
+    parts: Vec<PartInput>,
+    opts: ClusterOptions,
+) -> Result<Distributed, ClusterError> {
+    fixplan_worker::log::init();
+    iox::quiet_logs();
+    let total = parts.len();
+    let (tx, rx) = channel::<PartDone>();
+    // Prepare every part here: the coordinator needs them to verify.
+    let prepared: Vec<_> = parts
+        .par_iter()
+        .map(|p| {
+            let prep = p.prepare().map_err(|e| e.to_string());
+            let bytes = p.encode().map_err(|e| e.to_string());
+            (prep, bytes)
+        })
+        .collect();
+    let threads = opts
+        .worker_threads
+        .unwrap_or_else(|| (cores() / opts.local_workers.max(1)).max(1));
+    let slots = opts.expected_threads.unwrap_or(if opts.local_workers > 0 {
+        threads * opts.local_workers
+    } else {
+        cores()
+    });
+    let mut dist = Vec::new();
+    for (i, (prep, bytes)) in prepared.into_iter().enumerate() {
+        let bytes = bytes.map_err(|e| ClusterError::Input(i, e))?;
+        match prep {
+            Err(e) => {
+                let _ = tx.send((i, Err(e)));
+            }
+            Ok(prep) if prep.combination_count() == 0 => {
+                let r = fixplan_worker::run_shard(&prep, 0..0);
+                let merged = fixplan_core::merge(prep.top_k, vec![r]);
+                let _ = tx.send((i, Ok((Arc::new(prep), merged))));
+            }
+            Ok(prep) => dist.push((i, prep, bytes)),
+        }
+    }
+    if dist.is_empty() {
+        return Ok(Distributed {
+            rx,
+            pending: BTreeMap::new(),
+            next: 0,
+            total,
+            runtime: None,
+            final_stats: Stats::default(),
+        });
+    }
+    let est: Vec<(u64, usize)> = dist
+        .iter()
+        .map(|(_, p, _)| (p.combination_count(), p.segments.len()))
+        .collect();
+    let sizes = plan::shard_sizes(&est, slots, opts.shard_size);
+    let slots_in: Vec<_> = dist
+        .into_iter()
+        .zip(sizes)
+        .map(|((i, prep, bytes), size)| {
+            let ranges = plan::ranges(prep.combination_count(), size);
+            let slot = PartSlot {
+                digest: digest(&bytes),
+                prep: Arc::new(prep),
+                input: Arc::new(bytes),
+                left: 0,
+                partials: Vec::new(),
+                top: Vec::new(),
+                closed: false,
+            };
+            (i, slot, ranges)
+        })
+        .collect();
+    let iox = if opts.transport == TransportChoice::Zenoh {
+        None
+    } else {
+        let stale = iox::remove_stale();
+        if !stale.is_empty() {
+            info!(
+                "coordinator",
+                "removed the iceoryx2 resources of {} dead runs",
+                stale.len()
+            );
+        }
+        Some(fixplan_worker::protocol::DataPath::Iceoryx2 {
+            prefix: iox::new_prefix(),
+            service: format!(
+                "fixplan/{}",
+                fixplan_worker::host::sanitize(&opts.key_prefix)
+            ),
+        })
+    };
+    let settings = Settings {
+        run_id: fixplan_worker::host::unique_name("run"),
+        host_id: fixplan_worker::host::host_id(),
+        transport: opts.transport,
+        iox,
+        lease: opts.lease,
+        min_workers: opts.min_workers,
+    };
+    let (core, index) = Core::new(settings, slots_in, tx);
+    let core = Arc::new(core);
+    let mut zopts = opts.zenoh.clone();
+    if zopts.listen.is_empty() && zopts.connect.is_empty() && zopts.config_file.is_none() {
+        let sock = std::env::temp_dir().join(format!(
+            "{}.sock",
+            fixplan_worker::host::unique_name("fixplan")
+        ));
+        zopts.listen = vec![format!("unixsock-stream/{}", sock.display())];
+    }
+    let mut rt = Runtime::start(core, Arc::new(index), &zopts, &opts.key_prefix)?;
+    if opts.local_workers > 0 {
+        let exe = match &opts.worker_exe {
+            Some(e) => e.clone(),
+            None => std::env::current_exe().map_err(|e| ClusterError::Spawn(e.to_string()))?,
+        };
+        let connect = zopts
+            .listen
+            .first()
+            .or(zopts.connect.first())
+            .map(|e| runtime::connect_for(e))
+            .ok_or_else(|| ClusterError::Spawn("no endpoint for the local workers".into()))?;
+        let spec = local::LocalSpec {
+            exe: &exe,
+            connect: &connect,
+            key_prefix: &opts.key_prefix,
+            transport: &opts.transport.to_string(),
+            threads,
+            quiet: opts.quiet,
+        };
+        rt.spawn_local(&spec, opts.local_workers)?;
+    }
+    Ok(Distributed {
+        rx,
+        pending: BTreeMap::new(),
+        next: 0,
+        total,
+        runtime: Some(rt),
+        final_stats: Stats::default(),
+    })
+}

@@ -1,0 +1,63 @@
+//! Shard sizes from a cost estimate.
+//!
+//! The work of a combination grows with the part's segment count (each
+//! locator setup tries every segment for the clamp), so a part costs about
+//! `combinations x segments`. Shards are cut so that each costs about the
+//! same, whatever the part: a small part is one shard, a big one many, and
+//! the catalogue gives about [`SHARDS_PER_SLOT`] shards per worker thread
+//! expected, so a slow shard at the end does not leave the others idle.
+
+use std::ops::Range;
+
+/// Shards per expected worker thread, over the whole catalogue.
+pub const SHARDS_PER_SLOT: u64 = 8;
+/// No shard smaller than this many combinations (the round trip would
+/// dominate).
+pub const MIN_COMBINATIONS: u64 = 16;
+
+/// Estimated cost of a part (arbitrary units).
+pub fn cost(combinations: u64, segments: usize) -> u64 {
+    combinations.saturating_mul(segments.max(1) as u64)
+}
+
+/// Combinations per shard for each part (`(combinations, segments)`),
+/// given the worker threads expected in all.
+pub fn shard_sizes(parts: &[(u64, usize)], slots: usize, fixed: Option<u64>) -> Vec<u64> {
+    if let Some(s) = fixed {
+        return parts.iter().map(|_| s.max(1)).collect();
+    }
+    let total: u64 = parts.iter().map(|&(c, s)| cost(c, s)).sum();
+    let target_shards = (slots.max(1) as u64) * SHARDS_PER_SLOT;
+    let target_cost = total.div_ceil(target_shards).max(1);
+    parts
+        .iter()
+        .map(|&(c, s)| {
+            (target_cost / s.max(1) as u64)
+                .max(MIN_COMBINATIONS)
+                .min(c.max(1))
+        })
+        .collect()
+}
+
+/// The shards of `0..count`: `size` combinations each, the last shorter.
+pub fn ranges(count: u64, size: u64) -> Vec<Range<u64>> {
+    let size = size.max(1);
+    (0..count.div_ceil(size))
+        .map(|i| i * size..((i + 1) * size).min(count))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_balance_cost() {
+        let s = shard_sizes(&[(10, 4), (100_000, 40)], 2, None);
+        assert_eq!(s[0], 10);
+        let shards_big = 100_000u64.div_ceil(s[1]);
+        assert!((8..=20).contains(&shards_big), "{shards_big}");
+        assert_eq!(ranges(10, 4), vec![0..4, 4..8, 8..10]);
+        assert!(ranges(0, 4).is_empty());
+    }
+}

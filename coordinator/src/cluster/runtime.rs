@@ -1,0 +1,188 @@
+//! The coordinator's moving parts around [`Core`]: the zenoh session with
+//! its queryables (`P/join`, `P/work`), the liveliness subscriber
+//! (`P/alive/*`) and token (`P/coordinator`), the lease timer, the iceoryx2
+//! server thread, and the local workers. Stopping it tells the workers the
+//! run is over, then removes the run's shared memory.
+
+use super::local::{LocalSpec, LocalWorkers};
+use super::state::Core;
+use fixplan_worker::iox;
+use fixplan_worker::protocol::DataPath;
+use fixplan_worker::warn;
+use fixplan_worker::zenoh_link::{open, Keys, ZenohOptions};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+use zenoh::sample::SampleKind;
+use zenoh::Wait;
+
+use super::ClusterError;
+
+pub struct Runtime {
+    pub core: Arc<Core>,
+    stop: Arc<AtomicBool>,
+    threads: Vec<JoinHandle<()>>,
+    session: zenoh::Session,
+    iox_prefix: Option<String>,
+    pub local: Option<LocalWorkers>,
+    _keep: Vec<Box<dyn std::any::Any + Send>>,
+}
+
+const ROLE: &str = "coordinator";
+
+/// The endpoint a local worker connects to for a listen endpoint.
+pub fn connect_for(listen: &str) -> String {
+    listen
+        .replace("0.0.0.0", "127.0.0.1")
+        .replace("[::]", "[::1]")
+}
+
+impl Runtime {
+    pub fn start(
+        core: Arc<Core>,
+        part_index: Arc<Vec<usize>>,
+        zopts: &ZenohOptions,
+        key_prefix: &str,
+    ) -> Result<Runtime, ClusterError> {
+        let keys = Keys::new(key_prefix);
+        let stop = Arc::new(AtomicBool::new(false));
+        let cleanup = Arc::new(AtomicBool::new(false));
+        let mut threads = Vec::new();
+        let mut iox_prefix = None;
+        // iceoryx2 first: a worker may be told about it as soon as zenoh is up.
+        if let Some(DataPath::Iceoryx2 { prefix, service }) = core.settings.iox.clone() {
+            let (ready_tx, ready_rx) = std::sync::mpsc::channel::<Result<(), String>>();
+            let (c, st, cl, pi) = (
+                core.clone(),
+                stop.clone(),
+                cleanup.clone(),
+                part_index.clone(),
+            );
+            let p2 = prefix.clone();
+            threads.push(std::thread::spawn(move || {
+                let ready_tx2 = ready_tx.clone();
+                let r = iox::serve(
+                    &p2,
+                    &service,
+                    move || drop(ready_tx2.send(Ok(()))),
+                    &st,
+                    &cl,
+                    |b| c.handle(b, &pi),
+                );
+                if let Err(e) = r {
+                    let _ = ready_tx.send(Err(e.to_string()));
+                    warn!(ROLE, "iceoryx2 server stopped: {e}");
+                }
+            }));
+            match ready_rx.recv_timeout(Duration::from_secs(10)) {
+                Ok(Ok(())) => {}
+                Ok(Err(e)) => return Err(ClusterError::Iceoryx2(e)),
+                Err(_) => return Err(ClusterError::Iceoryx2("the server did not start".into())),
+            }
+            iox_prefix = Some(prefix);
+        }
+        let session = open(zopts)?;
+        let zerr = |e: zenoh::Error| ClusterError::Zenoh(e.to_string());
+        let mut keep: Vec<Box<dyn std::any::Any + Send>> = Vec::new();
+        for key in [keys.join(), keys.work()] {
+            let q = session.declare_queryable(&key).wait().map_err(zerr)?;
+            let (c, st, pi) = (core.clone(), stop.clone(), part_index.clone());
+            threads.push(std::thread::spawn(move || {
+                while !st.load(Ordering::SeqCst) {
+                    let Ok(Some(query)) = q.recv_timeout(Duration::from_millis(100)) else {
+                        continue;
+                    };
+                    let bytes = query
+                        .payload()
+                        .map(|p| p.to_bytes().into_owned())
+                        .unwrap_or_default();
+                    let reply = c.handle(&bytes, &pi);
+                    if let Err(e) = query.reply(query.key_expr().clone(), reply).wait() {
+                        warn!(ROLE, "cannot reply on {}: {e}", query.key_expr());
+                    }
+                }
+            }));
+        }
+        let c = core.clone();
+        let cl = cleanup.clone();
+        let alive_prefix = format!("{}/alive/", keys.prefix);
+        let sub = session
+            .liveliness()
+            .declare_subscriber(keys.alive_all())
+            .history(true)
+            .callback(move |sample| {
+                if sample.kind() == SampleKind::Delete {
+                    let k = sample.key_expr().as_str();
+                    c.worker_lost(k.strip_prefix(&alive_prefix).unwrap_or(k));
+                    cl.store(true, Ordering::SeqCst);
+                }
+            })
+            .wait()
+            .map_err(zerr)?;
+        keep.push(Box::new(sub));
+        let token = session
+            .liveliness()
+            .declare_token(keys.coordinator())
+            .wait()
+            .map_err(zerr)?;
+        keep.push(Box::new(token));
+        let (c, st) = (core.clone(), stop.clone());
+        threads.push(std::thread::spawn(move || {
+            while !st.load(Ordering::SeqCst) {
+                c.expire_leases();
+                std::thread::sleep(Duration::from_millis(100));
+            }
+        }));
+        Ok(Runtime {
+            core,
+            stop,
+            threads,
+            session,
+            iox_prefix,
+            local: None,
+            _keep: keep,
+        })
+    }
+
+    pub fn spawn_local(&mut self, spec: &LocalSpec, n: usize) -> Result<(), ClusterError> {
+        if n > 0 {
+            self.local =
+                Some(LocalWorkers::spawn(spec, n).map_err(|e| ClusterError::Spawn(e.to_string()))?);
+        }
+        Ok(())
+    }
+
+    /// Tells the workers the run is over (within `grace`), then stops.
+    pub fn shutdown(&mut self, grace: Duration) {
+        if self.stop.load(Ordering::SeqCst) {
+            return;
+        }
+        let until = Instant::now() + grace;
+        while !self.core.all_told() && Instant::now() < until {
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        if let Some(l) = &mut self.local {
+            l.stop(
+                until
+                    .saturating_duration_since(Instant::now())
+                    .max(Duration::from_millis(500)),
+            );
+        }
+        self.stop.store(true, Ordering::SeqCst);
+        for t in self.threads.drain(..) {
+            let _ = t.join();
+        }
+        self._keep.clear();
+        let _ = self.session.close().wait();
+        if let Some(p) = &self.iox_prefix {
+            iox::remove_prefix(p);
+        }
+    }
+}
+
+impl Drop for Runtime {
+    fn drop(&mut self) {
+        self.shutdown(Duration::from_millis(500));
+    }
+}

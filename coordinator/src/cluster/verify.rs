@@ -1,0 +1,116 @@
+//! Trust but verify: the checks a shard result must pass before it is
+//! merged. Every fixture that would enter the part's top-k is re-derived
+//! from the part the coordinator holds (its locator setup enumerated again
+//! and the clamp placed again), which recomputes form closure, admissibility
+//! and score; the fixture must come out identical.
+
+use fixplan_core::admissibility::Scratch;
+use fixplan_core::clamp::Accumulator;
+use fixplan_core::combinations::combination_at;
+use fixplan_core::{Fixture, PartialResult, PreparedPart};
+use std::cmp::Ordering;
+use std::ops::Range;
+
+/// Whether `f` is exactly what the enumeration gives for its segments and
+/// locators.
+pub fn rederive(prep: &PreparedPart, f: &Fixture) -> bool {
+    let n = prep.segments.len();
+    let [a, b, c] = f.segments;
+    if !(a <= b && b <= c && c < n && a != c) || f.locators[0] != [0, 0] {
+        return false;
+    }
+    let mut acc = Accumulator::new(0);
+    let mut scratch = Scratch::default();
+    prep.setups_for_locators(f.segments, f.locators[1], f.locators[2], |s| {
+        prep.process_setup(s, &mut acc, &mut scratch)
+    });
+    acc.top.into_sorted().iter().any(|g| g == f)
+}
+
+/// Whether `f` would enter a top-k that holds `top` (sorted, best first).
+pub fn enters(top: &[Fixture], top_k: usize, f: &Fixture) -> bool {
+    top_k == 0
+        || top.len() < top_k
+        || top
+            .get(top_k - 1)
+            .is_some_and(|w| f.rank_cmp(w) == Ordering::Less)
+}
+
+/// Checks a shard result against the shard it answers and the part's
+/// current top-k. Returns how many fixtures were re-derived.
+pub fn check(
+    prep: &PreparedPart,
+    range: &Range<u64>,
+    res: &PartialResult,
+    top: &[Fixture],
+) -> Result<usize, String> {
+    let count = prep.combination_count();
+    if res.range != *range {
+        return Err(format!(
+            "result for combinations {:?}, shard is {range:?}",
+            res.range
+        ));
+    }
+    let want = range.end.min(count).saturating_sub(range.start);
+    if res.counts.combinations != want || res.counts.segments != prep.segments.len() as u64 {
+        return Err(format!(
+            "counts {} combinations / {} segments, expected {want} / {}",
+            res.counts.combinations,
+            res.counts.segments,
+            prep.segments.len()
+        ));
+    }
+    if prep.top_k != 0 && res.fixtures.len() > prep.top_k {
+        return Err(format!(
+            "{} fixtures, top_k is {}",
+            res.fixtures.len(),
+            prep.top_k
+        ));
+    }
+    if (res.fixtures.len() as u64) > res.counts.admissible {
+        return Err(format!(
+            "{} fixtures but {} admissible",
+            res.fixtures.len(),
+            res.counts.admissible
+        ));
+    }
+    if res
+        .fixtures
+        .windows(2)
+        .any(|w| w[0].rank_cmp(&w[1]) != Ordering::Less)
+    {
+        return Err("fixtures not in rank order".into());
+    }
+    let n = prep.segments.len();
+    let (first, last) = match (
+        combination_at(n, range.start),
+        combination_at(n, want.saturating_sub(1) + range.start),
+    ) {
+        (Some(a), Some(b)) => (a, b),
+        _ if res.fixtures.is_empty() => return Ok(0),
+        _ => return Err("fixtures in an empty shard".into()),
+    };
+    let mut checked = 0;
+    for (i, f) in res.fixtures.iter().enumerate() {
+        if f.segments < first || f.segments > last {
+            return Err(format!(
+                "fixture {i} on segments {:?}, outside the shard",
+                f.segments
+            ));
+        }
+        if !f.score.is_finite() {
+            return Err(format!("fixture {i} has score {}", f.score));
+        }
+        if enters(top, prep.top_k, f) {
+            if !rederive(prep, f) {
+                return Err(format!(
+                    "fixture {i} (segments {:?}, locators {:?}, score {}) does not check out: \
+                     form closure, clamp or score differ from the part's own enumeration",
+                    f.segments, f.locators, f.score
+                ));
+            }
+            checked += 1;
+        }
+    }
+    Ok(checked)
+}

@@ -1,0 +1,284 @@
+//! Shared by the cluster_*.rs tests: worker processes that are killed on
+//! drop, unique endpoints and key prefixes, a small catalogue, and the
+//! embedded reference.
+#![allow(dead_code)]
+
+use fixplan_catalog::{Catalog, CatalogPart, KitSpec};
+use fixplan_coordinator::cluster::{ClusterOptions, PartInput, TransportChoice};
+use fixplan_coordinator::results::ResultsFile;
+use fixplan_coordinator::run::RunOptions;
+use fixplan_core::{Case, Part, PartialResult, Units};
+use fixplan_worker::zenoh_link::ZenohOptions;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
+
+pub const EXE: &str = env!("CARGO_BIN_EXE_fixplan");
+
+/// A worker process, killed (SIGKILL) and reaped on drop.
+pub struct Proc {
+    pub child: Option<Child>,
+}
+
+impl Proc {
+    pub fn pid(&self) -> u32 {
+        self.child.as_ref().map_or(0, |c| c.id())
+    }
+    pub fn sigkill(&mut self) {
+        if let Some(c) = &mut self.child {
+            let _ = c.kill();
+            let _ = c.wait();
+        }
+    }
+    /// Waits for the exit (up to `t`), returning the code and stderr.
+    pub fn wait_output(&mut self, t: Duration) -> (Option<i32>, String) {
+        let Some(mut c) = self.child.take() else {
+            return (None, String::new());
+        };
+        let until = std::time::Instant::now() + t;
+        let code = loop {
+            if let Ok(Some(s)) = c.try_wait() {
+                break s.code();
+            }
+            if std::time::Instant::now() > until {
+                let _ = c.kill();
+                let _ = c.wait();
+                break None;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        let mut err = String::new();
+        if let Some(mut e) = c.stderr.take() {
+            let _ = e.read_to_string(&mut err);
+        }
+        (code, err)
+    }
+}
+
+impl Drop for Proc {
+    fn drop(&mut self) {
+        self.sigkill();
+    }
+}
+
+static N: AtomicUsize = AtomicUsize::new(0);
+
+/// A unique name for this test process and call.
+pub fn unique(tag: &str) -> String {
+    format!(
+        "{tag}-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    )
+}
+
+/// A coordinator setup on a private unix socket and key prefix.
+pub struct Net {
+    pub endpoint: String,
+    pub prefix: String,
+}
+
+impl Net {
+    pub fn new(tag: &str) -> Net {
+        let sock = std::env::temp_dir().join(format!("fixplan-{}.sock", unique(tag)));
+        Net {
+            endpoint: format!("unixsock-stream/{}", sock.display()),
+            prefix: format!("fxtest/{}", unique(tag)),
+        }
+    }
+
+    pub fn options(&self, transport: TransportChoice) -> ClusterOptions {
+        ClusterOptions {
+            zenoh: ZenohOptions {
+                listen: vec![self.endpoint.clone()],
+                ..ZenohOptions::default()
+            },
+            key_prefix: self.prefix.clone(),
+            transport,
+            expected_threads: Some(2),
+            ..ClusterOptions::default()
+        }
+    }
+
+    /// Starts `fixplan worker` with these extra arguments.
+    pub fn worker(&self, extra: &[&str]) -> Proc {
+        self.worker_via(&self.endpoint, extra, Stdio::inherit())
+    }
+
+    /// Same, with its standard error captured.
+    pub fn worker_captured(&self, extra: &[&str]) -> Proc {
+        self.worker_via(&self.endpoint, extra, Stdio::piped())
+    }
+
+    pub fn worker_via(&self, endpoint: &str, extra: &[&str], stderr: Stdio) -> Proc {
+        let child = Command::new(EXE)
+            .args([
+                "worker",
+                "--connect",
+                endpoint,
+                "--key-prefix",
+                &self.prefix,
+                "--threads",
+                "1",
+            ])
+            .args(extra)
+            .stdin(Stdio::null())
+            .stderr(stderr)
+            .spawn()
+            .expect("start fixplan worker");
+        Proc { child: Some(child) }
+    }
+}
+
+pub fn case(name: &str) -> Case {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples/cases")
+        .join(name);
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
+    CatalogPart {
+        id: id.into(),
+        file: None,
+        part: Ok(Part {
+            outline,
+            access: vec![],
+        }),
+        warnings: vec![],
+        quantity: 1.0,
+        top_k: None,
+        wrenches: None,
+    }
+}
+
+/// Small parts of very different sizes, one broken file, one invalid
+/// polygon, one too small to hold.
+pub fn catalog() -> (Catalog, KitSpec) {
+    let c = case("rectangle-mm.json");
+    let mut rect = part("rect", c.part.clone());
+    rect.part = Ok(c.part());
+    let parts = vec![
+        rect,
+        part(
+            "ell",
+            vec![
+                [0.0, 0.0],
+                [90.0, 0.0],
+                [90.0, 30.0],
+                [30.0, 30.0],
+                [30.0, 70.0],
+                [0.0, 70.0],
+            ],
+        ),
+        part(
+            "bowtie",
+            vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
+        ),
+        CatalogPart {
+            part: Err("bad.json: edge 0 crosses edge 2".into()),
+            ..part("broken", vec![])
+        },
+        part("tiny", vec![[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]),
+        part(
+            "hex",
+            vec![
+                [30.0, 0.0],
+                [70.0, 0.0],
+                [95.0, 40.0],
+                [70.0, 80.0],
+                [30.0, 80.0],
+                [5.0, 40.0],
+            ],
+        ),
+    ];
+    let cat = Catalog {
+        name: "mem".into(),
+        units: Units::Mm,
+        source: PathBuf::from("mem"),
+        parts,
+    };
+    let spec = KitSpec {
+        name: "case-kit".into(),
+        kit: c.kit.clone(),
+        params: c.params.clone(),
+    };
+    (cat, spec)
+}
+
+/// The valid parts of [`catalog`] as cluster inputs, with `top_k`.
+pub fn inputs(top_k: usize) -> Vec<PartInput> {
+    let (cat, spec) = catalog();
+    let mut params = spec.params.clone();
+    params.top_k = top_k;
+    cat.parts
+        .iter()
+        .filter_map(|cp| cp.part.as_ref().ok())
+        .map(|p| PartInput {
+            part: p.clone(),
+            kit: spec.kit.clone(),
+            params: params.clone(),
+            units: cat.units,
+        })
+        .collect()
+}
+
+/// The embedded result of each input: `Ok(bytes of the merged partial)` or
+/// the prepare error.
+pub fn embedded(inputs: &[PartInput]) -> Vec<Result<Vec<u8>, String>> {
+    inputs
+        .iter()
+        .map(|i| {
+            i.prepare()
+                .map(|p| bytes(&p.enumerate_all()))
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
+pub fn bytes(p: &PartialResult) -> Vec<u8> {
+    postcard::to_allocvec(p).unwrap()
+}
+
+pub fn run_opts(out: &Path, top_k: usize) -> RunOptions {
+    RunOptions {
+        catalog: PathBuf::from("mem"),
+        kit: "case-kit".into(),
+        top_k: Some(top_k),
+        threads: Some(1),
+        output: out.to_path_buf(),
+        resume: false,
+        shard_size: None,
+        quiet: true,
+    }
+}
+
+pub fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
+    let f = ResultsFile::open(path).unwrap();
+    let mut v = Vec::new();
+    let c = f.for_each_part(|_, m| {
+        v.push(m.fixtures.clone());
+        true
+    });
+    assert!(c.unwrap().complete);
+    v
+}
+
+/// iceoryx2 files left by runs of this test process.
+pub fn shm_left() -> Vec<PathBuf> {
+    fixplan_worker::iox::files_left(&format!(
+        "{}{}x",
+        fixplan_worker::iox::PREFIX_HEAD,
+        std::process::id()
+    ))
+}
+
+static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// One cluster test at a time per test binary: the machine has few cores,
+/// and the shared-memory check must not see another test's live run.
+pub fn serial() -> std::sync::MutexGuard<'static, ()> {
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}

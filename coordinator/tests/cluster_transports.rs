@@ -1,0 +1,57 @@
+//! Coordinator plus two worker processes on this host, over zenoh and over
+//! iceoryx2: the results file equals the embedded run's in the fixture
+//! channel, and no shared memory is left behind.
+
+mod cluster_support;
+
+use cluster_support::*;
+use fixplan_coordinator::cluster::TransportChoice;
+use fixplan_coordinator::run::{run_loaded, run_loaded_with};
+
+fn two_workers(transport: TransportChoice, flag: &str) {
+    let _g = serial();
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let emb = dir.path().join("emb.mcap");
+    let dist = dir.path().join("dist.mcap");
+    run_loaded(&cat, &spec, &run_opts(&emb, 5)).unwrap();
+    let net = Net::new("two");
+    let mut opts = net.options(transport);
+    opts.min_workers = 2;
+    opts.shard_size = Some(3);
+    let _w1 = net.worker(&["--transport", flag]);
+    let _w2 = net.worker(&["--transport", flag]);
+    let totals = run_loaded_with(&cat, &spec, &run_opts(&dist, 5), Some(&opts)).unwrap();
+    assert_eq!(totals.parts(), 6);
+    assert_eq!(fixtures_channel(&emb), fixtures_channel(&dist));
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
+}
+
+#[test]
+fn two_workers_over_zenoh_equal_embedded() {
+    two_workers(TransportChoice::Zenoh, "zenoh");
+}
+
+#[test]
+fn two_workers_over_iceoryx2_equal_embedded() {
+    two_workers(TransportChoice::Iceoryx2, "iceoryx2");
+}
+
+#[test]
+fn run_with_local_workers_equals_embedded() {
+    let _g = serial();
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let emb = dir.path().join("emb.mcap");
+    let dist = dir.path().join("dist.mcap");
+    run_loaded(&cat, &spec, &run_opts(&emb, 0)).unwrap();
+    let net = Net::new("local");
+    let mut opts = net.options(TransportChoice::Auto);
+    opts.local_workers = 2;
+    opts.worker_threads = Some(1);
+    opts.worker_exe = Some(EXE.into());
+    opts.quiet = true;
+    run_loaded_with(&cat, &spec, &run_opts(&dist, 0), Some(&opts)).unwrap();
+    assert_eq!(fixtures_channel(&emb), fixtures_channel(&dist));
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
+}
