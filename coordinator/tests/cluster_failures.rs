@@ -1,0 +1,189 @@
+//! Workers that die, join late, misbehave or speak another protocol: the
+//! run completes with the embedded results every time.
+
+mod cluster_support;
+
+use cluster_support::*;
+use fixplan_coordinator::cluster::state::Stats;
+use fixplan_coordinator::cluster::{run_distributed, Distributed, TransportChoice};
+use fixplan_worker::protocol::{decode, encode, encode_as, Frame, Msg};
+use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
+use std::time::Duration;
+
+fn collect(mut d: Distributed) -> (Vec<Result<Vec<u8>, String>>, Stats) {
+    let mut got = Vec::new();
+    for (i, r) in d.by_ref() {
+        assert_eq!(i, got.len(), "parts in order");
+        got.push(r.map(|(_, m)| bytes(&m)));
+    }
+    (got, d.finish())
+}
+
+#[test]
+fn worker_killed_mid_run_loses_nothing() {
+    let _g = serial();
+    let net = Net::new("kill");
+    let mut opts = net.options(TransportChoice::Zenoh);
+    opts.shard_size = Some(2);
+    opts.min_workers = 2;
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    let mut w1 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
+    let _w2 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
+    let d = run_distributed(inputs, opts).unwrap();
+    let killer = std::thread::spawn(move || {
+        std::thread::sleep(Duration::from_millis(1500));
+        w1.sigkill();
+        w1
+    });
+    let (got, stats) = collect(d);
+    drop(killer.join());
+    assert_eq!(got, want);
+    assert!(stats.workers_lost >= 1, "{stats:?}");
+    eprintln!("after the kill: {stats:?}");
+}
+
+#[test]
+fn worker_killed_mid_run_over_iceoryx2_loses_nothing() {
+    let _g = serial();
+    let net = Net::new("killiox");
+    let mut opts = net.options(TransportChoice::Iceoryx2);
+    opts.shard_size = Some(2);
+    opts.min_workers = 2;
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    let mut w1 = net.worker(&["--fault", "slow:150"]);
+    let _w2 = net.worker(&["--fault", "slow:150"]);
+    let d = run_distributed(inputs, opts).unwrap();
+    let killer = std::thread::spawn(move || {
+        std::thread::sleep(Duration::from_millis(1500));
+        w1.sigkill();
+        w1
+    });
+    let (got, stats) = collect(d);
+    drop(killer.join());
+    assert_eq!(got, want);
+    assert!(stats.workers_lost >= 1, "{stats:?}");
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
+}
+
+#[test]
+fn late_joiner_gets_work() {
+    let _g = serial();
+    let net = Net::new("late");
+    let mut opts = net.options(TransportChoice::Auto);
+    opts.shard_size = Some(2);
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    let _w1 = net.worker(&["--fault", "slow:100"]);
+    let d = run_distributed(inputs, opts).unwrap();
+    let ep = net.endpoint.clone();
+    let prefix = net.prefix.clone();
+    let late = std::thread::spawn(move || {
+        std::thread::sleep(Duration::from_millis(1000));
+        let n = Net {
+            endpoint: ep,
+            prefix,
+        };
+        let mut w = n.worker_captured(&["--name", "latecomer"]);
+        w.wait_output(Duration::from_secs(60))
+    });
+    let (got, _) = collect(d);
+    assert_eq!(got, want);
+    let (code, err) = late.join().unwrap();
+    assert_eq!(code, Some(0), "{err}");
+    let done: u64 = err
+        .lines()
+        .find_map(|l| l.split("is over: ").nth(1))
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    assert!(done >= 1, "the late worker did no shard:\n{err}");
+}
+
+#[test]
+fn malformed_messages_and_other_protocol_versions_are_refused() {
+    let _g = serial();
+    let net = Net::new("bad");
+    let mut opts = net.options(TransportChoice::Zenoh);
+    opts.shard_size = Some(2);
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    let _w1 = net.worker(&["--transport", "zenoh", "--fault", "slow:50"]);
+    let d = run_distributed(inputs, opts).unwrap();
+    // A worker of another protocol version is refused with a clear message.
+    let mut old = net.worker_captured(&["--protocol-version", "99"]);
+    let (code, err) = old.wait_output(Duration::from_secs(30));
+    assert_eq!(code, Some(3), "{err}");
+    assert!(
+        err.contains("protocol version 1") && err.contains("version 99"),
+        "{err}"
+    );
+    // Garbage, a truncated message and a foreign version on the work key.
+    let s = open(&ZenohOptions {
+        connect: vec![net.endpoint.clone()],
+        ..ZenohOptions::default()
+    })
+    .unwrap();
+    let work = format!("{}/work", net.prefix);
+    let t = Duration::from_secs(5);
+    match request(&s, &work, b"garbage".to_vec(), t).unwrap() {
+        Frame::Refused(r) => assert!(r.contains("not a fixplan message"), "{r}"),
+        f => panic!("{f:?}"),
+    }
+    let mut cut = encode(&Msg::Pull { worker: "x".into() }).unwrap();
+    cut.truncate(6);
+    match request(&s, &work, cut, t).unwrap() {
+        Frame::Refused(r) => assert!(r.contains("malformed"), "{r}"),
+        f => panic!("{f:?}"),
+    }
+    let v99 = encode_as(99, &Msg::Pull { worker: "x".into() }).unwrap();
+    match request(&s, &work, v99, t).unwrap() {
+        Frame::Refused(r) => assert!(r.contains("version 99"), "{r}"),
+        f => panic!("{f:?}"),
+    }
+    // A pull from a worker that never joined is told to join.
+    let pull = encode(&Msg::Pull {
+        worker: "stranger".into(),
+    })
+    .unwrap();
+    assert_eq!(
+        request(&s, &work, pull, t).unwrap(),
+        Frame::Msg(Msg::Rejoin)
+    );
+    assert!(decode(b"").is_err());
+    drop(s);
+    let (got, stats) = collect(d);
+    assert_eq!(got, want);
+    assert_eq!(stats.rejected, 0);
+}
+
+#[test]
+fn a_worker_with_bad_results_is_rejected_by_name() {
+    let _g = serial();
+    let net = Net::new("corrupt");
+    let mut opts = net.options(TransportChoice::Zenoh);
+    opts.shard_size = Some(2);
+    opts.min_workers = 2;
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    let mut bad = net.worker_captured(&[
+        "--transport",
+        "zenoh",
+        "--name",
+        "liar-7",
+        "--fault",
+        "corrupt-score",
+    ]);
+    let _good = net.worker(&["--transport", "zenoh"]);
+    let d = run_distributed(inputs, opts).unwrap();
+    let (got, stats) = collect(d);
+    assert_eq!(got, want);
+    assert!(stats.rejected >= 1, "{stats:?}");
+    let (code, err) = bad.wait_output(Duration::from_secs(30));
+    assert_eq!(code, Some(3), "{err}");
+    assert!(
+        err.contains("liar-7") && err.contains("failed verification"),
+        "{err}"
+    );
+}
