@@ -92,7 +92,7 @@ pub struct WorkerSummary {
 
 enum DataLink {
     Zenoh,
-    Iox(IoxClient),
+    Iox(Box<IoxClient>),
 }
 
 struct Agent {
@@ -319,7 +319,7 @@ impl Agent {
             let link = match &welcome.data {
                 DataPath::Zenoh => DataLink::Zenoh,
                 DataPath::Iceoryx2 { prefix, service } => {
-                    DataLink::Iox(IoxClient::open(prefix, service)?)
+                    DataLink::Iox(Box::new(IoxClient::open(prefix, service)?))
                 }
             };
             info!(

@@ -30,6 +30,9 @@ pub struct BenchArgs {
     /// Segment combinations per shard (default: the cost estimate).
     #[arg(long)]
     pub shard_size: Option<u64>,
+    /// The catalogue this many times over (a longer run, steadier figures).
+    #[arg(long, default_value_t = 10)]
+    pub repeat: usize,
 }
 
 fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
@@ -45,7 +48,7 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
         units: cat.units,
         shard_size: None,
     };
-    Ok(cat
+    let one: Vec<PartInput> = cat
         .parts
         .iter()
         .filter_map(|cp| {
@@ -56,6 +59,9 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
                 units: cat.units,
             })
         })
+        .collect();
+    Ok((0..a.repeat.max(1))
+        .flat_map(|_| one.iter().cloned())
         .collect())
 }
 

@@ -61,7 +61,7 @@ impl CatalogJobs {
             }
         }
         let t0 = std::time::Instant::now();
-        while let Some((j, r)) = self.dist.next() {
+        for (j, r) in self.dist.by_ref() {
             let i = self.map[j];
             let cp = &parts[i];
             let result = match r {
