@@ -164,9 +164,12 @@ fn a_worker_with_bad_results_is_rejected_by_name() {
     let net = Net::new("corrupt");
     let mut opts = net.options(TransportChoice::Zenoh);
     opts.shard_size = Some(2);
-    opts.min_workers = 2;
+    opts.min_workers = 1;
     let inputs = inputs(5);
     let want = embedded(&inputs);
+    // The liar works alone until it is caught (it corrupts the first shard
+    // that has a fixture), so the test does not depend on which worker
+    // happens to pull the shards with fixtures; an honest worker finishes.
     let mut bad = net.worker_captured(&[
         "--transport",
         "zenoh",
@@ -175,15 +178,15 @@ fn a_worker_with_bad_results_is_rejected_by_name() {
         "--fault",
         "corrupt-score",
     ]);
-    let _good = net.worker(&["--transport", "zenoh"]);
     let d = run_distributed(inputs, opts).unwrap();
-    let (got, stats) = collect(d);
-    assert_eq!(got, want);
-    assert!(stats.rejected >= 1, "{stats:?}");
-    let (code, err) = bad.wait_output(Duration::from_secs(30));
+    let (code, err) = bad.wait_output(Duration::from_secs(60));
     assert_eq!(code, Some(3), "{err}");
     assert!(
         err.contains("liar-7") && err.contains("failed verification"),
         "{err}"
     );
+    let _good = net.worker(&["--transport", "zenoh"]);
+    let (got, stats) = collect(d);
+    assert_eq!(got, want);
+    assert!(stats.rejected >= 1, "{stats:?}");
 }
