@@ -1,11 +1,14 @@
-//! The fixplan command line and, later, the coordinator of distributed runs.
+//! The fixplan command line and the coordinator of distributed runs.
 //!
 //! - [`run`]: `fixplan run`, whole catalogues into an MCAP results file;
 //! - [`part_job`]: one part through the shard/merge path of the workers;
 //! - [`mcap_out`], [`results`], [`messages`]: writing and reading results;
 //! - [`scene`], [`draw`], [`render`]: Foxglove scenes and SVG pictures;
-//! - [`show`]: tables and JSON lines from a results file.
+//! - [`show`]: tables and JSON lines from a results file;
+//! - [`bench_cmd`]: `fixplan bench`, where the enumeration spends its time;
+//! - [`cluster`]: the coordinator and workers of distributed runs.
 
+pub mod bench_cmd;
 pub mod cluster;
 pub mod draw;
 pub mod mcap_out;

@@ -96,6 +96,25 @@ enum Cmd {
     /// Measure the cluster: catalogue throughput with 1 and 2 local workers,
     /// coordinator time and bytes per shard, zenoh vs iceoryx2 round trip.
     BenchCluster(fixplan_coordinator::cluster::bench::BenchArgs),
+    /// Measure the enumeration per part on one thread: wall time, where it
+    /// goes (setup enumeration, clamp placement, admissibility checks,
+    /// metric), pose solutions computed per setup kept (what the pruning
+    /// wastes) and fixtures per second. All fixtures are enumerated.
+    ///
+    /// With no arguments: the bundled bench cases (examples/cases).
+    Bench {
+        /// Case files (SPEC Appendix A).
+        cases: Vec<PathBuf>,
+        /// Measure a catalogue instead (with --kit).
+        #[arg(long, value_name = "DIR|catalog.toml")]
+        catalog: Option<PathBuf>,
+        /// Kit for --catalog.
+        #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
+        kit: String,
+        /// Runs per part; the fastest counts.
+        #[arg(long, default_value_t = 3)]
+        repeat: usize,
+    },
     /// Print the ranked fixtures of a results file as tables.
     Show {
         /// A results file written by `fixplan run`.
@@ -191,6 +210,27 @@ fn main() -> Result<()> {
         }
         Cmd::Worker(a) => fixplan_coordinator::cluster::cli::worker_main(&a)?,
         Cmd::BenchCluster(a) => fixplan_coordinator::cluster::bench::bench_main(&a)?,
+        Cmd::Bench {
+            cases,
+            catalog,
+            kit,
+            repeat,
+        } => {
+            use fixplan_coordinator::bench_cmd;
+            let parts = match catalog {
+                Some(c) => {
+                    let cat = fixplan_catalog::load_catalog(&c)?;
+                    let spec = fixplan_catalog::load_kit(&kit, cat.units)?;
+                    let parts = cat.parts.into_iter().map(|p| (p.id, p.part)).collect();
+                    bench_cmd::parts_from_catalog(parts, &spec.kit, &spec.params, cat.units)
+                }
+                None if cases.is_empty() => {
+                    bench_cmd::parts_from_cases(&bench_cmd::default_cases())?
+                }
+                None => bench_cmd::parts_from_cases(&cases)?,
+            };
+            bench_cmd::run(&parts, repeat);
+        }
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             fixplan_coordinator::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
