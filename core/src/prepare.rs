@@ -17,11 +17,18 @@ pub enum PrepareError {
     Outline(PolygonError),
     #[error("access constraint {index}: {source}")]
     Access { index: usize, source: PolygonError },
+    #[error(
+        "part is {extent:.3e} lattice spacings across; fixplan handles parts up to {limit:.0e}"
+    )]
+    TooLarge { extent: f64, limit: f64 },
     #[error("kit: {0}")]
     Kit(String),
     #[error("params: {0}")]
     Params(String),
 }
+
+/// Largest coordinate, in lattice units, that a part may have.
+pub const MAX_EXTENT: f64 = 1e6;
 
 /// The clamp in lattice units.
 #[derive(Debug, Clone)]
@@ -186,6 +193,18 @@ pub fn prepare(
         access.push(
             validate_polygon(&scale(a)).map_err(|source| PrepareError::Access { index, source })?,
         );
+    }
+    // Lattice coordinates are enumerated as integers: keep them far from
+    // overflow (a part 10^6 spacings across is 25 km on a 25 mm plate).
+    let extent = outline
+        .iter()
+        .chain(access.iter().flatten())
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    if extent > MAX_EXTENT {
+        return Err(PrepareError::TooLarge {
+            extent,
+            limit: MAX_EXTENT,
+        });
     }
     let r = kit.locator_radius / l;
     let trim = params.edge_trim_or_default(units) / l;

@@ -359,3 +359,16 @@ fn good_enough_stops_at_the_same_place_serial_or_parallel() {
     let (b, _) = p.enumerate_until(0..n, best);
     assert_eq!(b.fixtures[0], full.fixtures[0]);
 }
+
+#[test]
+fn absurdly_large_parts_are_invalid_not_a_hang() {
+    let huge = [[0.0, 0.0], [3e7, 0.0], [3e7, 2e7], [0.0, 2e7]];
+    let res = fixplan_core::solve(
+        &part(&huge, &[]),
+        &kit(Pattern::Square),
+        &params(45.0, 1),
+        fixplan_core::Units::Mm,
+    );
+    assert_eq!(res.status, fixplan_core::Status::Invalid);
+    assert!(res.error.unwrap().contains("lattice spacings across"));
+}
