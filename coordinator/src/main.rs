@@ -79,7 +79,12 @@ enum Cmd {
         quiet: bool,
         #[command(flatten)]
         cluster: fixplan_coordinator::cluster::cli::RunClusterArgs,
+        #[command(flatten)]
+        search: fixplan_coordinator::study_cli::SearchArgs,
     },
+    /// Compare kits on a catalogue: which kit to buy, which clamp to add.
+    #[command(long_about = fixplan_coordinator::study_cli::STUDY_HELP)]
+    Study(fixplan_coordinator::study_cli::StudyArgs),
     /// Coordinate a distributed run: shard every part of a catalogue over
     /// the workers that join (`fixplan worker`), verify and merge their
     /// results, and write the same results file as `fixplan run`.
@@ -213,6 +218,7 @@ fn real_main() -> Result<()> {
             shard_size,
             quiet,
             cluster,
+            search,
         } => {
             let opts = RunOptions {
                 catalog: catalog.unwrap_or_else(default_catalog),
@@ -224,11 +230,16 @@ fn real_main() -> Result<()> {
                 shard_size,
                 quiet,
             };
-            if cluster.workers.is_some() {
+            if !search.is_plain() {
+                fixplan_coordinator::study_cli::run_search_main(&opts, &cluster, &search)?;
+            } else if cluster.workers.is_some() {
                 fixplan_coordinator::cluster::cli::run_main(&opts, &cluster)?;
             } else {
                 run(&opts)?;
             }
+        }
+        Cmd::Study(a) => {
+            fixplan_coordinator::study_cli::study_cli_main(&a, default_catalog())?;
         }
         Cmd::Coordinator(a) => {
             fixplan_coordinator::cluster::cli::coordinator_main(&a, default_catalog())?;

@@ -30,6 +30,12 @@ pub struct RunMsg {
     /// Parameters of the run (the kit's, with `--top-k` applied); a part's
     /// own `top_k` / `wrenches` in the catalogue override them.
     pub params: Params,
+    /// `--grid-steps` (coarse to fine; `params.grid_step` is the finest).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_steps: Option<Vec<u32>>,
+    /// `--good-enough` threshold.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub good_enough: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -78,7 +84,21 @@ pub struct PartMsg {
     #[serde(default)]
     pub best_score: Option<f64>,
     pub timing: Timing,
+    /// `--grid-steps`: one summary per grid step, coarse to fine (counts,
+    /// best fixture, what the step added). Absent in plain runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refine: Option<Vec<crate::refine::StepSummary>>,
+    /// `"good_enough"` when `--good-enough` stopped the part early.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<String>,
+    /// The combination index where it stopped (combinations `0..=index`
+    /// were enumerated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped_at: Option<u64>,
 }
+
+/// `PartMsg::stopped` of a part stopped by `--good-enough`.
+pub const STOPPED_GOOD_ENOUGH: &str = "good_enough";
 
 /// Wall-clock timings: the only non-deterministic fields of a results file.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -148,7 +168,9 @@ pub fn run_schema() -> Vec<u8> {
                     "digest": {"type": "string"}}},
                 "kit_name": {"type": "string"},
                 "kit": {"type": "object", "description": "SPEC Appendix A kit, catalogue units"},
-                "params": {"type": "object", "description": "SPEC Appendix A params"}
+                "params": {"type": "object", "description": "SPEC Appendix A params"},
+                "grid_steps": {"type": "array", "items": {"type": "integer"}},
+                "good_enough": {"type": "number"}
             }
         }),
     )
@@ -172,7 +194,19 @@ pub fn part_schema() -> Vec<u8> {
                 "fixtures": {"type": "integer"}, "best_score": {"type": ["number", "null"]},
                 "timing": {"type": "object", "properties": {
                     "prepare_ms": {"type": "number"}, "enumerate_ms": {"type": "number"},
-                    "shards": {"type": "integer"}}}
+                    "shards": {"type": "integer"}}},
+                "refine": {"type": "array", "description": "--grid-steps: one entry per step, coarse to fine",
+                    "items": {"type": "object", "properties": {
+                        "grid_step": {"type": "integer"}, "counts": counts(),
+                        "fixtures": {"type": "integer"},
+                        "best_score": {"type": ["number", "null"]},
+                        "best": {"type": ["object", "null"], "description": "the best fixture at this step (as in /fixplan/fixtures)"},
+                        "added": {"type": "integer", "description": "admissible fixtures added to the previous step"},
+                        "improved_by": {"type": ["number", "null"], "description": "previous best score minus this one"},
+                        "stopped_at": {"type": "integer"},
+                        "enumerate_ms": {"type": "number"}}}},
+                "stopped": {"enum": ["good_enough"], "description": "why the enumeration ended early"},
+                "stopped_at": {"type": "integer", "description": "combination index of the early stop"}
             }
         }),
     )

@@ -3,10 +3,13 @@
 //! mode uses), merge, report, and serialise the part's three messages.
 
 use crate::mcap_out::PartMessages;
-use crate::messages::{FixturesMsg, PartMsg, Timing};
+use crate::messages::{FixturesMsg, PartMsg, Timing, STOPPED_GOOD_ENOUGH};
+use crate::refine::{solve_search, SearchInfo, SearchOptions};
 use crate::scene::scene_update;
 use fixplan_catalog::CatalogPart;
-use fixplan_core::{merge, prepare, report, Kit, Params, PreparedPart, SolveResult, Status, Units};
+use fixplan_core::{
+    merge, prepare, report, Kit, Params, PrepareError, PreparedPart, SolveResult, Status, Units,
+};
 use rayon::prelude::*;
 use std::ops::Range;
 use std::time::Instant;
@@ -52,6 +55,8 @@ pub struct JobContext<'a> {
     pub params: &'a Params,
     pub units: Units,
     pub shard_size: Option<u64>,
+    /// `--grid-steps` / `--good-enough` (default: one full enumeration).
+    pub search: &'a SearchOptions,
 }
 
 /// The outcome of one part, for the progress display and summary.
@@ -63,6 +68,10 @@ pub struct PartOutcome {
     pub error: Option<String>,
     pub admissible: u64,
     pub kept: usize,
+    /// `--grid-steps`: what each step found.
+    pub steps: Option<Vec<crate::refine::StepSummary>>,
+    /// `--good-enough`: the combination index where the part stopped.
+    pub stopped_at: Option<u64>,
 }
 
 fn name_part(id: &str, msg: &str) -> String {
@@ -90,25 +99,52 @@ pub fn run_part(
     index: usize,
     cp: &CatalogPart,
 ) -> Result<PartOutcome, serde_json::Error> {
+    let (result, timing, info) = solve_part(ctx, cp, None);
+    part_outcome_with(ctx, index, cp, result, timing, &info)
+}
+
+/// The enumeration of one catalogue part (what [`run_part`] does before
+/// writing messages). `prepared`: the part already prepared with
+/// [`part_params`] (a study's cache), or `None` to prepare it here.
+pub fn solve_part(
+    ctx: &JobContext,
+    cp: &CatalogPart,
+    prepared: Option<Result<PreparedPart, PrepareError>>,
+) -> (SolveResult, Timing, SearchInfo) {
     let mut timing = Timing::default();
+    let mut info = SearchInfo::default();
     let result = match &cp.part {
         Err(msg) => SolveResult::invalid(name_part(&cp.id, msg)),
         Ok(part) => {
-            let params = part_params(ctx, cp);
             let t0 = Instant::now();
-            let prepared = prepare(part, ctx.kit, &params, ctx.units);
+            let prepared = prepared.unwrap_or_else(|| {
+                let params = part_params(ctx, cp);
+                prepare(part, ctx.kit, &params, ctx.units)
+            });
             timing.prepare_ms = t0.elapsed().as_secs_f64() * 1e3;
             match prepared {
                 Err(e) => SolveResult::invalid(format!("{}: {e}", cp.id)),
                 Ok(prep) => {
                     let t1 = Instant::now();
                     let solved = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                        solve_prepared(&prep, ctx.shard_size)
+                        if ctx.search.is_plain() {
+                            let (res, n) = solve_prepared(&prep, ctx.shard_size);
+                            (
+                                res,
+                                SearchInfo {
+                                    shards: n,
+                                    ..SearchInfo::default()
+                                },
+                            )
+                        } else {
+                            solve_search(&prep, ctx.search, ctx.shard_size)
+                        }
                     }));
                     timing.enumerate_ms = t1.elapsed().as_secs_f64() * 1e3;
                     match solved {
-                        Ok((res, shards)) => {
-                            timing.shards = shards;
+                        Ok((res, i)) => {
+                            timing.shards = i.shards;
+                            info = i;
                             res
                         }
                         Err(p) => SolveResult::invalid(format!(
@@ -121,7 +157,7 @@ pub fn run_part(
             }
         }
     };
-    part_outcome(ctx, index, cp, result, timing)
+    (result, timing, info)
 }
 
 /// The run's parameters with the part's own `top_k` and wrenches.
@@ -145,6 +181,19 @@ pub fn part_outcome(
     result: SolveResult,
     timing: Timing,
 ) -> Result<PartOutcome, serde_json::Error> {
+    part_outcome_with(ctx, index, cp, result, timing, &SearchInfo::default())
+}
+
+/// [`part_outcome`] with the per-step summary and early stop of a
+/// `--grid-steps` / `--good-enough` search.
+pub fn part_outcome_with(
+    ctx: &JobContext,
+    index: usize,
+    cp: &CatalogPart,
+    result: SolveResult,
+    timing: Timing,
+    info: &SearchInfo,
+) -> Result<PartOutcome, serde_json::Error> {
     let (outline, access) = match &cp.part {
         Ok(p) => (p.outline.clone(), p.access.clone()),
         Err(_) => (Vec::new(), Vec::new()),
@@ -165,6 +214,9 @@ pub fn part_outcome(
         fixtures: result.fixtures.len(),
         best_score: best.map(|f| f.score),
         timing,
+        refine: info.steps.clone(),
+        stopped: info.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
+        stopped_at: info.stopped_at,
     };
     let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &outline, &access, best);
     let outcome = PartOutcome {
@@ -173,6 +225,8 @@ pub fn part_outcome(
         error: result.error.clone(),
         admissible: result.counts.map_or(0, |c| c.admissible),
         kept: result.fixtures.len(),
+        steps: info.steps.clone(),
+        stopped_at: info.stopped_at,
         messages: PartMessages {
             index,
             part: serde_json::to_vec(&part_msg)?,

@@ -12,6 +12,7 @@ use crate::mcap_out::ResultsWriter;
 use crate::messages::{CatalogInfo, PartMsg, RunMsg};
 use crate::part_job::{run_part, JobContext, PartOutcome};
 use crate::progress::{summary_table, Progress, Totals};
+use crate::refine::SearchOptions;
 use crate::results::{ReadError, ResultsFile};
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
@@ -173,11 +174,40 @@ pub fn run_loaded_with(
     opts: &RunOptions,
     cluster: Option<&crate::cluster::ClusterOptions>,
 ) -> Result<Totals> {
+    run_loaded_search(catalog, spec, opts, cluster, &SearchOptions::default())
+}
+
+/// [`run`] with `--grid-steps` / `--good-enough`.
+pub fn run_search(opts: &RunOptions, search: &SearchOptions) -> Result<Totals> {
+    let catalog = load_catalog(&opts.catalog)?;
+    let spec = load_kit(&opts.kit, catalog.units)?;
+    run_loaded_search(&catalog, &spec, opts, None, search)
+}
+
+/// [`run_loaded_with`] with `--grid-steps` / `--good-enough`: the run's
+/// `grid_step` becomes the finest step, so the fixtures channel holds the
+/// same bytes as a plain run at that step; the part channel gets the
+/// per-step summary (`refine`) and the early stop (`stopped`,
+/// `stopped_at`).
+pub fn run_loaded_search(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    opts: &RunOptions,
+    cluster: Option<&crate::cluster::ClusterOptions>,
+    search: &SearchOptions,
+) -> Result<Totals> {
     fixplan_core::prepare::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
+    search.validate()?;
+    if cluster.is_some() && search.good_enough.is_some() {
+        bail!(
+            "--good-enough runs in this process only (its stopping rule is not in the worker protocol yet); drop --workers"
+        );
+    }
     let mut params = spec.params.clone();
     if let Some(k) = opts.top_k {
         params.top_k = k;
     }
+    params.grid_step = search.final_step(params.grid_step);
     let run_msg = RunMsg {
         tool: "fixplan".into(),
         version: env!("CARGO_PKG_VERSION").into(),
@@ -191,6 +221,8 @@ pub fn run_loaded_with(
         kit_name: spec.name.clone(),
         kit: spec.kit.clone(),
         params: params.clone(),
+        grid_steps: search.grid_steps.clone(),
+        good_enough: search.good_enough,
     };
     let threads = opts.threads.unwrap_or_else(|| {
         std::thread::available_parallelism()
@@ -241,6 +273,7 @@ pub fn run_loaded_with(
         params: &params,
         units: catalog.units,
         shard_size: opts.shard_size,
+        search,
     };
     // Parts in flight at once: enough to keep the pool busy on small parts,
     // few enough that finished parts waiting for a slow one stay bounded.

@@ -47,6 +47,7 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
         params: &spec.params,
         units: cat.units,
         shard_size: None,
+        search: &crate::refine::SearchOptions::default(),
     };
     let one: Vec<PartInput> = cat
         .parts

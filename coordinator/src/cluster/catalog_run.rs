@@ -4,7 +4,8 @@
 
 use super::{run_distributed, ClusterError, ClusterOptions, Distributed, PartInput};
 use crate::messages::Timing;
-use crate::part_job::{part_outcome, part_params, run_part, JobContext, PartOutcome};
+use crate::part_job::{part_outcome_with, part_params, run_part, JobContext, PartOutcome};
+use crate::refine::{step_summary, SearchInfo, StepSummary};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::{report, SolveResult};
 use std::sync::mpsc::Sender;
@@ -12,8 +13,11 @@ use std::sync::mpsc::Sender;
 /// The distributed parts of a catalogue run.
 pub struct CatalogJobs {
     dist: Distributed,
-    /// Catalogue index of each distributed part.
-    map: Vec<usize>,
+    /// Catalogue index and grid-step index of each distributed input (one
+    /// input per part, or per part and step with `--grid-steps`).
+    map: Vec<(usize, usize)>,
+    /// The grid steps of each part (`[the run's step]` without `--grid-steps`).
+    steps: Vec<u32>,
     /// Parts that need no enumeration (unreadable files).
     direct: Vec<usize>,
 }
@@ -28,22 +32,36 @@ pub fn start(
     let mut inputs = Vec::new();
     let mut map = Vec::new();
     let mut direct = Vec::new();
+    let steps = ctx
+        .search
+        .grid_steps
+        .clone()
+        .unwrap_or_else(|| vec![ctx.params.grid_step]);
     for (i, cp) in parts.iter().enumerate().skip(start) {
         match &cp.part {
             Ok(part) => {
-                inputs.push(PartInput {
-                    part: part.clone(),
-                    kit: ctx.kit.clone(),
-                    params: part_params(ctx, cp),
-                    units: ctx.units,
-                });
-                map.push(i);
+                for (k, &step) in steps.iter().enumerate() {
+                    let mut params = part_params(ctx, cp);
+                    params.grid_step = step;
+                    inputs.push(PartInput {
+                        part: part.clone(),
+                        kit: ctx.kit.clone(),
+                        params,
+                        units: ctx.units,
+                    });
+                    map.push((i, k));
+                }
             }
             Err(_) => direct.push(i),
         }
     }
     let dist = run_distributed(inputs, opts.clone())?;
-    Ok(CatalogJobs { dist, map, direct })
+    Ok(CatalogJobs {
+        dist,
+        map,
+        steps,
+        direct,
+    })
 }
 
 impl CatalogJobs {
@@ -61,19 +79,51 @@ impl CatalogJobs {
             }
         }
         let t0 = std::time::Instant::now();
+        let mut t_step = t0;
+        let mut summaries: Vec<StepSummary> = Vec::new();
+        let mut failed: Option<SolveResult> = None;
         for (j, r) in self.dist.by_ref() {
-            let i = self.map[j];
+            let (i, k) = self.map[j];
             let cp = &parts[i];
             let result = match r {
                 Ok((prep, merged)) => report(&prep, &merged),
                 Err(msg) => SolveResult::invalid(format!("{}: {msg}", cp.id)),
+            };
+            if k == 0 {
+                summaries.clear();
+                failed = None;
+            }
+            let now = std::time::Instant::now();
+            let ms = (now - t_step).as_secs_f64() * 1e3;
+            t_step = now;
+            if result.status == fixplan_core::Status::Invalid && failed.is_none() {
+                failed = Some(result.clone());
+            }
+            summaries.push(step_summary(
+                self.steps[k],
+                &result,
+                summaries.last(),
+                None,
+                ms,
+            ));
+            if k + 1 < self.steps.len() {
+                continue;
+            }
+            let result = failed.take().unwrap_or(result);
+            let info = SearchInfo {
+                steps: ctx
+                    .search
+                    .grid_steps
+                    .is_some()
+                    .then(|| std::mem::take(&mut summaries)),
+                ..SearchInfo::default()
             };
             let timing = Timing {
                 enumerate_ms: t0.elapsed().as_secs_f64() * 1e3,
                 ..Timing::default()
             };
             if tx
-                .send((i, part_outcome(ctx, i, cp, result, timing)))
+                .send((i, part_outcome_with(ctx, i, cp, result, timing, &info)))
                 .is_err()
             {
                 break;

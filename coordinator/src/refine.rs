@@ -1,0 +1,244 @@
+//! Coarse-to-fine search (`--grid-steps 4,2,1`) and early stop
+//! (`--good-enough SCORE`) for one prepared part.
+//!
+//! Each grid step is a full enumeration at that step (SPEC `grid_step`:
+//! locators 2 and 3 at multiples of the step from locator 1). The fixtures
+//! of step `k*s` are a subset of those of step `s`, so each refinement only
+//! adds fixtures; the part's result is the finest step's, the same bytes as
+//! a plain run at that step. With `--good-enough`, every step stops at the
+//! shortest prefix of the combination range (in combination order) that
+//! admits a fixture scoring SCORE or better (`PreparedPart::enumerate_until`,
+//! deterministic whatever the threads), and a hit ends the part: finer steps
+//! are not run.
+
+use crate::part_job::solve_prepared;
+use fixplan_core::{report, Counts, FixtureReport, PartialResult, PreparedPart, SolveResult};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// How each part is searched (the default: one full enumeration).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SearchOptions {
+    /// Grid steps, coarse to fine; each a multiple of the next.
+    pub grid_steps: Option<Vec<u32>>,
+    /// Stop a part at the first combination that admits a fixture with this
+    /// score or better.
+    pub good_enough: Option<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SearchError {
+    #[error("--grid-steps is empty")]
+    NoSteps,
+    #[error("--grid-steps: {0:?} is not a whole number >= 1")]
+    BadStep(String),
+    #[error("--grid-steps must go from coarse to fine, each step a multiple of the next (the subset property): {a} then {b} is not")]
+    NotNested { a: u32, b: u32 },
+    #[error("--good-enough {0} must be a finite number")]
+    BadScore(f64),
+}
+
+/// Parses `4,2,1`.
+pub fn parse_grid_steps(s: &str) -> Result<Vec<u32>, SearchError> {
+    let steps = s
+        .split(',')
+        .map(str::trim)
+        .filter(|t| !t.is_empty())
+        .map(|t| match t.parse::<u32>() {
+            Ok(n) if n >= 1 => Ok(n),
+            _ => Err(SearchError::BadStep(t.to_string())),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let o = SearchOptions {
+        grid_steps: Some(steps),
+        good_enough: None,
+    };
+    o.validate()?;
+    Ok(o.grid_steps.unwrap_or_default())
+}
+
+impl SearchOptions {
+    pub fn is_plain(&self) -> bool {
+        self.grid_steps.is_none() && self.good_enough.is_none()
+    }
+
+    pub fn validate(&self) -> Result<(), SearchError> {
+        if let Some(steps) = &self.grid_steps {
+            if steps.is_empty() {
+                return Err(SearchError::NoSteps);
+            }
+            if let Some(&s) = steps.iter().find(|&&s| s == 0) {
+                return Err(SearchError::BadStep(s.to_string()));
+            }
+            for w in steps.windows(2) {
+                if w[0] <= w[1] || w[0] % w[1] != 0 {
+                    return Err(SearchError::NotNested { a: w[0], b: w[1] });
+                }
+            }
+        }
+        if let Some(g) = self.good_enough {
+            if !g.is_finite() {
+                return Err(SearchError::BadScore(g));
+            }
+        }
+        Ok(())
+    }
+
+    /// The grid step of the part's result: the finest step, or `default`.
+    pub fn final_step(&self, default: u32) -> u32 {
+        self.grid_steps
+            .as_ref()
+            .and_then(|s| s.last().copied())
+            .unwrap_or(default)
+    }
+}
+
+/// One grid step of a part (`/fixplan/part` field `refine`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepSummary {
+    pub grid_step: u32,
+    pub counts: Counts,
+    /// Fixtures kept (top-k) at this step.
+    pub fixtures: usize,
+    pub best_score: Option<f64>,
+    /// The best fixture at this step.
+    pub best: Option<FixtureReport>,
+    /// Admissible fixtures this step added to the previous (coarser) one.
+    pub added: u64,
+    /// How much this step lowered the best score (previous best - this best;
+    /// absent for the first step or when either step holds nothing).
+    pub improved_by: Option<f64>,
+    /// `--good-enough`: the combination index where this step stopped.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped_at: Option<u64>,
+    pub enumerate_ms: f64,
+}
+
+/// Why a part's enumeration ended early.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SearchInfo {
+    pub steps: Option<Vec<StepSummary>>,
+    /// `Some(index)`: stopped by `--good-enough` at that combination index.
+    pub stopped_at: Option<u64>,
+    pub shards: usize,
+}
+
+/// The part with another grid step: `prepare` copies `params.grid_step`
+/// into this field and nothing else depends on it (tested against a fresh
+/// `prepare`).
+pub fn with_grid_step(prep: &PreparedPart, step: u32) -> PreparedPart {
+    let mut p = prep.clone();
+    p.grid_step = step as i64;
+    p
+}
+
+/// The summary of one step, given the previous one.
+pub fn step_summary(
+    step: u32,
+    res: &SolveResult,
+    prev: Option<&StepSummary>,
+    stopped_at: Option<u64>,
+    enumerate_ms: f64,
+) -> StepSummary {
+    let counts = res.counts.unwrap_or_default();
+    let best = res.fixtures.first().cloned();
+    let best_score = best.as_ref().map(|f| f.score);
+    StepSummary {
+        grid_step: step,
+        counts,
+        fixtures: res.fixtures.len(),
+        best_score,
+        best,
+        added: counts
+            .admissible
+            .saturating_sub(prev.map_or(0, |p| p.counts.admissible)),
+        improved_by: match (prev.and_then(|p| p.best_score), best_score) {
+            (Some(a), Some(b)) => Some(a - b),
+            _ => None,
+        },
+        stopped_at,
+        enumerate_ms,
+    }
+}
+
+/// Solves a prepared part with the search options: the result of the last
+/// step run, and what each step found.
+pub fn solve_search(
+    prep: &PreparedPart,
+    opts: &SearchOptions,
+    shard_size: Option<u64>,
+) -> (SolveResult, SearchInfo) {
+    let steps: Vec<u32> = opts
+        .grid_steps
+        .clone()
+        .unwrap_or_else(|| vec![prep.grid_step.max(1) as u32]);
+    let mut info = SearchInfo::default();
+    let mut summaries: Vec<StepSummary> = Vec::new();
+    let mut last = SolveResult::invalid("no grid step");
+    for step in steps {
+        let p = with_grid_step(prep, step);
+        let t0 = std::time::Instant::now();
+        let (res, hit) = match opts.good_enough {
+            Some(g) => {
+                let (partial, hit): (PartialResult, Option<u64>) =
+                    p.enumerate_until(0..p.combination_count(), g);
+                info.shards += 1;
+                (report(&p, &partial), hit)
+            }
+            None => {
+                let (res, n) = solve_prepared(&p, shard_size);
+                info.shards += n;
+                (res, None)
+            }
+        };
+        let ms = t0.elapsed().as_secs_f64() * 1e3;
+        summaries.push(step_summary(step, &res, summaries.last(), hit, ms));
+        last = res;
+        if hit.is_some() {
+            info.stopped_at = hit;
+            break;
+        }
+    }
+    if opts.grid_steps.is_some() {
+        info.steps = Some(summaries);
+    }
+    (last, info)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_steps_parse() {
+        assert_eq!(parse_grid_steps("4,2,1").unwrap(), vec![4, 2, 1]);
+        assert_eq!(parse_grid_steps(" 6, 3 ").unwrap(), vec![6, 3]);
+        assert_eq!(parse_grid_steps("2").unwrap(), vec![2]);
+        assert_eq!(parse_grid_steps("").unwrap_err(), SearchError::NoSteps);
+        assert!(matches!(
+            parse_grid_steps("4,3"),
+            Err(SearchError::NotNested { a: 4, b: 3 })
+        ));
+        assert!(matches!(
+            parse_grid_steps("1,2"),
+            Err(SearchError::NotNested { .. })
+        ));
+        assert!(matches!(
+            parse_grid_steps("2,2"),
+            Err(SearchError::NotNested { .. })
+        ));
+        assert!(matches!(
+            parse_grid_steps("4,0"),
+            Err(SearchError::BadStep(_))
+        ));
+        assert!(matches!(
+            parse_grid_steps("x"),
+            Err(SearchError::BadStep(_))
+        ));
+        let o = SearchOptions {
+            grid_steps: None,
+            good_enough: Some(f64::NAN),
+        };
+        assert!(o.validate().is_err());
+    }
+}

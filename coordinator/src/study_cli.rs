@@ -1,0 +1,182 @@
+//! Command-line arguments of `fixplan study` and of `--grid-steps` /
+//! `--good-enough` on `fixplan run`.
+
+use crate::cluster::cli::RunClusterArgs;
+use crate::cluster::ClusterOptions;
+use crate::progress::Totals;
+use crate::refine::{parse_grid_steps, SearchOptions};
+use crate::run::{run_loaded_search, RunOptions};
+use crate::study::{study_main, StudyOptions, StudyReport};
+use anyhow::Result;
+use clap::Args;
+use fixplan_catalog::{load_catalog, load_kit};
+use std::path::PathBuf;
+
+/// `fixplan study --help`.
+pub const STUDY_HELP: &str = "\
+Compare kits on a catalogue: which kit to buy, which clamp to add.
+
+Runs every part of the catalogue against every kit: each --kit, and each
+--kit crossed with every point of --sweep. For each kit it reports the parts
+held (count, and share weighted by each part's `quantity`, parts per year),
+the median and 90th percentile of the best score over the parts held (lower
+is better; median of an even count = mean of the two middle values, p90 =
+nearest rank), the parts no fixture of the kit holds, the invalid ones and
+the time; then the parts that no kit holds. Output: a table here, and on
+request CSV (--csv), an SVG chart (--chart) and an MCAP file (-o, channels
+/fixplan/study and /fixplan/study_summary, JSON with JSON Schemas).
+
+Each (kit, part) goes through the same per-part path as `fixplan run`, in
+this process or, with --workers N, through the coordinator and N worker
+processes. Work is shared only where that is exact: a kit given twice is
+solved once; a part is prepared once per (locator radius, spacing, edge
+trim); a part with no fixture on a plate has none on a smaller plate of an
+otherwise equal kit, so that run is skipped (--no-share solves everything).
+
+SWEEP GRAMMAR (--sweep \"CLAUSE; CLAUSE; ...\", the points are the Cartesian
+product of the clauses):
+  CLAUSE  KEY=ITEM,ITEM,... [UNIT]
+  ITEM    a number                 4
+          A..B                     5 evenly spaced values, A and B included
+          A..B/N                   N evenly spaced values (N >= 2)
+          A..B:S                   A, A+S, A+2S, ... up to B
+  UNIT    mm or in, once at the end of the clause, for length keys;
+          converted to the catalogue's unit (default: the catalogue's unit)
+  KEYS    locator_radius, spacing, edge_trim, min_clearance   lengths
+          plate            COLSxROWS holes (or N for NxN), no ranges
+          travel           MAX (keeps the kit's minimum) or MIN..MAX, no ranges
+          max_clamp_angle  degrees (optional unit deg), e.g. 30..90:15
+          grid_step        whole number >= 1
+Every point is checked like a kit file (e.g. the locator radius against the
+spacing, travel MIN <= MAX); a bad point stops the study before any work.
+
+EXAMPLES
+  fixplan study --kit metric-25 --kit paper-inch --chart study.svg
+  fixplan study --kit metric-25 \\
+      --sweep \"locator_radius=4,6,8 mm; plate=12x12,20x20; travel=50..70,60..92 mm\" \\
+      --csv study.csv -o study.mcap --workers 2";
+
+#[derive(Args, Debug, Clone)]
+pub struct StudyArgs {
+    /// The catalogue (default: the bundled sample catalogue).
+    #[arg(long, value_name = "DIR|catalog.toml")]
+    pub catalog: Option<PathBuf>,
+    /// A kit to compare: a built-in name (`paper-inch`, `metric-25`) or a kit
+    /// TOML file (repeatable; default: metric-25).
+    #[arg(long = "kit", value_name = "NAME|kit.toml")]
+    pub kits: Vec<String>,
+    /// Kit variants: each --kit crossed with every point (see SWEEP GRAMMAR).
+    #[arg(long, value_name = "SWEEP")]
+    pub sweep: Option<String>,
+    /// Fixtures kept per part (default 1; counts and best scores do not
+    /// depend on it).
+    #[arg(long, value_name = "N")]
+    pub top_k: Option<usize>,
+    /// Threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// The study as MCAP (/fixplan/study, /fixplan/study_summary).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// One CSV row per kit.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// An SVG chart: share of parts held and best scores, per kit.
+    #[arg(long, value_name = "FILE")]
+    pub chart: Option<PathBuf>,
+    /// Solve every (kit, part) on its own, sharing nothing (to check that
+    /// the sharing changes no number).
+    #[arg(long)]
+    pub no_share: bool,
+    /// No table.
+    #[arg(short, long)]
+    pub quiet: bool,
+    #[command(flatten)]
+    pub cluster: RunClusterArgs,
+}
+
+/// `--grid-steps` and `--good-enough` of `fixplan run`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SearchArgs {
+    /// Coarse-to-fine: a full enumeration at each grid step, coarse to fine,
+    /// each a multiple of the next (e.g. `4,2,1`). Locators 2 and 3 sit at
+    /// multiples of the step from locator 1, so a coarse step is fast and
+    /// its fixtures are a subset of the next step's. The part channel gets
+    /// `refine`: per step the counts, the best fixture and score, the
+    /// fixtures it added; the fixtures channel holds the finest step's
+    /// result, the same bytes as a plain run at that step.
+    #[arg(long, value_name = "S1,S2,...", value_parser = parse_grid_steps)]
+    pub grid_steps: Option<Vec<u32>>,
+    /// Stop each part at the first segment combination (in combination
+    /// order) that admits a fixture scoring SCORE or better: the part's
+    /// status stays `ok`, its part message says `"stopped": "good_enough"`
+    /// and `stopped_at` (the combination index), and its fixtures are those
+    /// of combinations 0..=stopped_at, whatever the threads. With
+    /// --grid-steps, a hit at a coarse step ends the part. Not with
+    /// --workers (yet).
+    #[arg(long, value_name = "SCORE")]
+    pub good_enough: Option<f64>,
+}
+
+impl SearchArgs {
+    pub fn is_plain(&self) -> bool {
+        self.options().is_plain()
+    }
+
+    pub fn options(&self) -> SearchOptions {
+        SearchOptions {
+            grid_steps: self.grid_steps.clone(),
+            good_enough: self.good_enough,
+        }
+    }
+}
+
+fn cluster_options(cluster: &RunClusterArgs, threads: Option<usize>) -> Option<ClusterOptions> {
+    cluster.workers.filter(|&n| n > 0).map(|n| ClusterOptions {
+        key_prefix: fixplan_worker::host::unique_name("fixplan-run"),
+        transport: cluster.transport,
+        min_workers: 1,
+        local_workers: n,
+        worker_threads: threads.map(|t| (t / n).max(1)),
+        quiet: true,
+        ..ClusterOptions::default()
+    })
+}
+
+/// `fixplan run --grid-steps ... / --good-enough ...` (with or without
+/// `--workers`).
+pub fn run_search_main(
+    opts: &RunOptions,
+    cluster: &RunClusterArgs,
+    search: &SearchArgs,
+) -> Result<Totals> {
+    let catalog = load_catalog(&opts.catalog)?;
+    let spec = load_kit(&opts.kit, catalog.units)?;
+    let mut copts = cluster_options(cluster, opts.threads);
+    if let Some(c) = copts.as_mut() {
+        c.shard_size = opts.shard_size;
+    }
+    run_loaded_search(&catalog, &spec, opts, copts.as_ref(), &search.options())
+}
+
+/// `fixplan study`.
+pub fn study_cli_main(a: &StudyArgs, default_catalog: PathBuf) -> Result<StudyReport> {
+    let opts = StudyOptions {
+        catalog: a.catalog.clone().unwrap_or(default_catalog),
+        kits: if a.kits.is_empty() {
+            vec!["metric-25".into()]
+        } else {
+            a.kits.clone()
+        },
+        sweep: a.sweep.clone(),
+        top_k: a.top_k,
+        threads: a.threads,
+        output: a.output.clone(),
+        csv: a.csv.clone(),
+        chart: a.chart.clone(),
+        no_share: a.no_share,
+        quiet: a.quiet,
+    };
+    let copts = cluster_options(&a.cluster, a.threads);
+    study_main(&opts, copts.as_ref())
+}

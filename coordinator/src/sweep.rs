@@ -1,0 +1,515 @@
+//! The `--sweep` grammar of `fixplan study`: kit variants around a base kit.
+//!
+//! ```text
+//! SWEEP   := CLAUSE ( ';' CLAUSE )*
+//! CLAUSE  := KEY '=' ITEM ( ',' ITEM )* [ UNIT ]
+//! ITEM    := NUMBER                      one value
+//!          | A '..' B                    a range: 5 evenly spaced values, A and B included
+//!          | A '..' B '/' N              a range of N evenly spaced values (N >= 2)
+//!          | A '..' B ':' S              A, A+S, A+2S, ... up to B (S > 0)
+//!          | COLS 'x' ROWS               plate only (or one number N for N x N)
+//!          | MIN '..' MAX                travel only: the [min, max] pair (no ranges)
+//! UNIT    := 'mm' | 'in'                 length keys only, once at the end of the clause;
+//!                                        default: the catalogue's unit
+//! ```
+//!
+//! Keys: `locator_radius`, `spacing`, `edge_trim`, `min_clearance` (lengths),
+//! `plate` (holes, `COLSxROWS`), `travel` (length: `MAX` keeps the kit's
+//! minimum, `MIN..MAX` sets both), `max_clamp_angle` (degrees, optional
+//! `deg`), `grid_step` (integer >= 1). The points of a sweep are the
+//! Cartesian product of its clauses (the first clause varies slowest).
+
+use fixplan_catalog::KitSpec;
+use fixplan_core::prepare::{validate_kit, validate_params};
+use fixplan_core::Units;
+use std::fmt;
+use thiserror::Error;
+
+/// Values a range gives when neither `/N` nor `:S` is written.
+pub const DEFAULT_RANGE_COUNT: usize = 5;
+/// Most points a sweep may expand to (a typo guard).
+pub const MAX_POINTS: usize = 10_000;
+
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SweepError {
+    #[error("sweep clause {clause:?}: {message}")]
+    Clause { clause: String, message: String },
+    #[error("sweep key {0:?} is given twice")]
+    DuplicateKey(String),
+    #[error("the sweep is empty (write e.g. \"locator_radius=4,6 mm; plate=18x18,24x24\")")]
+    Empty,
+    #[error("the sweep expands to {0} points (at most {MAX_POINTS})")]
+    TooMany(usize),
+    #[error("kit {kit}: {message}")]
+    Kit { kit: String, message: String },
+}
+
+/// What a clause sets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Key {
+    LocatorRadius,
+    Spacing,
+    EdgeTrim,
+    MinClearance,
+    Plate,
+    Travel,
+    MaxClampAngle,
+    GridStep,
+}
+
+pub const KEYS: &[(&str, Key)] = &[
+    ("locator_radius", Key::LocatorRadius),
+    ("spacing", Key::Spacing),
+    ("edge_trim", Key::EdgeTrim),
+    ("min_clearance", Key::MinClearance),
+    ("plate", Key::Plate),
+    ("travel", Key::Travel),
+    ("max_clamp_angle", Key::MaxClampAngle),
+    ("grid_step", Key::GridStep),
+];
+
+impl Key {
+    pub fn name(self) -> &'static str {
+        KEYS.iter()
+            .find(|(_, k)| *k == self)
+            .map_or("?", |(n, _)| n)
+    }
+
+    fn is_length(self) -> bool {
+        matches!(
+            self,
+            Key::LocatorRadius | Key::Spacing | Key::EdgeTrim | Key::MinClearance | Key::Travel
+        )
+    }
+}
+
+/// One value of a clause, lengths already in the catalogue's unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    Num(f64),
+    Plate(u32, u32),
+    TravelMax(f64),
+    TravelPair(f64, f64),
+}
+
+impl fmt::Display for Value {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Value::Num(x) | Value::TravelMax(x) => write!(f, "{}", fmt_num(*x)),
+            Value::Plate(c, r) => write!(f, "{c}x{r}"),
+            Value::TravelPair(a, b) => write!(f, "{}..{}", fmt_num(*a), fmt_num(*b)),
+        }
+    }
+}
+
+fn fmt_num(x: f64) -> String {
+    let s = format!("{x:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
+/// A parsed clause: its key and values, in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Clause {
+    pub key: Key,
+    pub values: Vec<Value>,
+}
+
+/// A parsed sweep.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Sweep {
+    pub clauses: Vec<Clause>,
+}
+
+/// One point of a sweep: a value per clause.
+pub type Point = Vec<(Key, Value)>;
+
+fn round(x: f64) -> f64 {
+    // Ranges accumulate rounding (0.1 + 0.2): keep 9 decimals.
+    let r = (x * 1e9).round() / 1e9;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+fn parse_num(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    match t.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("{t:?} is not a number")),
+    }
+}
+
+fn parse_int(s: &str, what: &str) -> Result<u32, String> {
+    let t = s.trim();
+    match t.parse::<u32>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!("{what} {t:?} is not a whole number >= 1")),
+    }
+}
+
+/// Expands `A..B`, `A..B/N` or `A..B:S`.
+fn expand_range(item: &str) -> Result<Vec<f64>, String> {
+    let (body, spec) = match item.find(['/', ':']) {
+        Some(i) => (&item[..i], Some((&item[i..i + 1], &item[i + 1..]))),
+        None => (item, None),
+    };
+    let (a, b) = body
+        .split_once("..")
+        .ok_or_else(|| format!("{item:?}: a range is written A..B"))?;
+    let (a, b) = (parse_num(a)?, parse_num(b)?);
+    if a > b {
+        return Err(format!("range {item:?} goes down ({a} > {b})"));
+    }
+    match spec {
+        None | Some(("/", _)) => {
+            let n = match spec {
+                Some((_, n)) => n
+                    .trim()
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|&n| n >= 2)
+                    .ok_or_else(|| format!("range {item:?}: the count after / must be >= 2"))?,
+                None => DEFAULT_RANGE_COUNT,
+            };
+            if n > MAX_POINTS {
+                return Err(format!("range {item:?} has more than {MAX_POINTS} values"));
+            }
+            if a == b {
+                return Ok(vec![a]);
+            }
+            Ok((0..n)
+                .map(|i| round(a + (b - a) * i as f64 / (n - 1) as f64))
+                .collect())
+        }
+        Some((_, s)) => {
+            let s = parse_num(s)?;
+            if s <= 0.0 {
+                return Err(format!("range {item:?}: the step after : must be > 0"));
+            }
+            let n = ((b - a) / s + 1e-9).floor() as usize + 1;
+            if n > MAX_POINTS {
+                return Err(format!("range {item:?} has more than {MAX_POINTS} values"));
+            }
+            Ok((0..n).map(|i| round(a + s * i as f64)).collect())
+        }
+    }
+}
+
+/// Splits a trailing unit off the values (`4,6,8 mm`, `4,6,8mm`).
+fn split_unit(values: &str) -> (&str, Option<&str>) {
+    let v = values.trim_end();
+    for u in ["mm", "in", "deg"] {
+        if let Some(rest) = v.strip_suffix(u) {
+            let ok = rest
+                .chars()
+                .last()
+                .is_some_and(|c| c.is_ascii_digit() || c.is_whitespace() || c == '.');
+            if ok {
+                return (rest.trim_end(), Some(u));
+            }
+        }
+    }
+    (v, None)
+}
+
+fn parse_clause(text: &str, units: Units) -> Result<Clause, String> {
+    let (k, v) = text
+        .split_once('=')
+        .ok_or("a clause is KEY=VALUES (e.g. locator_radius=4,6 mm)")?;
+    let name = k.trim();
+    let key = KEYS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|&(_, k)| k)
+        .ok_or_else(|| {
+            let names: Vec<_> = KEYS.iter().map(|(n, _)| *n).collect();
+            format!("unknown key {name:?} (keys: {})", names.join(", "))
+        })?;
+    let (values, unit) = split_unit(v);
+    let factor = match (unit, key) {
+        (None, _) => 1.0,
+        (Some("deg"), Key::MaxClampAngle) => 1.0,
+        (Some(u @ ("mm" | "in")), k) if k.is_length() => {
+            let from = if u == "mm" { Units::Mm } else { Units::In };
+            from.mm_per_unit() / units.mm_per_unit()
+        }
+        (Some(u), k) => return Err(format!("{} takes no unit {u:?}", k.name())),
+    };
+    let mut out = Vec::new();
+    for item in values.split(',') {
+        let item = item.trim();
+        if item.is_empty() {
+            return Err("empty value (two commas, or nothing after =)".into());
+        }
+        if item
+            .chars()
+            .any(|c| c.is_ascii_alphabetic() && c != 'x' && c != 'e')
+        {
+            return Err(format!(
+                "{item:?}: write the unit once at the end of the clause (e.g. 4,6,8 mm)"
+            ));
+        }
+        match key {
+            Key::Plate => {
+                if item.contains("..") {
+                    return Err("plate takes COLSxROWS values, no ranges".into());
+                }
+                let (c, r) = match item.split_once('x') {
+                    Some((c, r)) => (parse_int(c, "plate cols")?, parse_int(r, "plate rows")?),
+                    None => {
+                        let n = parse_int(item, "plate size")?;
+                        (n, n)
+                    }
+                };
+                out.push(Value::Plate(c, r));
+            }
+            Key::Travel => {
+                if item.contains(['/', ':']) {
+                    return Err(
+                        "travel takes MAX or MIN..MAX values, no ranges: list several with commas"
+                            .into(),
+                    );
+                }
+                match item.split_once("..") {
+                    Some((a, b)) => {
+                        let (a, b) = (parse_num(a)? * factor, parse_num(b)? * factor);
+                        if a > b {
+                            return Err(format!("travel {item:?}: MIN is above MAX"));
+                        }
+                        out.push(Value::TravelPair(round(a), round(b)));
+                    }
+                    None => out.push(Value::TravelMax(round(parse_num(item)? * factor))),
+                }
+            }
+            _ => {
+                if item.contains('x') {
+                    return Err(format!("{item:?} is not a number"));
+                }
+                let nums = if item.contains("..") {
+                    expand_range(item)?
+                } else {
+                    vec![parse_num(item)?]
+                };
+                for x in nums {
+                    let x = round(x * factor);
+                    if key == Key::GridStep && (x.fract() != 0.0 || x < 1.0) {
+                        return Err(format!("grid_step {x} is not a whole number >= 1"));
+                    }
+                    out.push(Value::Num(x));
+                }
+            }
+        }
+    }
+    Ok(Clause { key, values: out })
+}
+
+impl Sweep {
+    /// Parses a sweep; lengths are converted to `units` (the catalogue's).
+    pub fn parse(text: &str, units: Units) -> Result<Sweep, SweepError> {
+        let mut clauses: Vec<Clause> = Vec::new();
+        for raw in text.split(';') {
+            let c = raw.trim();
+            if c.is_empty() {
+                continue;
+            }
+            let clause = parse_clause(c, units).map_err(|message| SweepError::Clause {
+                clause: c.to_string(),
+                message,
+            })?;
+            if clauses.iter().any(|o| o.key == clause.key) {
+                return Err(SweepError::DuplicateKey(clause.key.name().into()));
+            }
+            clauses.push(clause);
+        }
+        if clauses.is_empty() {
+            return Err(SweepError::Empty);
+        }
+        let n = clauses
+            .iter()
+            .try_fold(1usize, |acc, c| acc.checked_mul(c.values.len()))
+            .unwrap_or(usize::MAX);
+        if n > MAX_POINTS {
+            return Err(SweepError::TooMany(n));
+        }
+        Ok(Sweep { clauses })
+    }
+
+    /// Every point, first clause slowest.
+    pub fn points(&self) -> Vec<Point> {
+        let mut pts: Vec<Point> = vec![Vec::new()];
+        for c in &self.clauses {
+            pts = pts
+                .into_iter()
+                .flat_map(|p| {
+                    c.values.iter().map(move |v| {
+                        let mut q = p.clone();
+                        q.push((c.key, *v));
+                        q
+                    })
+                })
+                .collect();
+        }
+        if self.clauses.is_empty() {
+            Vec::new()
+        } else {
+            pts
+        }
+    }
+}
+
+/// `key=value, key=value` of a point (lengths in the catalogue's unit).
+pub fn point_label(p: &[(Key, Value)]) -> String {
+    p.iter()
+        .map(|(k, v)| format!("{}={v}", k.name()))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The base kit with a point applied, checked (SPEC section 1). Its name is
+/// `BASE{key=value, ...}`.
+pub fn apply(base: &KitSpec, p: &[(Key, Value)]) -> Result<KitSpec, SweepError> {
+    let mut k = base.clone();
+    k.name = format!("{}{{{}}}", base.name, point_label(p));
+    for &(key, v) in p {
+        match (key, v) {
+            (Key::LocatorRadius, Value::Num(x)) => k.kit.locator_radius = x,
+            (Key::Spacing, Value::Num(x)) => k.kit.spacing = x,
+            (Key::EdgeTrim, Value::Num(x)) => k.params.edge_trim = Some(x),
+            (Key::MinClearance, Value::Num(x)) => k.params.min_clearance = Some(x),
+            (Key::MaxClampAngle, Value::Num(x)) => k.params.max_clamp_angle_deg = x,
+            (Key::GridStep, Value::Num(x)) => k.params.grid_step = x as u32,
+            (Key::Plate, Value::Plate(c, r)) => {
+                k.kit.cols = c;
+                k.kit.rows = r;
+            }
+            (Key::Travel, Value::TravelMax(t)) => k.kit.clamp.travel[1] = t,
+            (Key::Travel, Value::TravelPair(a, b)) => k.kit.clamp.travel = [a, b],
+            (key, v) => {
+                return Err(SweepError::Kit {
+                    kit: k.name.clone(),
+                    message: format!("{} cannot take {v}", key.name()),
+                })
+            }
+        }
+    }
+    let units = fixplan_core::Units::Mm; // validate_params only reads defaults
+    validate_kit(&k.kit)
+        .and_then(|_| validate_params(&k.params, units))
+        .map_err(|e| SweepError::Kit {
+            kit: k.name.clone(),
+            message: e.to_string(),
+        })?;
+    Ok(k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn nums(s: &Sweep, i: usize) -> Vec<f64> {
+        s.clauses[i]
+            .values
+            .iter()
+            .map(|v| match v {
+                Value::Num(x) | Value::TravelMax(x) => *x,
+                _ => f64::NAN,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn lists_ranges_units() {
+        let s = Sweep::parse(
+            "locator_radius=4,6,8 mm; plate=18x18,24x24; travel=30..70 mm",
+            Units::Mm,
+        )
+        .unwrap();
+        assert_eq!(nums(&s, 0), vec![4.0, 6.0, 8.0]);
+        assert_eq!(
+            s.clauses[1].values,
+            vec![Value::Plate(18, 18), Value::Plate(24, 24)]
+        );
+        assert_eq!(s.clauses[2].values, vec![Value::TravelPair(30.0, 70.0)]);
+        assert_eq!(s.points().len(), 6);
+        assert_eq!(
+            point_label(&s.points()[1]),
+            "locator_radius=4, plate=24x24, travel=30..70"
+        );
+        let s = Sweep::parse("spacing=20..30", Units::Mm).unwrap();
+        assert_eq!(nums(&s, 0), vec![20.0, 22.5, 25.0, 27.5, 30.0]);
+        let s = Sweep::parse("spacing=20..30/3", Units::Mm).unwrap();
+        assert_eq!(nums(&s, 0), vec![20.0, 25.0, 30.0]);
+        let s = Sweep::parse("max_clamp_angle=30..90:20 deg", Units::Mm).unwrap();
+        assert_eq!(nums(&s, 0), vec![30.0, 50.0, 70.0, 90.0]);
+        let s = Sweep::parse("edge_trim=0.1..0.3:0.1", Units::Mm).unwrap();
+        assert_eq!(nums(&s, 0), vec![0.1, 0.2, 0.3]);
+        // Unit conversion both ways, suffix glued or not.
+        let s = Sweep::parse("locator_radius=0.25in", Units::Mm).unwrap();
+        assert_eq!(nums(&s, 0), vec![6.35]);
+        let s = Sweep::parse("locator_radius=6.35 mm; travel=2", Units::In).unwrap();
+        assert_eq!(nums(&s, 0), vec![0.25]);
+        assert_eq!(s.clauses[1].values, vec![Value::TravelMax(2.0)]);
+        let s = Sweep::parse("plate=20; grid_step=1..3:1;", Units::Mm).unwrap();
+        assert_eq!(s.clauses[0].values, vec![Value::Plate(20, 20)]);
+        assert_eq!(nums(&s, 1), vec![1.0, 2.0, 3.0]);
+        assert_eq!(s.points().len(), 3);
+    }
+
+    #[test]
+    fn errors_name_the_problem() {
+        let err = |s: &str| Sweep::parse(s, Units::Mm).unwrap_err().to_string();
+        assert!(
+            err("radius=4").contains("unknown key \"radius\""),
+            "{}",
+            err("radius=4")
+        );
+        assert!(err("locator_radius").contains("KEY=VALUES"));
+        assert!(err("locator_radius=4,,6").contains("empty value"));
+        assert!(err("locator_radius=").contains("empty value"));
+        assert!(err("locator_radius=four").contains("unit once"));
+        assert!(err("locator_radius=4mm,6mm").contains("unit once"));
+        assert!(err("plate=18x18 mm").contains("takes no unit"));
+        assert!(err("grid_step=1.5").contains("whole number"));
+        assert!(err("grid_step=0").contains("whole number"));
+        assert!(err("plate=18x0").contains("plate rows"));
+        assert!(err("plate=10..20").contains("no ranges"));
+        assert!(err("travel=30..70/3").contains("no ranges"));
+        assert!(err("travel=70..30").contains("MIN is above MAX"));
+        assert!(err("spacing=30..20").contains("goes down"));
+        assert!(err("spacing=20..30/1").contains(">= 2"));
+        assert!(err("spacing=20..30:0").contains("> 0"));
+        assert!(err("spacing=1;spacing=2").contains("twice"));
+        assert!(err(" ; ").contains("empty"));
+        assert!(err("spacing=1..100000:1").contains("more than"));
+        assert!(
+            err("spacing=1..100:1; locator_radius=1..200:1").contains("expands to 19900"),
+            "{}",
+            err("spacing=1..100:1; locator_radius=1..200:1")
+        );
+        assert!(err("spacing=1e999").contains("not a number"));
+    }
+
+    #[test]
+    fn apply_checks_the_kit() {
+        let base = fixplan_catalog::load_kit("metric-25", Units::Mm).unwrap();
+        let s = Sweep::parse("travel=30; plate=10x12", Units::Mm).unwrap();
+        let e = apply(&base, &s.points()[0]).unwrap_err().to_string();
+        assert!(e.contains("metric-25{travel=30, plate=10x12}"), "{e}");
+        assert!(e.contains("travel min 60 is above max 30"), "{e}");
+        let s = Sweep::parse("travel=40..70; plate=10x12; locator_radius=5", Units::Mm).unwrap();
+        let k = apply(&base, &s.points()[0]).unwrap();
+        assert_eq!(k.kit.clamp.travel, [40.0, 70.0]);
+        assert_eq!((k.kit.cols, k.kit.rows), (10, 12));
+        assert_eq!(k.kit.locator_radius, 5.0);
+        let s = Sweep::parse("locator_radius=13", Units::Mm).unwrap();
+        let e = apply(&base, &s.points()[0]).unwrap_err().to_string();
+        assert!(e.contains("too large"), "{e}");
+    }
+}
