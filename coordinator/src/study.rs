@@ -509,6 +509,7 @@ pub fn run_study(
     // Phase 2: kits with a larger plate among the maximal ones.
     let mut shared_plate = 0;
     let mut jobs = Vec::new();
+    #[allow(clippy::needless_range_loop)] // rows[b][i] and rows[k][i]
     for &k in &rest {
         for i in 0..np {
             let from = maximal.iter().copied().find(|&b| {
@@ -519,7 +520,7 @@ pub fn run_study(
             });
             match from {
                 Some(b) => {
-                    let mut r = rows[b][i].clone().unwrap_or_else(|| unreachable_row());
+                    let mut r = rows[b][i].clone().unwrap_or_else(unreachable_row);
                     r.ms = 0.0;
                     r.shared = Some(format!(
                         "no fixture on the larger plate of {}",

@@ -95,6 +95,15 @@ pub struct StudyArgs {
     pub cluster: RunClusterArgs,
 }
 
+/// The value of `--grid-steps` (a newtype, so clap takes `4,2,1` as one
+/// value).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridSteps(pub Vec<u32>);
+
+fn parse_steps(s: &str) -> Result<GridSteps, crate::refine::SearchError> {
+    parse_grid_steps(s).map(GridSteps)
+}
+
 /// `--grid-steps` and `--good-enough` of `fixplan run`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SearchArgs {
@@ -105,8 +114,8 @@ pub struct SearchArgs {
     /// `refine`: per step the counts, the best fixture and score, the
     /// fixtures it added; the fixtures channel holds the finest step's
     /// result, the same bytes as a plain run at that step.
-    #[arg(long, value_name = "S1,S2,...", value_parser = parse_grid_steps)]
-    pub grid_steps: Option<Vec<u32>>,
+    #[arg(long, value_name = "S1,S2,...", value_parser = parse_steps)]
+    pub grid_steps: Option<GridSteps>,
     /// Stop each part at the first segment combination (in combination
     /// order) that admits a fixture scoring SCORE or better: the part's
     /// status stays `ok`, its part message says `"stopped": "good_enough"`
@@ -125,7 +134,7 @@ impl SearchArgs {
 
     pub fn options(&self) -> SearchOptions {
         SearchOptions {
-            grid_steps: self.grid_steps.clone(),
+            grid_steps: self.grid_steps.as_ref().map(|g| g.0.clone()),
             good_enough: self.good_enough,
         }
     }

@@ -489,7 +489,7 @@ mod tests {
         assert!(err(" ; ").contains("empty"));
         assert!(err("spacing=1..100000:1").contains("more than"));
         assert!(
-            err("spacing=1..100:1; locator_radius=1..200:1").contains("expands to 19900"),
+            err("spacing=1..100:1; locator_radius=1..200:1").contains("expands to 20000"),
             "{}",
             err("spacing=1..100:1; locator_radius=1..200:1")
         );
