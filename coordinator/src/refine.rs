@@ -205,6 +205,23 @@ pub fn solve_search(
     (last, info)
 }
 
+/// The terminal line of a part searched with `--grid-steps` or
+/// `--good-enough`: what each step found, where the part stopped.
+pub fn progress_line(o: &crate::part_job::PartOutcome) -> Option<String> {
+    let mut parts = Vec::new();
+    for s in o.steps.iter().flatten() {
+        let best = s.best_score.map_or("-".into(), |b| format!("{b:.4}"));
+        parts.push(format!(
+            "step {}: +{} fixtures, best {best}",
+            s.grid_step, s.added
+        ));
+    }
+    if let Some(h) = o.stopped_at {
+        parts.push(format!("good enough at combination {h}"));
+    }
+    (!parts.is_empty()).then(|| format!("{}: {}", o.id, parts.join(" | ")))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

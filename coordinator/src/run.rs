@@ -335,7 +335,12 @@ pub fn run_loaded_search(
                         .map_err(anyhow::Error::from)
                 });
                 match res {
-                    Ok(o) => progress.part_done(&o),
+                    Ok(o) => {
+                        if let Some(line) = crate::refine::progress_line(&o) {
+                            progress.log(&line);
+                        }
+                        progress.part_done(&o)
+                    }
                     Err(e) => {
                         failure = Some(e.context(format!("writing {}", partial.display())));
                         abort.store(true, Ordering::SeqCst);
