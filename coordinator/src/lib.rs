@@ -9,6 +9,7 @@
 //! - [`cluster`]: the coordinator and workers of distributed runs.
 
 pub mod bench_cmd;
+pub mod cli;
 pub mod cluster;
 pub mod draw;
 pub mod mcap_out;

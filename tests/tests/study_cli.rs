@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn fixplan() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fixplan"))
+    Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
 }
 
 fn ok(out: Output) -> Output {

@@ -3,7 +3,7 @@
 use std::process::Command;
 
 fn fixplan() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fixplan"))
+    Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
 }
 
 fn cases() -> std::path::PathBuf {

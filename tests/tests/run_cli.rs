@@ -12,7 +12,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 fn fixplan() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fixplan"))
+    Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
 }
 
 fn repo() -> PathBuf {
@@ -271,7 +271,8 @@ fn complete_parts(partial: &Path) -> usize {
 #[test]
 fn resumes_after_sigkill() {
     let dir = tempfile::tempdir().unwrap();
-    let parts = gluegun_parts(10);
+    // Enough parts that the run cannot finish between two polls below.
+    let parts = gluegun_parts(40);
     let refs: Vec<(&str, Vec<[f64; 2]>)> =
         parts.iter().map(|(i, p)| (i.as_str(), p.clone())).collect();
     let cat = manifest(dir.path(), "mm", &refs);
@@ -319,7 +320,7 @@ fn resumes_after_sigkill() {
     assert!(!res.exists(), "killed run must not leave a finished file");
     let after_kill = complete_parts(&partial);
     assert!(
-        after_kill >= done_before_kill && after_kill < 10,
+        after_kill >= done_before_kill && after_kill < parts.len(),
         "{after_kill} parts in the partial file"
     );
     assert!(mcap::Summary::read(&std::fs::read(&partial).unwrap())

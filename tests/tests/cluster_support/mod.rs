@@ -15,7 +15,7 @@ use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
-pub const EXE: &str = env!("CARGO_BIN_EXE_fixplan");
+pub const EXE: &str = env!("CARGO_BIN_EXE_fixplan-it");
 
 /// A worker process, killed (SIGKILL) and reaped on drop.
 pub struct Proc {

@@ -1,0 +1,298 @@
+//! The `fixplan` command line. A library function, so that the binary of
+//! this crate and the one the workspace integration tests build (`tests/`)
+//! are the same program.
+
+use crate::run::{default_catalog, run, RunOptions};
+use crate::solve_cmd::solve_file;
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use fixplan_core::Status;
+use std::path::PathBuf;
+
+/// Design modular fixtures for planar parts: every fixture of three round
+/// locators and one sliding clamp on a lattice plate that holds the part in
+/// form closure, ranked by quality (Brost & Goldberg 1996, as in SPEC.md).
+///
+/// Start with `fixplan run` (the bundled sample catalogue with the metric-25
+/// kit, into results.mcap), then `fixplan show results.mcap` and
+/// `fixplan render results.mcap --out pictures`.
+#[derive(Parser)]
+#[command(name = "fixplan", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Solve one part from a case file (SPEC Appendix A) and print the
+    /// ranked fixtures as JSON. `params.top_k: 0` prints all of them.
+    ///
+    /// Exit code 0 for `ok` and `no_fixture`, 2 for `invalid`.
+    Solve {
+        /// Case file: units, part, access, kit, params.
+        case: PathBuf,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Design fixtures for every part of a catalogue and write the rankings
+    /// to an MCAP file.
+    ///
+    /// Every part is solved in this process (no server), split into shards
+    /// of its segment combinations exactly as distributed workers would do,
+    /// so the results are the same bytes whatever the threads or shards.
+    /// A broken part is reported as `invalid` with its message; the others
+    /// go on. Results stream to OUT.partial part by part and the file is
+    /// renamed to OUT when the run is complete; `--resume` continues a run
+    /// that was interrupted (even by SIGKILL) without redoing finished parts.
+    ///
+    /// Exit code 0 when the run completed (whatever the parts' outcomes).
+    Run {
+        /// The catalogue: a `catalog.toml` manifest or a directory of part
+        /// files. Default: the bundled sample catalogue
+        /// (examples/catalog/catalog.toml).
+        #[arg(long, value_name = "DIR|catalog.toml")]
+        catalog: Option<PathBuf>,
+        /// The kit: a built-in name (`paper-inch`, `metric-25`) or a kit TOML
+        /// file. Its lengths are read in the catalogue's unit.
+        #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
+        kit: String,
+        /// Fixtures kept per part (0 keeps all). Default: the kit's
+        /// parameters (10). A part's own `top_k` in the catalogue wins.
+        #[arg(long, value_name = "N")]
+        top_k: Option<usize>,
+        /// Threads (default: all cores). Results do not depend on it.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
+        /// The results file (MCAP).
+        #[arg(short, long, value_name = "FILE", default_value = "results.mcap")]
+        output: PathBuf,
+        /// Continue the interrupted run found in OUT.partial: its finished
+        /// parts are kept, the others are solved. The catalogue, kit and
+        /// parameters must be the same as when it started.
+        #[arg(long)]
+        resume: bool,
+        /// Segment combinations per shard (default: from a cost estimate,
+        /// about four shards per thread for big parts). Results do not
+        /// depend on it.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+        shard_size: Option<u64>,
+        /// No progress display and no summary table.
+        #[arg(short, long)]
+        quiet: bool,
+        #[command(flatten)]
+        cluster: crate::cluster::cli::RunClusterArgs,
+        #[command(flatten)]
+        search: crate::study_cli::SearchArgs,
+    },
+    /// Compare kits on a catalogue: which kit to buy, which clamp to add.
+    #[command(long_about = crate::study_cli::STUDY_HELP)]
+    Study(crate::study_cli::StudyArgs),
+    /// Coordinate a distributed run: shard every part of a catalogue over
+    /// the workers that join (`fixplan worker`), verify and merge their
+    /// results, and write the same results file as `fixplan run`.
+    ///
+    /// Workers pull shards over zenoh (iceoryx2 shared memory for workers
+    /// on this host), may join or leave at any time, and a lost worker's
+    /// shards are handed out again. See deploy/README.md.
+    Coordinator(crate::cluster::cli::CoordinatorArgs),
+    /// Work for a coordinator: `fixplan worker --connect tcp/HOST:7447`.
+    ///
+    /// Exits when the run is over (or stays with --stay); exit code 3 when
+    /// the coordinator refuses it (e.g. another protocol version).
+    Worker(crate::cluster::cli::WorkerArgs),
+    /// Measure the cluster: catalogue throughput with 1 and 2 local workers,
+    /// coordinator time and bytes per shard, zenoh vs iceoryx2 round trip.
+    BenchCluster(crate::cluster::bench::BenchArgs),
+    /// Measure the enumeration per part on one thread: wall time, where it
+    /// goes (setup enumeration, clamp placement, admissibility checks,
+    /// metric), pose solutions computed per setup kept (what the pruning
+    /// wastes) and fixtures per second. All fixtures are enumerated.
+    ///
+    /// With no arguments: the bundled bench cases (examples/cases).
+    Bench {
+        /// Case files (SPEC Appendix A).
+        cases: Vec<PathBuf>,
+        /// Measure a catalogue instead (with --kit).
+        #[arg(long, value_name = "DIR|catalog.toml")]
+        catalog: Option<PathBuf>,
+        /// Kit for --catalog.
+        #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
+        kit: String,
+        /// Runs per part; the fastest counts.
+        #[arg(long, default_value_t = 3)]
+        repeat: usize,
+    },
+    /// Print the ranked fixtures of a results file as tables.
+    Show {
+        /// A results file written by `fixplan run`.
+        results: PathBuf,
+        /// Only this part (its catalogue id).
+        #[arg(long, value_name = "ID")]
+        part: Option<String>,
+        /// Rows per part (0: every kept fixture).
+        #[arg(long, value_name = "N", default_value_t = 5)]
+        top: usize,
+    },
+    /// Print a results file as JSON lines, one per part:
+    /// `{"part": ID, "status": ..., "counts": ..., "fixtures": [...]}`
+    /// (the result format of SPEC Appendix A, plus contacts and plate
+    /// placement per fixture).
+    Export {
+        /// A results file written by `fixplan run`.
+        results: PathBuf,
+        /// JSON lines on standard output (the only format so far).
+        #[arg(long, required = true)]
+        json: bool,
+        /// Only this part (its catalogue id).
+        #[arg(long, value_name = "ID")]
+        part: Option<String>,
+    },
+    /// Draw the fixtures of a results file as SVG pictures, with an
+    /// `index.html` gallery of all parts.
+    ///
+    /// Each picture shows the plate holes around the fixture (dowel holes
+    /// filled, tapped holes dashed), the part in its pose, access regions
+    /// hatched, the locators L1-L3, the clamp body and its plunger at its
+    /// extension, the contact points with their inward normals, and the
+    /// score and plate holes in the caption.
+    Render {
+        /// A results file written by `fixplan run`.
+        results: PathBuf,
+        /// Directory for the SVGs and index.html (created if needed).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Only this part (its catalogue id).
+        #[arg(long, value_name = "ID")]
+        part: Option<String>,
+        /// Pictures per part, best first (0: every kept fixture).
+        #[arg(long, value_name = "N", default_value_t = 3)]
+        top: usize,
+    },
+}
+
+/// Runs the `fixplan` command line on this process's arguments and exits.
+pub fn main() {
+    if let Err(e) = real_main() {
+        // `fixplan export ... | head` closes the pipe early: not an error.
+        let broken_pipe = e.chain().any(|c| {
+            c.downcast_ref::<std::io::Error>()
+                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+        });
+        if broken_pipe {
+            std::process::exit(0);
+        }
+        // The chain, without repeating a cause that a context already quotes.
+        let mut msg = String::new();
+        for cause in e.chain().map(|c| c.to_string()) {
+            if !msg.contains(&cause) {
+                if !msg.is_empty() {
+                    msg.push_str(": ");
+                }
+                msg.push_str(&cause);
+            }
+        }
+        eprintln!("fixplan: {msg}");
+        std::process::exit(1);
+    }
+}
+
+fn real_main() -> Result<()> {
+    let cli = Cli::parse();
+    match cli.cmd {
+        Cmd::Solve { case, threads } => {
+            if let Some(n) = threads {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build_global()?;
+            }
+            let res = solve_file(&case);
+            println!("{}", serde_json::to_string_pretty(&res)?);
+            if res.status == Status::Invalid {
+                std::process::exit(2);
+            }
+        }
+        Cmd::Run {
+            catalog,
+            kit,
+            top_k,
+            threads,
+            output,
+            resume,
+            shard_size,
+            quiet,
+            cluster,
+            search,
+        } => {
+            let opts = RunOptions {
+                catalog: catalog.unwrap_or_else(default_catalog),
+                kit,
+                top_k,
+                threads,
+                output,
+                resume,
+                shard_size,
+                quiet,
+            };
+            if !search.is_plain() {
+                crate::study_cli::run_search_main(&opts, &cluster, &search)?;
+            } else if cluster.workers.is_some() {
+                crate::cluster::cli::run_main(&opts, &cluster)?;
+            } else {
+                run(&opts)?;
+            }
+        }
+        Cmd::Study(a) => {
+            crate::study_cli::study_cli_main(&a, default_catalog())?;
+        }
+        Cmd::Coordinator(a) => {
+            crate::cluster::cli::coordinator_main(&a, default_catalog())?;
+        }
+        Cmd::Worker(a) => crate::cluster::cli::worker_main(&a)?,
+        Cmd::BenchCluster(a) => crate::cluster::bench::bench_main(&a)?,
+        Cmd::Bench {
+            cases,
+            catalog,
+            kit,
+            repeat,
+        } => {
+            use crate::bench_cmd;
+            let parts = match catalog {
+                Some(c) => {
+                    let cat = fixplan_catalog::load_catalog(&c)?;
+                    let spec = fixplan_catalog::load_kit(&kit, cat.units)?;
+                    let parts = cat.parts.into_iter().map(|p| (p.id, p.part)).collect();
+                    bench_cmd::parts_from_catalog(parts, &spec.kit, &spec.params, cat.units)
+                }
+                None if cases.is_empty() => {
+                    bench_cmd::parts_from_cases(&bench_cmd::default_cases())?
+                }
+                None => bench_cmd::parts_from_cases(&cases)?,
+            };
+            bench_cmd::run(&parts, repeat);
+        }
+        Cmd::Show { results, part, top } => {
+            let stdout = std::io::stdout();
+            crate::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
+        }
+        Cmd::Export {
+            results,
+            json: _,
+            part,
+        } => {
+            let stdout = std::io::stdout();
+            crate::show::export_json(&results, part.as_deref(), &mut stdout.lock())?;
+        }
+        Cmd::Render {
+            results,
+            out,
+            part,
+            top,
+        } => {
+            let n = crate::render::render(&results, &out, part.as_deref(), top)?;
+            eprintln!("{n} pictures and index.html in {}", out.display());
+        }
+    }
+    Ok(())
+}
