@@ -3,11 +3,10 @@
 //! embedded reference.
 #![allow(dead_code)]
 
-use fixplan_catalog::{Catalog, CatalogPart, KitSpec};
 use fixplan_coordinator::cluster::{ClusterOptions, PartInput, TransportChoice};
 use fixplan_coordinator::results::ResultsFile;
 use fixplan_coordinator::run::RunOptions;
-use fixplan_core::{Case, Part, PartialResult, Units};
+use fixplan_core::PartialResult;
 use fixplan_worker::zenoh_link::ZenohOptions;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -132,81 +131,7 @@ impl Net {
     }
 }
 
-pub fn case(name: &str) -> Case {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../examples/cases")
-        .join(name);
-    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
-}
-
-fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
-    CatalogPart {
-        id: id.into(),
-        file: None,
-        part: Ok(Part {
-            outline,
-            access: vec![],
-        }),
-        warnings: vec![],
-        quantity: 1.0,
-        top_k: None,
-        wrenches: None,
-    }
-}
-
-/// Small parts of very different sizes, one broken file, one invalid
-/// polygon, one too small to hold.
-pub fn catalog() -> (Catalog, KitSpec) {
-    let c = case("rectangle-mm.json");
-    let mut rect = part("rect", c.part.clone());
-    rect.part = Ok(c.part());
-    let parts = vec![
-        rect,
-        part(
-            "ell",
-            vec![
-                [0.0, 0.0],
-                [90.0, 0.0],
-                [90.0, 30.0],
-                [30.0, 30.0],
-                [30.0, 70.0],
-                [0.0, 70.0],
-            ],
-        ),
-        part(
-            "bowtie",
-            vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
-        ),
-        CatalogPart {
-            part: Err("bad.json: edge 0 crosses edge 2".into()),
-            ..part("broken", vec![])
-        },
-        part("tiny", vec![[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]),
-        part(
-            "hex",
-            vec![
-                [30.0, 0.0],
-                [70.0, 0.0],
-                [95.0, 40.0],
-                [70.0, 80.0],
-                [30.0, 80.0],
-                [5.0, 40.0],
-            ],
-        ),
-    ];
-    let cat = Catalog {
-        name: "mem".into(),
-        units: Units::Mm,
-        source: PathBuf::from("mem"),
-        parts,
-    };
-    let spec = KitSpec {
-        name: "case-kit".into(),
-        kit: c.kit.clone(),
-        params: c.params.clone(),
-    };
-    (cat, spec)
-}
+pub use fixplan_tests::catalog;
 
 /// The valid parts of [`catalog`] as cluster inputs, with `top_k`.
 pub fn inputs(top_k: usize) -> Vec<PartInput> {
