@@ -15,7 +15,7 @@
 //! so `systemctl stop`, Kubernetes and `kill` stop a worker at once; the
 //! coordinator's liveliness and lease handling re-queue its shard.
 
-use crate::protocol::{decode, Frame};
+use crate::protocol::{decode, Frame, Msg};
 use crate::zenoh_link::LinkError;
 use iceoryx2::port::client::Client;
 use iceoryx2::port::listener::Listener;
@@ -27,6 +27,8 @@ use std::time::{Duration, Instant};
 type Ipc = ipc::Service;
 const MAX_CLIENTS: usize = 256;
 const SLICE_HINT: usize = 4096;
+/// The longest a pull is held before it is answered `Idle`.
+const HOLD: Duration = Duration::from_millis(100);
 /// Start of every prefix this crate creates.
 pub const PREFIX_HEAD: &str = "fxp";
 
@@ -196,24 +198,44 @@ pub fn serve(
         .map_err(err("create response event"))?;
     let notifier = resp.notifier_builder().create().map_err(err("notifier"))?;
     ready();
+    // Pulls answered `Idle`, held (a long poll) until there is work, the
+    // run is over, or `HOLD` has passed: a waiting worker hears at once,
+    // with no polling, and at the end every worker is told together.
+    let mut held: Vec<(Active, Instant)> = Vec::new();
     while !stop.load(Ordering::SeqCst) {
         if cleanup.swap(false, Ordering::SeqCst) {
             node.try_cleanup_dead_nodes();
         }
+        let wait = if held.is_empty() { 20 } else { 1 };
         listener
-            .timed_wait(|_| {}, Duration::from_millis(20))
+            .timed_wait(|_| {}, Duration::from_millis(wait))
             .map_err(err("wait"))?;
+        // At the end, no receive: it would update the connections of
+        // the workers that just left, which iceoryx2 does with a wait of
+        // about 50 ms (and spinning yields).
+        if stop.load(Ordering::SeqCst) {
+            break;
+        }
         let mut answered = false;
         while let Some(active) = server.receive().map_err(err("receive"))? {
             let reply = handle(active.payload());
-            match active.loan_slice_uninit(reply.len()) {
-                Ok(r) => {
-                    if let Err(e) = r.write_from_slice(&reply).send() {
-                        crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
-                    }
-                }
-                Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
+            if is_idle(&reply) {
+                held.push((active, Instant::now() + HOLD));
+                continue;
             }
+            send_reply(active, &reply);
+            answered = true;
+        }
+        // Held pulls, asked again now that the requests above are in.
+        let now = Instant::now();
+        let mut i = 0;
+        while i < held.len() {
+            let reply = handle(held[i].0.payload());
+            if is_idle(&reply) && now < held[i].1 {
+                i += 1;
+                continue;
+            }
+            send_reply(held.swap_remove(i).0, &reply);
             answered = true;
         }
         if answered {
@@ -221,6 +243,38 @@ pub fn serve(
         }
     }
     Ok(())
+}
+
+type Active = iceoryx2::active_request::ActiveRequest<Ipc, [u8], (), [u8], ()>;
+
+fn send_reply(active: Active, reply: &[u8]) {
+    match active.loan_slice_uninit(reply.len()) {
+        Ok(r) => {
+            if let Err(e) = r.write_from_slice(reply).send() {
+                crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
+            }
+        }
+        Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
+    }
+}
+
+/// Whether a reply says `Idle` (no shard now).
+fn is_idle(reply: &[u8]) -> bool {
+    reply.len() < 32 && matches!(decode(reply), Ok(Frame::Msg(Msg::Idle { .. })))
+}
+
+/// Wakes the server of `service` (which waits up to 20 ms for a request),
+/// so that it sees its stop flag at once. Best effort.
+pub fn wake(prefix: &str, service: &str) {
+    let Ok(node) = node(prefix) else { return };
+    let Ok(n) = name(&format!("{service}/req")) else {
+        return;
+    };
+    if let Ok(ev) = node.service_builder(&n).event().open() {
+        if let Ok(notifier) = ev.notifier_builder().create() {
+            let _ = notifier.notify();
+        }
+    }
 }
 
 /// Paths of the files iceoryx2 keeps for the prefixes of this crate:
