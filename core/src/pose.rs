@@ -68,18 +68,25 @@ pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
     if r <= crate::geometry::EPS {
         return (out, 0);
     }
-    let ratio = c / r;
-    if ratio.abs() > 1.0 + crate::geometry::EPS {
+    // |C| = R within eps is a double root, one pose: a tangent (touching)
+    // configuration that rounding would otherwise split into two poses a
+    // hair apart, or lose. Beyond it, no pose.
+    let gap = r - c.abs();
+    if gap < -crate::geometry::EPS {
         return (out, 0);
     }
     let phi = b.atan2(a);
-    let delta = ratio.clamp(-1.0, 1.0).acos();
-    let thetas = if delta == 0.0 {
-        [phi, phi]
+    let (thetas, count) = if gap <= crate::geometry::EPS {
+        let t = if c >= 0.0 {
+            phi
+        } else {
+            phi + std::f64::consts::PI
+        };
+        ([t, t], 1)
     } else {
-        [phi - delta, phi + delta]
+        let delta = (c / r).clamp(-1.0, 1.0).acos();
+        ([phi - delta, phi + delta], 2)
     };
-    let count = if delta == 0.0 { 1 } else { 2 };
     // Back-substitute with the best-conditioned pair of lines.
     let pairs = [(0usize, 1usize, 2usize), (1, 2, 0), (0, 2, 1)];
     let (i, j, _) = pairs
@@ -162,6 +169,34 @@ mod tests {
                 assert!((l.n.dot(&p.inverse_apply(loc)) - l.c).abs() < 1e-9);
             }
         }
+    }
+
+    #[test]
+    fn tangent_configuration_is_one_pose() {
+        // A unit-width slot between lines y = 0 (normal down) and y = 1
+        // (normal up) plus x = 0: locators (0,0) and (0,1) can only touch
+        // both slot walls when the part is not turned, a double root.
+        let lines = [
+            Line {
+                n: v2(0., -1.),
+                c: 0.0,
+            },
+            Line {
+                n: v2(0., 1.),
+                c: 1.0,
+            },
+            Line {
+                n: v2(-1., 0.),
+                c: 0.0,
+            },
+        ];
+        let (poses, k) = solve_poses(&lines, &[v2(0., 0.), v2(0., 1.), v2(-1e-3, 0.5)]);
+        assert_eq!(k, 1, "{poses:?}");
+        // Closer than the lines: no pose; farther: the part tilts either way.
+        let (_, k) = solve_poses(&lines, &[v2(0., 0.), v2(0., 1.0 - 1e-6), v2(-1e-3, 0.5)]);
+        assert_eq!(k, 0);
+        let (_, k) = solve_poses(&lines, &[v2(0., 0.), v2(0., 1.0 + 1e-3), v2(-1e-3, 0.5)]);
+        assert_eq!(k, 2);
     }
 
     #[test]
