@@ -309,6 +309,7 @@ impl Agent {
                 }
             };
             last_heard = Instant::now();
+            let reported = report.is_some();
             let answer = match (report, reply) {
                 (
                     Some((id, range, d)),
@@ -339,6 +340,9 @@ impl Agent {
                     next = Some(a);
                     quiet_until = None;
                 }
+                // After a result, pull at once: over iceoryx2 the coordinator
+                // holds the pull until there is a shard or the run is over.
+                Some(Msg::Idle { .. }) if reported => quiet_until = None,
                 Some(Msg::Idle { retry_ms }) => {
                     quiet_until =
                         Some(Instant::now() + Duration::from_millis(retry_ms.clamp(1, 2000)));

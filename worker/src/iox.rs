@@ -29,6 +29,8 @@ const MAX_CLIENTS: usize = 256;
 const SLICE_HINT: usize = 4096;
 /// The longest a pull is held before it is answered `Idle`.
 const HOLD: Duration = Duration::from_millis(100);
+/// How often held pulls are asked again when nothing else happens.
+const RECHECK: Duration = Duration::from_millis(5);
 /// Start of every prefix this crate creates.
 pub const PREFIX_HEAD: &str = "fxp";
 
@@ -202,13 +204,16 @@ pub fn serve(
     // run is over, or `HOLD` has passed: a waiting worker hears at once,
     // with no polling, and at the end every worker is told together.
     let mut held: Vec<(Active, Instant)> = Vec::new();
+    let mut last_recheck = Instant::now();
     while !stop.load(Ordering::SeqCst) {
         if cleanup.swap(false, Ordering::SeqCst) {
             node.try_cleanup_dead_nodes();
         }
-        let wait = if held.is_empty() { 20 } else { 1 };
         listener
-            .timed_wait(|_| {}, Duration::from_millis(wait))
+            .timed_wait(
+                |_| {},
+                Duration::from_millis(if held.is_empty() { 20 } else { 5 }),
+            )
             .map_err(err("wait"))?;
         // At the end, no receive: it would update the connections of
         // the workers that just left, which iceoryx2 does with a wait of
@@ -217,7 +222,9 @@ pub fn serve(
             break;
         }
         let mut answered = false;
+        let mut handled = false;
         while let Some(active) = server.receive().map_err(err("receive"))? {
+            handled = true;
             let reply = handle(active.payload());
             if is_idle(&reply) {
                 held.push((active, Instant::now() + HOLD));
@@ -226,17 +233,22 @@ pub fn serve(
             send_reply(active, &reply);
             answered = true;
         }
-        // Held pulls, asked again now that the requests above are in.
+        // Held pulls, asked again when requests came in (a result may have
+        // ended the run) or every few milliseconds (a lease ran out, a
+        // worker joined over zenoh).
         let now = Instant::now();
-        let mut i = 0;
-        while i < held.len() {
-            let reply = handle(held[i].0.payload());
-            if is_idle(&reply) && now < held[i].1 {
-                i += 1;
-                continue;
+        if handled || now >= last_recheck + RECHECK {
+            last_recheck = now;
+            let mut i = 0;
+            while i < held.len() {
+                let reply = handle(held[i].0.payload());
+                if is_idle(&reply) && now < held[i].1 {
+                    i += 1;
+                    continue;
+                }
+                send_reply(held.swap_remove(i).0, &reply);
+                answered = true;
             }
-            send_reply(held.swap_remove(i).0, &reply);
-            answered = true;
         }
         if answered {
             let _ = notifier.notify();
