@@ -51,14 +51,35 @@ impl PreparedPart {
     /// Counts a setup, and every candidate and admissible fixture it gives.
     pub fn process_setup(&self, setup: &Setup, acc: &mut Accumulator, scratch: &mut Scratch) {
         let clock = scratch.timing.is_some().then(std::time::Instant::now);
-        self.process_setup_untimed(setup, acc, scratch);
+        self.process_setup_untimed(setup, acc, scratch, None);
         let ns = lap(clock);
         if let Some(t) = scratch.timing.as_mut() {
             t.setups_ns += ns;
         }
     }
 
-    fn process_setup_untimed(&self, setup: &Setup, acc: &mut Accumulator, scratch: &mut Scratch) {
+    /// [`Self::process_setup`] for one clamp segment and rotation only: the
+    /// same code path, so re-deriving a reported fixture (a coordinator
+    /// checking a worker's result) gives it bit for bit, at a fraction of
+    /// the cost. Counts cover that segment and rotation only.
+    pub fn process_setup_for_clamp(
+        &self,
+        setup: &Setup,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+        clamp_segment: usize,
+        rotation: u8,
+    ) {
+        self.process_setup_untimed(setup, acc, scratch, Some((clamp_segment, rotation)));
+    }
+
+    fn process_setup_untimed(
+        &self,
+        setup: &Setup,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+        only: Option<(usize, u8)>,
+    ) {
         acc.counts.setups += 1;
         let pose = setup.pose;
         let locs = setup.locators.map(lattice_point);
@@ -70,6 +91,9 @@ impl PreparedPart {
         let base_margin = setup.margin.min(lw.det.abs() - EPS);
         scratch.reset_pose();
         for (j, seg) in self.segments.iter().enumerate() {
+            if only.is_some_and(|(oj, _)| oj != j) {
+                continue;
+            }
             let f = -pose.rotate(seg.n);
             let mut cos_ok = [None; 4];
             for (k, slot) in cos_ok.iter_mut().enumerate() {
@@ -87,6 +111,9 @@ impl PreparedPart {
                 continue;
             };
             for (k, angle_margin) in cos_ok.iter().enumerate() {
+                if only.is_some_and(|(_, ok)| ok as usize != k) {
+                    continue;
+                }
                 let Some(angle_margin) = *angle_margin else {
                     continue;
                 };

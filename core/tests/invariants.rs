@@ -372,3 +372,28 @@ fn absurdly_large_parts_are_invalid_not_a_hang() {
     assert_eq!(res.status, fixplan_core::Status::Invalid);
     assert!(res.error.unwrap().contains("lattice spacings across"));
 }
+
+#[test]
+fn every_fixture_rederives_bit_for_bit_from_its_setup_and_clamp() {
+    use fixplan_core::admissibility::Scratch;
+    use fixplan_core::clamp::Accumulator;
+    let p = prep(
+        &part(&notched(), &[]),
+        &kit(Pattern::Alternating),
+        &params(90.0, 1),
+    );
+    let all = p.enumerate_all().fixtures;
+    assert!(all.len() > 50);
+    for f in &all {
+        let mut acc = Accumulator::new(0);
+        let mut scratch = Scratch::default();
+        p.setups_for_locators(f.segments, f.locators[1], f.locators[2], |s| {
+            p.process_setup_for_clamp(s, &mut acc, &mut scratch, f.clamp_segment, f.rotation)
+        });
+        let again = acc.top.into_sorted();
+        assert!(again.contains(f), "{f:?} not re-derived");
+        assert!(again
+            .iter()
+            .all(|g| g.clamp_segment == f.clamp_segment && g.rotation == f.rotation));
+    }
+}

@@ -11,8 +11,9 @@ use fixplan_core::{Fixture, PartialResult, PreparedPart};
 use std::cmp::Ordering;
 use std::ops::Range;
 
-/// Whether `f` is exactly what the enumeration gives for its segments and
-/// locators.
+/// Whether `f` is exactly what the enumeration gives for its segments,
+/// locators, clamp segment and rotation (core's own code path, restricted to
+/// that clamp side, so the check costs a fraction of the enumeration).
 pub fn rederive(prep: &PreparedPart, f: &Fixture) -> bool {
     let n = prep.segments.len();
     let [a, b, c] = f.segments;
@@ -22,7 +23,7 @@ pub fn rederive(prep: &PreparedPart, f: &Fixture) -> bool {
     let mut acc = Accumulator::new(0);
     let mut scratch = Scratch::default();
     prep.setups_for_locators(f.segments, f.locators[1], f.locators[2], |s| {
-        prep.process_setup(s, &mut acc, &mut scratch)
+        prep.process_setup_for_clamp(s, &mut acc, &mut scratch, f.clamp_segment, f.rotation)
     });
     acc.top.into_sorted().iter().any(|g| g == f)
 }
