@@ -5,9 +5,9 @@
 
 use crate::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
 use crate::messages::RunMsg;
-use crate::results::{PartRecord, ResultsFile};
+use crate::results::{for_each_record, PartRecord};
 use crate::show::status_word;
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use fixplan_core::{FixtureReport, Point, Status};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -303,40 +303,12 @@ pub fn stem(index: usize, id: &str) -> String {
 pub fn render(path: &Path, out_dir: &Path, part: Option<&str>, top: usize) -> Result<usize> {
     std::fs::create_dir_all(out_dir)
         .with_context(|| format!("{}: cannot create", out_dir.display()))?;
-    let file = ResultsFile::open(path)?;
     let mut html = String::new();
     let mut count = 0;
-    let mut err: Option<anyhow::Error> = None;
-    let mut found = false;
-    let contents = file.for_each_part(|run, m| {
-        let rec = match PartRecord::decode(&m) {
-            Ok(r) => r,
-            Err(e) => {
-                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
-                return false;
-            }
-        };
-        if part.is_some_and(|p| p != rec.part.id) {
-            return true;
-        }
-        found = true;
-        match render_part(run, &rec, out_dir, top, &mut html) {
-            Ok(n) => count += n,
-            Err(e) => {
-                err = Some(e);
-                return false;
-            }
-        }
-        true
+    let contents = for_each_record(path, part, |run, rec| {
+        count += render_part(run, rec, out_dir, top, &mut html)?;
+        Ok(())
     })?;
-    if let Some(e) = err {
-        return Err(e);
-    }
-    if let Some(p) = part {
-        if !found {
-            bail!("{}: no part {p:?}", path.display());
-        }
-    }
     let run = &contents.run;
     let page = format!(
         "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>fixplan: {name}</title>\n<style>\

@@ -146,3 +146,43 @@ impl PartRecord {
         })
     }
 }
+
+/// Calls `f` on each part of the results file at `path` (only the part
+/// `part` when given), decoded, in file order; stops at the first error.
+/// Fails when `part` names no part of the file. `show` and `render` share it.
+pub fn for_each_record(
+    path: &std::path::Path,
+    part: Option<&str>,
+    mut f: impl FnMut(&RunMsg, &PartRecord) -> anyhow::Result<()>,
+) -> anyhow::Result<Contents> {
+    let file = ResultsFile::open(path)?;
+    let mut err = None;
+    let mut found = false;
+    let contents = file.for_each_part(|run, m| {
+        let rec = match PartRecord::decode(&m) {
+            Ok(r) => r,
+            Err(e) => {
+                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                return false;
+            }
+        };
+        if part.is_some_and(|p| p != rec.part.id) {
+            return true;
+        }
+        found = true;
+        if let Err(e) = f(run, &rec) {
+            err = Some(e);
+            return false;
+        }
+        true
+    })?;
+    if let Some(e) = err {
+        return Err(e);
+    }
+    if let Some(p) = part {
+        if !found {
+            anyhow::bail!("{}: no part {p:?}", path.display());
+        }
+    }
+    Ok(contents)
+}

@@ -1,8 +1,8 @@
 //! `fixplan show` and `fixplan export`: a results file as terminal tables
 //! or as JSON lines.
 
-use crate::results::{PartRecord, ResultsFile};
-use anyhow::{bail, Result};
+use crate::results::{for_each_record, PartRecord, ResultsFile};
+use anyhow::Result;
 use fixplan_core::Status;
 use std::io::Write;
 use std::path::Path;
@@ -31,36 +31,9 @@ fn warn_incomplete(path: &Path, complete: bool, truncated: &Option<String>) {
 /// Prints the ranking of each part (or of `part` only), `top` rows each
 /// (`0`: all kept fixtures).
 pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) -> Result<()> {
-    let file = ResultsFile::open(path)?;
-    let mut found = false;
-    let mut err = None;
-    let contents = file.for_each_part(|run, m| {
-        let rec = match PartRecord::decode(&m) {
-            Ok(r) => r,
-            Err(e) => {
-                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
-                return false;
-            }
-        };
-        if part.is_some_and(|p| p != rec.part.id) {
-            return true;
-        }
-        found = true;
-        if let Err(e) = print_part(run, &rec, top, out) {
-            err = Some(e);
-            return false;
-        }
-        true
-    })?;
-    if let Some(e) = err {
-        return Err(e);
-    }
+    let contents = for_each_record(path, part, |run, rec| print_part(run, rec, top, out))?;
     warn_incomplete(path, contents.complete, &contents.truncated);
-    if let Some(p) = part {
-        if !found {
-            bail!("{}: no part {p:?}", path.display());
-        }
-    } else {
+    if part.is_none() {
         writeln!(
             out,
             "{} parts; kit {}; catalogue {} ({})",
