@@ -90,12 +90,6 @@ pub struct WorkerSummary {
     pub parts_prepared: u64,
 }
 
-/// A shard on the pool.
-struct Job {
-    shard_id: u64,
-    rx: std::sync::mpsc::Receiver<Msg>,
-}
-
 enum DataLink {
     Zenoh,
     Iox(Box<IoxClient>),
@@ -118,11 +112,6 @@ fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
         .unwrap_or_else(|| "unknown panic".into())
 }
 
-/// Shards a worker holds besides the one on its pool. One is enough for
-/// the next assignment to arrive before the current shard ends; two
-/// measured slower over iceoryx2 (bench-cluster, 2 workers: 1.02 s against
-/// 0.92-0.98 s) and leave more work stranded at the end of a run.
-const IN_HAND: usize = 1;
 const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 /// A coordinator silent for this long is presumed gone: join again.
 const SILENCE: Duration = Duration::from_secs(15);
@@ -182,179 +171,104 @@ impl Agent {
         p
     }
 
-    /// Starts a shard on the pool; its result (or failure) arrives on the
-    /// job's channel. The input is prepared here, on first use.
-    fn start(&mut self, a: Assign) -> Job {
+    fn work_on(&mut self, a: Assign) -> Msg {
         let prep = self.prepared(&a);
-        let (tx, rx) = std::sync::mpsc::channel();
-        let name = self.name.clone();
-        let fault = self.opts.fault;
-        let id = a.shard_id;
-        self.pool.spawn(move || {
-            let msg = match prep.as_ref() {
-                Err(m) => Msg::Failed(ShardFailed {
-                    worker: name,
+        let prep = match prep.as_ref() {
+            Ok(p) => p,
+            Err(m) => {
+                return Msg::Failed(ShardFailed {
+                    worker: self.name.clone(),
                     shard_id: a.shard_id,
                     message: m.clone(),
-                }),
-                Ok(prep) => {
-                    let t0 = Instant::now();
-                    let range = a.range.clone();
-                    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                        crate::run_shard(prep, range)
-                    }));
-                    match out {
-                        Ok(mut result) => {
-                            if fault == Some(Fault::CorruptScore) {
-                                if let Some(f) = result.fixtures.first_mut() {
-                                    f.score *= 0.5;
-                                }
-                            }
-                            if let Some(Fault::SlowMs(ms)) = fault {
-                                std::thread::sleep(Duration::from_millis(ms));
-                            }
-                            Msg::Result(Box::new(ShardDone {
-                                worker: name,
-                                shard_id: a.shard_id,
-                                digest: a.digest,
-                                micros: t0.elapsed().as_micros() as u64,
-                                result,
-                                more: false,
-                            }))
-                        }
-                        Err(p) => Msg::Failed(ShardFailed {
-                            worker: name,
-                            shard_id: a.shard_id,
-                            message: format!(
-                                "internal error in the enumeration: {}",
-                                panic_text(p)
-                            ),
-                        }),
+                });
+            }
+        };
+        let t0 = Instant::now();
+        let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            self.pool
+                .install(|| crate::run_shard(prep, a.range.clone()))
+        }));
+        match out {
+            Ok(mut result) => {
+                if self.opts.fault == Some(Fault::CorruptScore) {
+                    if let Some(f) = result.fixtures.first_mut() {
+                        f.score *= 0.5;
                     }
                 }
-            };
-            let _ = tx.send(msg);
-        });
-        Job { shard_id: id, rx }
+                if let Some(Fault::SlowMs(ms)) = self.opts.fault {
+                    std::thread::sleep(Duration::from_millis(ms));
+                }
+                Msg::Result(Box::new(ShardDone {
+                    worker: self.name.clone(),
+                    shard_id: a.shard_id,
+                    digest: a.digest,
+                    micros: t0.elapsed().as_micros() as u64,
+                    result,
+                }))
+            }
+            Err(p) => Msg::Failed(ShardFailed {
+                worker: self.name.clone(),
+                shard_id: a.shard_id,
+                message: format!("internal error in the enumeration: {}", panic_text(p)),
+            }),
+        }
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent
     /// or asks for a new join (false).
-    ///
-    /// Pipelined: the worker holds one shard in hand besides the one on the
-    /// pool. When a shard finishes, the next one starts at once and the
-    /// result goes out asking for another (`more`), whose assignment comes
-    /// back in the acknowledgement while the pool works: the pool never
-    /// waits for a round trip or for the coordinator's checks.
     fn serve_run(&mut self, link: DataLink) -> Result<bool, WorkerError> {
         let mut last_heard = Instant::now();
-        // The shard in hand, the one on the pool, a finished one to report.
-        let mut next: std::collections::VecDeque<Assign> = Default::default();
-        let mut job: Option<Job> = None;
-        let mut outbox: Option<Msg> = None;
-        // No pull before this (the coordinator said Idle, or is silent).
-        let mut quiet_until: Option<Instant> = None;
         loop {
-            if job.is_none() {
-                if let Some(a) = next.pop_front() {
-                    job = Some(self.start(a));
-                }
-            }
-            let now = Instant::now();
-            let may_pull = next.len() < IN_HAND && quiet_until.is_none_or(|t| now >= t);
-            let out = match outbox.take() {
-                Some(Msg::Result(mut r)) => {
-                    r.more = next.len() < IN_HAND;
-                    Some(Msg::Result(r))
-                }
-                Some(m) => Some(m),
-                None if may_pull => Some(Msg::Pull {
+            let reply = self.send(
+                &link,
+                &Msg::Pull {
                     worker: self.name.clone(),
-                }),
-                None => None,
-            };
-            let Some(out) = out else {
-                // Nothing to say: wait for the pool, or for the time to pull.
-                if let Some(j) = job.take() {
-                    outbox = Some(j.rx.recv().unwrap_or_else(|_| {
-                        Msg::Failed(ShardFailed {
-                            worker: self.name.clone(),
-                            shard_id: j.shard_id,
-                            message: "internal error in the enumeration: job lost".into(),
-                        })
-                    }));
-                    self.summary.shards += 1;
-                } else if let Some(t) = quiet_until {
-                    std::thread::sleep(t.saturating_duration_since(now));
-                }
-                continue;
-            };
-            let report = match &out {
-                Msg::Result(r) => Some((r.shard_id, r.result.range.clone(), r.digest)),
-                Msg::Failed(f) => Some((f.shard_id, 0..0, [0; 32])),
-                _ => None,
-            };
-            let reply = match self.send(&link, &out) {
+                },
+            );
+            let msg = match reply {
                 Ok(Frame::Msg(m)) => m,
                 Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
                 Err(e) => {
-                    if let Some((id, ..)) = report {
-                        // The lease brings the shard back to the queue.
-                        warn!(self.role(), "result of shard {id} not acknowledged: {e}");
-                    } else if last_heard.elapsed() > SILENCE {
+                    if last_heard.elapsed() > SILENCE {
                         warn!(
                             self.role(),
                             "the coordinator is silent ({e}); joining again"
                         );
                         return Ok(false);
-                    } else {
-                        quiet_until = Some(Instant::now() + Duration::from_millis(200));
                     }
+                    std::thread::sleep(Duration::from_millis(200));
                     continue;
                 }
             };
             last_heard = Instant::now();
-            let reported = report.is_some();
-            let answer = match (report, reply) {
-                (
-                    Some((id, range, d)),
-                    Msg::Ack {
-                        accepted,
-                        note,
-                        next,
-                    },
-                ) => {
-                    if !accepted {
-                        warn!(
-                            self.role(),
-                            "shard {id} ({} {range:?}) not taken: {note}",
-                            short_hex(&d)
-                        );
+            match msg {
+                Msg::Assign(a) => {
+                    let (id, range, d) = (a.shard_id, a.range.clone(), a.digest);
+                    let out = self.work_on(a);
+                    self.summary.shards += 1;
+                    match self.send(&link, &out) {
+                        Ok(Frame::Msg(Msg::Ack { accepted, note })) => {
+                            if !accepted {
+                                warn!(
+                                    self.role(),
+                                    "shard {id} ({} {range:?}) not taken: {note}",
+                                    short_hex(&d)
+                                );
+                            }
+                        }
+                        Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
+                        Ok(Frame::Msg(m)) => {
+                            warn!(self.role(), "unexpected reply to a result: {m:?}")
+                        }
+                        Err(e) => warn!(self.role(), "result of shard {id} not acknowledged: {e}"),
                     }
-                    next.map(|m| *m)
                 }
-                (Some(_), m) => {
-                    warn!(self.role(), "unexpected reply to a result: {m:?}");
-                    None
+                Msg::Idle { retry_ms } => {
+                    std::thread::sleep(Duration::from_millis(retry_ms.clamp(1, 2000)))
                 }
-                (None, m) => Some(m),
-            };
-            match answer {
-                None => {}
-                Some(Msg::Assign(a)) => {
-                    next.push_back(a);
-                    quiet_until = None;
-                }
-                // After a result, pull at once: over iceoryx2 the coordinator
-                // holds the pull until there is a shard or the run is over.
-                Some(Msg::Idle { .. }) if reported => quiet_until = None,
-                Some(Msg::Idle { retry_ms }) => {
-                    quiet_until =
-                        Some(Instant::now() + Duration::from_millis(retry_ms.clamp(1, 2000)));
-                }
-                Some(Msg::Done) => return Ok(true),
-                Some(Msg::Rejoin) => return Ok(false),
-                Some(m) => warn!(self.role(), "unexpected reply to a pull: {m:?}"),
+                Msg::Done => return Ok(true),
+                Msg::Rejoin => return Ok(false),
+                m => warn!(self.role(), "unexpected reply to a pull: {m:?}"),
             }
         }
     }

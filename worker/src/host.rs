@@ -71,21 +71,3 @@ pub fn unique_name(kind: &str) -> String {
         std::process::id()
     )
 }
-
-/// CPU time (user + system) of this process, and of its children that
-/// have been waited for: `(self, children)`.
-pub fn cpu_times() -> (std::time::Duration, std::time::Duration) {
-    fn of(who: libc::c_int) -> std::time::Duration {
-        // SAFETY: getrusage writes a plain C struct we own.
-        let mut u: libc::rusage = unsafe { std::mem::zeroed() };
-        if unsafe { libc::getrusage(who, &mut u) } != 0 {
-            return std::time::Duration::ZERO;
-        }
-        let tv = |t: libc::timeval| {
-            std::time::Duration::from_secs(t.tv_sec as u64)
-                + std::time::Duration::from_micros(t.tv_usec as u64)
-        };
-        tv(u.ru_utime) + tv(u.ru_stime)
-    }
-    (of(libc::RUSAGE_SELF), of(libc::RUSAGE_CHILDREN))
-}

@@ -15,7 +15,7 @@
 //! so `systemctl stop`, Kubernetes and `kill` stop a worker at once; the
 //! coordinator's liveliness and lease handling re-queue its shard.
 
-use crate::protocol::{decode, Frame, Msg};
+use crate::protocol::{decode, Frame};
 use crate::zenoh_link::LinkError;
 use iceoryx2::port::client::Client;
 use iceoryx2::port::listener::Listener;
@@ -27,10 +27,6 @@ use std::time::{Duration, Instant};
 type Ipc = ipc::Service;
 const MAX_CLIENTS: usize = 256;
 const SLICE_HINT: usize = 4096;
-/// The longest a pull is held before it is answered `Idle`.
-const HOLD: Duration = Duration::from_millis(100);
-/// How often held pulls are asked again when nothing else happens.
-const RECHECK: Duration = Duration::from_millis(5);
 /// Start of every prefix this crate creates.
 pub const PREFIX_HEAD: &str = "fxp";
 
@@ -200,93 +196,31 @@ pub fn serve(
         .map_err(err("create response event"))?;
     let notifier = resp.notifier_builder().create().map_err(err("notifier"))?;
     ready();
-    // Pulls answered `Idle`, held (a long poll) until there is work, the
-    // run is over, or `HOLD` has passed: a waiting worker hears at once,
-    // with no polling, and at the end every worker is told together.
-    let mut held: Vec<(Active, Instant)> = Vec::new();
-    let mut last_recheck = Instant::now();
     while !stop.load(Ordering::SeqCst) {
         if cleanup.swap(false, Ordering::SeqCst) {
             node.try_cleanup_dead_nodes();
         }
         listener
-            .timed_wait(
-                |_| {},
-                Duration::from_millis(if held.is_empty() { 20 } else { 5 }),
-            )
+            .timed_wait(|_| {}, Duration::from_millis(20))
             .map_err(err("wait"))?;
-        // At the end, no receive: it would update the connections of
-        // the workers that just left, which iceoryx2 does with a wait of
-        // about 50 ms (and spinning yields).
-        if stop.load(Ordering::SeqCst) {
-            break;
-        }
         let mut answered = false;
-        let mut handled = false;
         while let Some(active) = server.receive().map_err(err("receive"))? {
-            handled = true;
             let reply = handle(active.payload());
-            if is_idle(&reply) {
-                held.push((active, Instant::now() + HOLD));
-                continue;
-            }
-            send_reply(active, &reply);
-            answered = true;
-        }
-        // Held pulls, asked again when requests came in (a result may have
-        // ended the run) or every few milliseconds (a lease ran out, a
-        // worker joined over zenoh).
-        let now = Instant::now();
-        if handled || now >= last_recheck + RECHECK {
-            last_recheck = now;
-            let mut i = 0;
-            while i < held.len() {
-                let reply = handle(held[i].0.payload());
-                if is_idle(&reply) && now < held[i].1 {
-                    i += 1;
-                    continue;
+            match active.loan_slice_uninit(reply.len()) {
+                Ok(r) => {
+                    if let Err(e) = r.write_from_slice(&reply).send() {
+                        crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
+                    }
                 }
-                send_reply(held.swap_remove(i).0, &reply);
-                answered = true;
+                Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
             }
+            answered = true;
         }
         if answered {
             let _ = notifier.notify();
         }
     }
     Ok(())
-}
-
-type Active = iceoryx2::active_request::ActiveRequest<Ipc, [u8], (), [u8], ()>;
-
-fn send_reply(active: Active, reply: &[u8]) {
-    match active.loan_slice_uninit(reply.len()) {
-        Ok(r) => {
-            if let Err(e) = r.write_from_slice(reply).send() {
-                crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
-            }
-        }
-        Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
-    }
-}
-
-/// Whether a reply says `Idle` (no shard now).
-fn is_idle(reply: &[u8]) -> bool {
-    reply.len() < 32 && matches!(decode(reply), Ok(Frame::Msg(Msg::Idle { .. })))
-}
-
-/// Wakes the server of `service` (which waits up to 20 ms for a request),
-/// so that it sees its stop flag at once. Best effort.
-pub fn wake(prefix: &str, service: &str) {
-    let Ok(node) = node(prefix) else { return };
-    let Ok(n) = name(&format!("{service}/req")) else {
-        return;
-    };
-    if let Ok(ev) = node.service_builder(&n).event().open() {
-        if let Ok(notifier) = ev.notifier_builder().create() {
-            let _ = notifier.notify();
-        }
-    }
 }
 
 /// Paths of the files iceoryx2 keeps for the prefixes of this crate:

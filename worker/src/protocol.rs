@@ -14,11 +14,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-///
-/// Version 2: a result asks for the next shard ([`ShardDone::more`]) and
-/// its [`Msg::Ack`] carries the answer (`next`), so a worker
-/// keeps one shard in hand and never waits for a round trip.
-pub const PROTOCOL_VERSION: u16 = 2;
+pub const PROTOCOL_VERSION: u16 = 1;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -112,9 +108,6 @@ pub struct ShardDone {
     pub digest: Digest,
     pub micros: u64,
     pub result: PartialResult,
-    /// Also a pull: the worker wants another shard (answered in the
-    /// [`Msg::Ack`]'s `next`).
-    pub more: bool,
 }
 
 /// A shard the worker could not enumerate (a panic, or an input it could
@@ -147,13 +140,10 @@ pub enum Msg {
     Result(Box<ShardDone>),
     Failed(ShardFailed),
     /// Reply to a result: whether it was taken (false for a duplicate or a
-    /// rejected one; `note` says which), and, when the result asked for
-    /// more, the answer to that pull (`Assign`, `Idle`, `Done` or `Rejoin`;
-    /// `None` after a rejected result).
+    /// rejected one; `note` says which).
     Ack {
         accepted: bool,
         note: String,
-        next: Option<Box<Msg>>,
     },
 }
 
@@ -304,7 +294,6 @@ mod tests {
             digest: [7; 32],
             micros: 5,
             result: pr,
-            more: true,
         }));
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
     }

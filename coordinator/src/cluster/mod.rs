@@ -98,7 +98,7 @@ impl Default for ClusterOptions {
     }
 }
 
-pub(crate) fn cores() -> usize {
+fn cores() -> usize {
     std::thread::available_parallelism()
         .map(|n| n.get())
         .unwrap_or(1)
@@ -233,7 +233,7 @@ pub fn run_distributed(
             let ranges = plan::ranges(prep.combination_count(), size);
             let slot = PartSlot {
                 digest: digest(&bytes),
-                prep: Some(Arc::new(prep)),
+                prep: Arc::new(prep),
                 input: Arc::new(bytes),
                 left: 0,
                 partials: Vec::new(),

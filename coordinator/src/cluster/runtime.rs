@@ -11,11 +11,9 @@ use fixplan_worker::protocol::DataPath;
 use fixplan_worker::warn;
 use fixplan_worker::zenoh_link::{open, Keys, ZenohOptions};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{channel, Sender};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
-use zenoh::query::Query;
 use zenoh::sample::SampleKind;
 use zenoh::Wait;
 
@@ -24,9 +22,6 @@ use super::ClusterError;
 pub struct Runtime {
     pub core: Arc<Core>,
     stop: Arc<AtomicBool>,
-    /// Wake the threads that wait on a channel (queryables, leases) at stop.
-    wake: Vec<Sender<Option<Query>>>,
-    iox_service: Option<String>,
     threads: Vec<JoinHandle<()>>,
     session: zenoh::Session,
     iox_prefix: Option<String>,
@@ -43,14 +38,6 @@ pub fn connect_for(listen: &str) -> String {
         .replace("[::]", "[::1]")
 }
 
-/// A named thread (names show in `top -H` and `/proc`).
-fn spawn(name: &str, f: impl FnOnce() + Send + 'static) -> JoinHandle<()> {
-    std::thread::Builder::new()
-        .name(name.into())
-        .spawn(f)
-        .expect("cannot start a coordinator thread")
-}
-
 impl Runtime {
     pub fn start(
         core: Arc<Core>,
@@ -62,9 +49,7 @@ impl Runtime {
         let stop = Arc::new(AtomicBool::new(false));
         let cleanup = Arc::new(AtomicBool::new(false));
         let mut threads = Vec::new();
-        let mut wake = Vec::new();
         let mut iox_prefix = None;
-        let mut iox_service = None;
         // iceoryx2 first: a worker may be told about it as soon as zenoh is up.
         if let Some(DataPath::Iceoryx2 { prefix, service }) = core.settings.iox.clone() {
             let (ready_tx, ready_rx) = std::sync::mpsc::channel::<Result<(), String>>();
@@ -75,8 +60,7 @@ impl Runtime {
                 part_index.clone(),
             );
             let p2 = prefix.clone();
-            iox_service = Some(service.clone());
-            threads.push(spawn("fx-iox", move || {
+            threads.push(std::thread::spawn(move || {
                 let ready_tx2 = ready_tx.clone();
                 let r = iox::serve(
                     &p2,
@@ -101,21 +85,14 @@ impl Runtime {
         let session = open(zopts)?;
         let zerr = |e: zenoh::Error| ClusterError::Zenoh(e.to_string());
         let mut keep: Vec<Box<dyn std::any::Any + Send>> = Vec::new();
-        // Each queryable hands its queries to a thread of its own (the
-        // handling must not hold zenoh's receive thread); `None` stops it.
         for key in [keys.join(), keys.work()] {
-            let (tx, rx) = channel::<Option<Query>>();
-            let qtx = tx.clone();
-            let q = session
-                .declare_queryable(&key)
-                .callback(move |q| drop(qtx.send(Some(q))))
-                .wait()
-                .map_err(zerr)?;
-            keep.push(Box::new(q));
-            wake.push(tx);
-            let (c, pi) = (core.clone(), part_index.clone());
-            threads.push(spawn("fx-zenoh-q", move || {
-                while let Ok(Some(query)) = rx.recv() {
+            let q = session.declare_queryable(&key).wait().map_err(zerr)?;
+            let (c, st, pi) = (core.clone(), stop.clone(), part_index.clone());
+            threads.push(std::thread::spawn(move || {
+                while !st.load(Ordering::SeqCst) {
+                    let Ok(Some(query)) = q.recv_timeout(Duration::from_millis(100)) else {
+                        continue;
+                    };
                     let bytes = query
                         .payload()
                         .map(|p| p.to_bytes().into_owned())
@@ -150,21 +127,16 @@ impl Runtime {
             .wait()
             .map_err(zerr)?;
         keep.push(Box::new(token));
-        let c = core.clone();
-        let (tx, rx) = channel::<Option<Query>>();
-        wake.push(tx);
-        threads.push(spawn("fx-lease", move || loop {
-            c.expire_leases();
-            match rx.recv_timeout(Duration::from_millis(100)) {
-                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-                _ => break,
+        let (c, st) = (core.clone(), stop.clone());
+        threads.push(std::thread::spawn(move || {
+            while !st.load(Ordering::SeqCst) {
+                c.expire_leases();
+                std::thread::sleep(Duration::from_millis(100));
             }
         }));
         Ok(Runtime {
             core,
             stop,
-            wake,
-            iox_service,
             threads,
             session,
             iox_prefix,
@@ -188,7 +160,7 @@ impl Runtime {
         }
         let until = Instant::now() + grace;
         while !self.core.all_told() && Instant::now() < until {
-            std::thread::sleep(Duration::from_millis(1));
+            std::thread::sleep(Duration::from_millis(20));
         }
         if let Some(l) = &mut self.local {
             l.stop(
@@ -198,12 +170,6 @@ impl Runtime {
             );
         }
         self.stop.store(true, Ordering::SeqCst);
-        for w in self.wake.drain(..) {
-            let _ = w.send(None);
-        }
-        if let (Some(p), Some(s)) = (&self.iox_prefix, &self.iox_service) {
-            iox::wake(p, s);
-        }
         for t in self.threads.drain(..) {
             let _ = t.join();
         }

@@ -21,8 +21,7 @@ use std::time::{Duration, Instant};
 pub type PartDone = (usize, Result<(Arc<PreparedPart>, PartialResult), String>);
 
 pub(crate) struct PartSlot {
-    /// Handed over with the merged result when the part closes.
-    pub prep: Option<Arc<PreparedPart>>,
+    pub prep: Arc<PreparedPart>,
     pub input: Arc<Vec<u8>>,
     pub digest: Digest,
     pub left: usize,
@@ -62,24 +61,14 @@ pub struct Stats {
     pub workers_joined: u64,
     pub workers_lost: u64,
     pub fixtures_rederived: u64,
-    /// Bytes of results and of the replies that carry an assignment
-    /// (frames, as sent; an assignment rides on the ack of a result).
+    /// Bytes of results and assignments (frames, as sent).
     pub result_bytes: u64,
     pub assign_bytes: u64,
     /// Time spent in the coordinator handling requests.
     pub handle_micros: u64,
     /// Worker time enumerating, as reported.
     pub worker_micros: u64,
-    /// When the first shard went out and the last part was complete.
-    pub first_assign: Option<Instant>,
-    pub last_part: Option<Instant>,
 }
-
-/// How long a worker waits before asking again when there is no shard for
-/// it now (the run has not started, or every shard left is out). Short: a
-/// pull costs the coordinator a few microseconds, an idle worker at the
-/// start or the end of a run costs the whole run.
-const IDLE_RETRY_MS: u64 = 5;
 
 pub struct Settings {
     pub run_id: String,
@@ -195,20 +184,13 @@ impl Core {
                     Ok(b) => b,
                     Err(e) => encode_refused(&format!("refused: {e}")),
                 };
-                let assigned = match &reply {
-                    Msg::Assign(_) => true,
-                    Msg::Ack { next: Some(n), .. } => matches!(**n, Msg::Assign(_)),
-                    _ => false,
-                };
                 let mut st = self.lock();
                 if is_result {
                     st.stats.result_bytes += bytes.len() as u64;
-                }
-                if assigned {
+                } else if matches!(reply, Msg::Assign(_)) {
                     st.stats.assign_bytes += out.len() as u64;
                 }
-                st.stats.handle_micros += t0.elapsed().as_micros() as u64;
-                return out;
+                out
             }
         };
         self.lock().stats.handle_micros += t0.elapsed().as_micros() as u64;
@@ -303,11 +285,7 @@ impl Core {
 
     fn pull(&self, worker: &str) -> Msg {
         let mut st = self.lock();
-        self.pull_in(&mut st, worker)
-    }
-
-    /// The answer to a pull, under the lock.
-    fn pull_in(&self, st: &mut State, worker: &str) -> Msg {
+        let st = &mut *st;
         let Some(w) = st.workers.get_mut(worker) else {
             return Msg::Rejoin;
         };
@@ -317,9 +295,7 @@ impl Core {
         }
         if !st.started {
             if st.workers.len() < self.settings.min_workers {
-                return Msg::Idle {
-                    retry_ms: IDLE_RETRY_MS,
-                };
+                return Msg::Idle { retry_ms: 200 };
             }
             st.started = true;
             info!(
@@ -342,9 +318,6 @@ impl Core {
                 return Msg::Rejoin;
             };
             w.leased.insert(id);
-            if st.stats.first_assign.is_none() {
-                st.stats.first_assign = Some(Instant::now());
-            }
             let part = &st.parts[sh.part];
             let input = if w.parts_sent.insert(sh.part) {
                 Some(part.input.as_ref().clone())
@@ -358,47 +331,32 @@ impl Core {
                 input,
             });
         }
-        Msg::Idle {
-            retry_ms: IDLE_RETRY_MS,
-        }
+        Msg::Idle { retry_ms: 50 }
     }
 
-    /// A result, and when it asks for more, the next shard for its worker
-    /// (unless the result got the worker banned).
     fn result(&self, r: ShardDone, part_index: &[usize]) -> Msg {
-        let more = r.more;
-        let worker = r.worker.clone();
         let mut st = self.lock();
-        let (accepted, note) = self.result_in(&mut st, r, part_index);
-        let next = (more && !st.banned.contains(&worker))
-            .then(|| Box::new(self.pull_in(&mut st, &worker)));
-        Msg::Ack {
-            accepted,
-            note,
-            next,
-        }
-    }
-
-    /// Takes a result: whether it was accepted, and why not.
-    fn result_in(&self, st: &mut State, r: ShardDone, part_index: &[usize]) -> (bool, String) {
+        let st = &mut *st;
         st.stats.results += 1;
         let Some(sh) = st.shards.get(r.shard_id as usize) else {
             warn!(
                 ROLE,
                 "dropped a result for unknown shard {} from worker {}", r.shard_id, r.worker
             );
-            return (false, "unknown shard".into());
+            return Msg::Ack {
+                accepted: false,
+                note: "unknown shard".into(),
+            };
         };
         if sh.status == ShardStatus::Done {
             st.stats.duplicates += 1;
-            return (false, "duplicate: this shard is already done".into());
+            return Msg::Ack {
+                accepted: false,
+                note: "duplicate: this shard is already done".into(),
+            };
         }
         let (p, range) = (sh.part, sh.range.clone());
         let part = &st.parts[p];
-        let Some(prep) = part.prep.as_ref() else {
-            st.stats.duplicates += 1;
-            return (false, "duplicate: this part is already done".into());
-        };
         let check = if r.digest != part.digest {
             Err(format!(
                 "result for part {}, shard is of part {}",
@@ -406,7 +364,7 @@ impl Core {
                 short_hex(&part.digest)
             ))
         } else {
-            verify::check(prep, &range, &r.result, &part.top)
+            verify::check(&part.prep, &range, &r.result, &part.top)
         };
         if let Some(w) = st.workers.get_mut(&r.worker) {
             w.leased.remove(&r.shard_id);
@@ -428,7 +386,10 @@ impl Core {
                 }
                 st.banned.insert(r.worker.clone());
                 requeue(st, std::iter::once(r.shard_id));
-                return (false, format!("rejected: {e}"));
+                return Msg::Ack {
+                    accepted: false,
+                    note: format!("rejected: {e}"),
+                };
             }
         };
         st.stats.fixtures_rederived += checked as u64;
@@ -438,7 +399,7 @@ impl Core {
             w.shards += 1;
         }
         let part = &mut st.parts[p];
-        let top_k = part.prep.as_ref().map_or(0, |p| p.top_k);
+        let top_k = part.prep.top_k;
         let mut lists = vec![std::mem::take(&mut part.top), r.result.fixtures.clone()];
         part.top = fixplan_core::ranking::merge_ranked(std::mem::take(&mut lists), top_k);
         part.partials.push(r.result);
@@ -446,13 +407,8 @@ impl Core {
         if part.left == 0 && !part.closed {
             part.closed = true;
             let merged = merge(top_k, std::mem::take(&mut part.partials));
-            let Some(prep) = part.prep.take() else {
-                return (true, String::new());
-            };
+            let prep = part.prep.clone();
             st.open_parts -= 1;
-            if st.open_parts == 0 {
-                st.stats.last_part = Some(Instant::now());
-            }
             let idx = part_index.get(p).copied().unwrap_or(p);
             let _ = self
                 .tx
@@ -460,7 +416,10 @@ impl Core {
                 .unwrap_or_else(|e| e.into_inner())
                 .send((idx, Ok((prep, merged))));
         }
-        (true, String::new())
+        Msg::Ack {
+            accepted: true,
+            note: String::new(),
+        }
     }
 
     fn failed(&self, f: ShardFailed, part_index: &[usize]) -> Msg {
@@ -470,14 +429,12 @@ impl Core {
             return Msg::Ack {
                 accepted: false,
                 note: "unknown shard".into(),
-                next: None,
             };
         };
         if sh.status == ShardStatus::Done {
             return Msg::Ack {
                 accepted: false,
                 note: "duplicate".into(),
-                next: None,
             };
         }
         let p = sh.part;
@@ -496,9 +453,6 @@ impl Core {
         if !part.closed {
             part.closed = true;
             st.open_parts -= 1;
-            if st.open_parts == 0 {
-                st.stats.last_part = Some(Instant::now());
-            }
             let _ = self
                 .tx
                 .lock()
@@ -508,7 +462,6 @@ impl Core {
         Msg::Ack {
             accepted: true,
             note: String::new(),
-            next: None,
         }
     }
 
