@@ -54,6 +54,17 @@ pub fn partial_path(output: &Path) -> PathBuf {
     PathBuf::from(s)
 }
 
+/// What the run and study channels say of the catalogue.
+pub fn catalog_info(catalog: &Catalog, source: &Path) -> CatalogInfo {
+    CatalogInfo {
+        name: catalog.name.clone(),
+        source: source.display().to_string(),
+        units: catalog.units,
+        parts: catalog.parts.len(),
+        digest: catalog_digest(catalog),
+    }
+}
+
 /// `sha256:` of the catalogue's content, independent of where it lives.
 pub fn catalog_digest(c: &Catalog) -> String {
     let mut h = Sha256::new();
@@ -211,13 +222,7 @@ pub fn run_loaded_search(
     let run_msg = RunMsg {
         tool: "fixplan".into(),
         version: env!("CARGO_PKG_VERSION").into(),
-        catalog: CatalogInfo {
-            name: catalog.name.clone(),
-            source: opts.catalog.display().to_string(),
-            units: catalog.units,
-            parts: catalog.parts.len(),
-            digest: catalog_digest(catalog),
-        },
+        catalog: catalog_info(catalog, &opts.catalog),
         kit_name: spec.name.clone(),
         kit: spec.kit.clone(),
         params: params.clone(),

@@ -34,7 +34,7 @@ use crate::cluster::{run_distributed, ClusterOptions, PartInput};
 use crate::messages::CatalogInfo;
 use crate::part_job::{part_params, solve_part, JobContext};
 use crate::refine::SearchOptions;
-use crate::run::catalog_digest;
+use crate::run::catalog_info;
 use crate::sweep::{apply, point_label, Sweep};
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
@@ -606,13 +606,7 @@ pub fn run_study(
     let summary = StudySummaryMsg {
         tool: "fixplan".into(),
         version: env!("CARGO_PKG_VERSION").into(),
-        catalog: CatalogInfo {
-            name: catalog.name.clone(),
-            source: opts.catalog.display().to_string(),
-            units: catalog.units,
-            parts: np,
-            digest: catalog_digest(catalog),
-        },
+        catalog: catalog_info(catalog, &opts.catalog),
         kits: kits.iter().map(|k| k.spec.name.clone()).collect(),
         unheld,
         part_runs: nk * np,
