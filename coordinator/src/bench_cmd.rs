@@ -7,7 +7,7 @@
 
 use anyhow::{Context, Result};
 use fixplan_core::enumerate::Profile;
-use fixplan_core::{prepare, Case, Kit, Params, Part, PreparedPart, Units};
+use fixplan_core::{prepare, Case, Counts, Kit, Params, Part, PreparedPart, Units};
 use std::path::{Path, PathBuf};
 
 /// One part to measure.
@@ -74,10 +74,11 @@ pub fn parts_from_catalog(
         .collect()
 }
 
-/// Best of `repeat` timed runs of one part on the current thread.
-pub fn measure(prep: &PreparedPart, repeat: usize) -> (Profile, u64) {
+/// Best of `repeat` timed runs of one part on the current thread, with the
+/// part's counts.
+pub fn measure(prep: &PreparedPart, repeat: usize) -> (Profile, u64, Counts) {
     let n = prep.combination_count();
-    let mut best: Option<(Profile, u64)> = None;
+    let mut best: Option<(Profile, u64, Counts)> = None;
     for _ in 0..repeat.max(1) {
         // Untimed run for the wall clock (no clock reads in the inner loop)...
         let t = std::time::Instant::now();
@@ -85,9 +86,8 @@ pub fn measure(prep: &PreparedPart, repeat: usize) -> (Profile, u64) {
         let wall = t.elapsed().as_nanos() as u64;
         // ...and a timed run for the split.
         let (_, profile) = prep.enumerate_range_profiled(0..n, true);
-        let _ = res;
         if best.as_ref().is_none_or(|b| wall < b.1) {
-            best = Some((profile, wall));
+            best = Some((profile, wall, res.counts));
         }
     }
     best.unwrap_or_default()
@@ -120,9 +120,7 @@ pub fn run(parts: &[BenchPart], repeat: usize) {
                 continue;
             }
         };
-        let (profile, wall) = measure(prep, repeat);
-        let res = prep.enumerate_range_serial(0..prep.combination_count());
-        let c = res.counts;
+        let (profile, wall, c) = measure(prep, repeat);
         let t = profile.timing;
         let total = profile.total_ns.max(1) as f64;
         let setup_enum = profile.total_ns.saturating_sub(t.setups_ns);

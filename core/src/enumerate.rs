@@ -123,11 +123,7 @@ impl PreparedPart {
 
     /// Enumerates `range` on the rayon pool (same result as serial).
     pub fn enumerate_range(&self, range: Range<u64>) -> PartialResult {
-        let end = range.end.min(self.combination_count()).max(range.start);
-        let chunks: Vec<Range<u64>> = (range.start..end)
-            .step_by(CHUNK as usize)
-            .map(|s| s..(s + CHUNK).min(end))
-            .collect();
+        let chunks = self.chunks(&range);
         let parts: Vec<PartialResult> = chunks
             .into_par_iter()
             .map(|r| self.enumerate_range_serial(r))
@@ -149,12 +145,8 @@ impl PreparedPart {
         good_enough: f64,
     ) -> (PartialResult, Option<u64>) {
         use std::sync::atomic::{AtomicU64, Ordering};
-        let end = range.end.min(self.combination_count()).max(range.start);
         let first_hit = AtomicU64::new(u64::MAX);
-        let chunks: Vec<Range<u64>> = (range.start..end)
-            .step_by(CHUNK as usize)
-            .map(|s| s..(s + CHUNK).min(end))
-            .collect();
+        let chunks = self.chunks(&range);
         let parts: Vec<(PartialResult, Option<u64>)> = chunks
             .into_par_iter()
             .filter_map(|r| {
@@ -179,6 +171,16 @@ impl PreparedPart {
         out.range = range.start..stop.map_or(range.end, |s| s + 1);
         out.counts.segments = self.segments.len() as u64;
         (out, stop)
+    }
+
+    /// `range` (clipped to the part) cut into rayon tasks of [`CHUNK`]
+    /// combinations: fixed cuts, so no result depends on the thread count.
+    fn chunks(&self, range: &Range<u64>) -> Vec<Range<u64>> {
+        let end = range.end.min(self.combination_count()).max(range.start);
+        (range.start..end)
+            .step_by(CHUNK as usize)
+            .map(|s| s..(s + CHUNK).min(end))
+            .collect()
     }
 
     /// The whole part.
