@@ -85,11 +85,20 @@ fn throughput(
     };
     let t0 = Instant::now();
     let mut d = run_distributed(parts.to_vec(), opts)?;
-    for (_, r) in d.by_ref() {
+    let mut first = None;
+    let mut last = 0.0;
+    let mut seen = 0;
+    while seen < parts.len() {
+        let Some((_, r)) = d.next() else { break };
         drop(r);
+        seen += 1;
+        last = t0.elapsed().as_secs_f64();
+        first.get_or_insert(last);
     }
+    let stats = d.finish();
     let secs = t0.elapsed().as_secs_f64();
-    Ok((secs, d.finish()))
+    eprintln!("  [{workers} {transport}] first part {:.3} s, last part {last:.3} s, finished {secs:.3} s", first.unwrap_or(0.0));
+    Ok((secs, stats))
 }
 
 fn percentile(v: &mut [f64], p: f64) -> f64 {

@@ -61,7 +61,7 @@ impl LocalWorkers {
                         let _ = c.wait();
                         break;
                     }
-                    Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+                    Ok(None) => std::thread::sleep(Duration::from_millis(2)),
                 }
             }
         }

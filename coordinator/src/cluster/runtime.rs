@@ -85,14 +85,14 @@ impl Runtime {
         let session = open(zopts)?;
         let zerr = |e: zenoh::Error| ClusterError::Zenoh(e.to_string());
         let mut keep: Vec<Box<dyn std::any::Any + Send>> = Vec::new();
+        // Callbacks, not polling threads: a query is answered on zenoh's
+        // own thread as soon as it arrives, and nothing has to notice the
+        // stop flag at the end of the run (undeclaring is enough).
         for key in [keys.join(), keys.work()] {
-            let q = session.declare_queryable(&key).wait().map_err(zerr)?;
-            let (c, st, pi) = (core.clone(), stop.clone(), part_index.clone());
-            threads.push(std::thread::spawn(move || {
-                while !st.load(Ordering::SeqCst) {
-                    let Ok(Some(query)) = q.recv_timeout(Duration::from_millis(100)) else {
-                        continue;
-                    };
+            let (c, pi) = (core.clone(), part_index.clone());
+            let q = session
+                .declare_queryable(&key)
+                .callback(move |query| {
                     let bytes = query
                         .payload()
                         .map(|p| p.to_bytes().into_owned())
@@ -101,8 +101,10 @@ impl Runtime {
                     if let Err(e) = query.reply(query.key_expr().clone(), reply).wait() {
                         warn!(ROLE, "cannot reply on {}: {e}", query.key_expr());
                     }
-                }
-            }));
+                })
+                .wait()
+                .map_err(zerr)?;
+            keep.push(Box::new(q));
         }
         let c = core.clone();
         let cl = cleanup.clone();
@@ -131,7 +133,8 @@ impl Runtime {
         threads.push(std::thread::spawn(move || {
             while !st.load(Ordering::SeqCst) {
                 c.expire_leases();
-                std::thread::sleep(Duration::from_millis(100));
+                // Woken early by `shutdown` (unpark), so stopping costs no wait.
+                std::thread::park_timeout(Duration::from_millis(100));
             }
         }));
         Ok(Runtime {
@@ -160,7 +163,7 @@ impl Runtime {
         }
         let until = Instant::now() + grace;
         while !self.core.all_told() && Instant::now() < until {
-            std::thread::sleep(Duration::from_millis(20));
+            std::thread::sleep(Duration::from_millis(2));
         }
         if let Some(l) = &mut self.local {
             l.stop(
@@ -170,6 +173,9 @@ impl Runtime {
             );
         }
         self.stop.store(true, Ordering::SeqCst);
+        for t in &self.threads {
+            t.thread().unpark();
+        }
         for t in self.threads.drain(..) {
             let _ = t.join();
         }

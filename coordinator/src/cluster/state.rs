@@ -331,7 +331,9 @@ impl Core {
                 input,
             });
         }
-        Msg::Idle { retry_ms: 50 }
+        // Short: the other shards may be done any moment, and then this
+        // worker learns at once that the run is over.
+        Msg::Idle { retry_ms: 5 }
     }
 
     fn result(&self, r: ShardDone, part_index: &[usize]) -> Msg {
