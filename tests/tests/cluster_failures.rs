@@ -6,7 +6,7 @@ mod cluster_support;
 use cluster_support::*;
 use fixplan_coordinator::cluster::state::Stats;
 use fixplan_coordinator::cluster::{run_distributed, Distributed, TransportChoice};
-use fixplan_worker::protocol::{decode, encode, encode_as, Frame, Msg};
+use fixplan_worker::protocol::{decode, encode, encode_as, Frame, Msg, Next, PROTOCOL_VERSION};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::time::Duration;
 
@@ -116,7 +116,7 @@ fn malformed_messages_and_other_protocol_versions_are_refused() {
     let (code, err) = old.wait_output(Duration::from_secs(30));
     assert_eq!(code, Some(3), "{err}");
     assert!(
-        err.contains("protocol version 1") && err.contains("version 99"),
+        err.contains(&format!("protocol version {PROTOCOL_VERSION}")) && err.contains("version 99"),
         "{err}"
     );
     // Garbage, a truncated message and a foreign version on the work key.
@@ -131,25 +131,29 @@ fn malformed_messages_and_other_protocol_versions_are_refused() {
         Frame::Refused(r) => assert!(r.contains("not a fixplan message"), "{r}"),
         f => panic!("{f:?}"),
     }
-    let mut cut = encode(&Msg::Pull { worker: "x".into() }).unwrap();
+    let report = |w: &str| Msg::Report {
+        worker: w.into(),
+        outcomes: vec![],
+    };
+    let mut cut = encode(&report("x")).unwrap();
     cut.truncate(6);
     match request(&s, &work, cut, t).unwrap() {
         Frame::Refused(r) => assert!(r.contains("malformed"), "{r}"),
         f => panic!("{f:?}"),
     }
-    let v99 = encode_as(99, &Msg::Pull { worker: "x".into() }).unwrap();
+    let v99 = encode_as(99, &report("x")).unwrap();
     match request(&s, &work, v99, t).unwrap() {
         Frame::Refused(r) => assert!(r.contains("version 99"), "{r}"),
         f => panic!("{f:?}"),
     }
-    // A pull from a worker that never joined is told to join.
-    let pull = encode(&Msg::Pull {
-        worker: "stranger".into(),
-    })
-    .unwrap();
+    // A report from a worker that never joined is told to join.
+    let pull = encode(&report("stranger")).unwrap();
     assert_eq!(
         request(&s, &work, pull, t).unwrap(),
-        Frame::Msg(Msg::Rejoin)
+        Frame::Msg(Msg::Reply {
+            notes: vec![],
+            next: Next::Rejoin
+        })
     );
     assert!(decode(b"").is_err());
     drop(s);

@@ -4,14 +4,15 @@
 
 use crate::host::{host_id, unique_name};
 use crate::iox::IoxClient;
-use crate::part_input::{digest, short_hex, PartInput};
+use crate::part_input::{digest, PartInput};
 use crate::protocol::{
-    encode_as, Assign, DataPath, Digest, Frame, Join, Msg, ShardDone, ShardFailed, TransportChoice,
-    PROTOCOL_VERSION,
+    encode_as, Assign, DataPath, Digest, Frame, Join, Msg, Next, Outcome, ShardDone, ShardFailed,
+    TransportChoice, PROTOCOL_VERSION,
 };
 use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
 use crate::{info, warn};
 use fixplan_core::PreparedPart;
+use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -112,6 +113,50 @@ fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
         .unwrap_or_else(|| "unknown panic".into())
 }
 
+/// One shard of an assignment, enumerated (on the calling rayon pool).
+fn shard_outcome(
+    worker: &str,
+    fault: Option<Fault>,
+    a: Assign,
+    prep: &Result<PreparedPart, String>,
+) -> Outcome {
+    let failed = |message: String| {
+        Outcome::Failed(ShardFailed {
+            worker: worker.to_string(),
+            shard_id: a.shard_id,
+            message,
+        })
+    };
+    let prep = match prep {
+        Ok(p) => p,
+        Err(m) => return failed(m.clone()),
+    };
+    let t0 = Instant::now();
+    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        crate::run_shard(prep, a.range.clone())
+    }));
+    match out {
+        Ok(mut result) => {
+            if fault == Some(Fault::CorruptScore) {
+                if let Some(f) = result.fixtures.first_mut() {
+                    f.score *= 0.5;
+                }
+            }
+            Outcome::Done(Box::new(ShardDone {
+                worker: worker.to_string(),
+                shard_id: a.shard_id,
+                digest: a.digest,
+                micros: t0.elapsed().as_micros() as u64,
+                result,
+            }))
+        }
+        Err(p) => failed(format!(
+            "internal error in the enumeration: {}",
+            panic_text(p)
+        )),
+    }
+}
+
 const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 /// A coordinator silent for this long is presumed gone: join again.
 const SILENCE: Duration = Duration::from_secs(15);
@@ -150,6 +195,8 @@ impl Agent {
     }
 
     fn prepared(&mut self, a: &Assign) -> Arc<Result<PreparedPart, String>> {
+        // A batch may hold several shards of one part: the first carries
+        // the input, the cache serves the rest.
         if let Some(p) = self.cache.get(&a.digest) {
             return p.clone();
         }
@@ -171,64 +218,54 @@ impl Agent {
         p
     }
 
-    fn work_on(&mut self, a: Assign) -> Msg {
-        let prep = self.prepared(&a);
-        let prep = match prep.as_ref() {
-            Ok(p) => p,
-            Err(m) => {
-                return Msg::Failed(ShardFailed {
-                    worker: self.name.clone(),
-                    shard_id: a.shard_id,
-                    message: m.clone(),
-                });
-            }
-        };
-        let t0 = Instant::now();
-        let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            self.pool
-                .install(|| crate::run_shard(prep, a.range.clone()))
-        }));
-        match out {
-            Ok(mut result) => {
-                if self.opts.fault == Some(Fault::CorruptScore) {
-                    if let Some(f) = result.fixtures.first_mut() {
-                        f.score *= 0.5;
-                    }
-                }
-                if let Some(Fault::SlowMs(ms)) = self.opts.fault {
-                    std::thread::sleep(Duration::from_millis(ms));
-                }
-                Msg::Result(Box::new(ShardDone {
-                    worker: self.name.clone(),
-                    shard_id: a.shard_id,
-                    digest: a.digest,
-                    micros: t0.elapsed().as_micros() as u64,
-                    result,
-                }))
-            }
-            Err(p) => Msg::Failed(ShardFailed {
-                worker: self.name.clone(),
-                shard_id: a.shard_id,
-                message: format!("internal error in the enumeration: {}", panic_text(p)),
-            }),
+    /// Enumerates an assignment: its shards side by side on the pool (a
+    /// batch of small parts keeps every thread busy), each inside its own
+    /// `catch_unwind` so one panicking part fails alone.
+    fn work_on(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
+        let jobs: Vec<_> = batch
+            .into_iter()
+            .map(|a| {
+                let prep = self.prepared(&a);
+                (a, prep)
+            })
+            .collect();
+        let name = self.name.clone();
+        let fault = self.opts.fault;
+        let outcomes = self.pool.install(|| {
+            jobs.into_par_iter()
+                .map(|(a, prep)| shard_outcome(&name, fault, a, &prep))
+                .collect::<Vec<_>>()
+        });
+        if let Some(Fault::SlowMs(ms)) = fault {
+            std::thread::sleep(Duration::from_millis(ms));
         }
+        outcomes
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent
     /// or asks for a new join (false).
     fn serve_run(&mut self, link: DataLink) -> Result<bool, WorkerError> {
         let mut last_heard = Instant::now();
+        let mut outcomes: Vec<Outcome> = Vec::new();
         loop {
             let reply = self.send(
                 &link,
-                &Msg::Pull {
+                &Msg::Report {
                     worker: self.name.clone(),
+                    outcomes: outcomes.clone(),
                 },
             );
-            let msg = match reply {
-                Ok(Frame::Msg(m)) => m,
+            let (notes, next) = match reply {
+                Ok(Frame::Msg(Msg::Reply { notes, next })) => (notes, next),
+                Ok(Frame::Msg(m)) => {
+                    warn!(self.role(), "unexpected reply to a report: {m:?}");
+                    std::thread::sleep(Duration::from_millis(200));
+                    continue;
+                }
                 Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
                 Err(e) => {
+                    // The report is sent again (the coordinator takes the
+                    // first copy of a result and notes the others).
                     if last_heard.elapsed() > SILENCE {
                         warn!(
                             self.role(),
@@ -241,34 +278,20 @@ impl Agent {
                 }
             };
             last_heard = Instant::now();
-            match msg {
-                Msg::Assign(a) => {
-                    let (id, range, d) = (a.shard_id, a.range.clone(), a.digest);
-                    let out = self.work_on(a);
-                    self.summary.shards += 1;
-                    match self.send(&link, &out) {
-                        Ok(Frame::Msg(Msg::Ack { accepted, note })) => {
-                            if !accepted {
-                                warn!(
-                                    self.role(),
-                                    "shard {id} ({} {range:?}) not taken: {note}",
-                                    short_hex(&d)
-                                );
-                            }
-                        }
-                        Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
-                        Ok(Frame::Msg(m)) => {
-                            warn!(self.role(), "unexpected reply to a result: {m:?}")
-                        }
-                        Err(e) => warn!(self.role(), "result of shard {id} not acknowledged: {e}"),
-                    }
+            outcomes.clear();
+            for n in notes {
+                warn!(self.role(), "{n}");
+            }
+            match next {
+                Next::Work(batch) => {
+                    self.summary.shards += batch.len() as u64;
+                    outcomes = self.work_on(batch);
                 }
-                Msg::Idle { retry_ms } => {
+                Next::Idle { retry_ms } => {
                     std::thread::sleep(Duration::from_millis(retry_ms.clamp(1, 2000)))
                 }
-                Msg::Done => return Ok(true),
-                Msg::Rejoin => return Ok(false),
-                m => warn!(self.role(), "unexpected reply to a pull: {m:?}"),
+                Next::Done => return Ok(true),
+                Next::Rejoin => return Ok(false),
             }
         }
     }
@@ -280,7 +303,9 @@ impl Agent {
         loop {
             let welcome = match self.join() {
                 Ok(Frame::Msg(Msg::Welcome(w))) => w,
-                Ok(Frame::Msg(Msg::Done)) => {
+                Ok(Frame::Msg(Msg::Reply {
+                    next: Next::Done, ..
+                })) => {
                     if !self.opts.stay && finished_run.is_none() {
                         info!(self.role(), "the run is already over");
                         return Ok(());

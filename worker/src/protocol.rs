@@ -14,7 +14,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 1;
+pub const PROTOCOL_VERSION: u16 = 2;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -119,31 +119,47 @@ pub struct ShardFailed {
     pub message: String,
 }
 
+/// What became of one shard of an assignment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum Msg {
-    Join(Join),
-    Welcome(Welcome),
-    /// Asks for work.
-    Pull {
-        worker: String,
-    },
-    Assign(Assign),
-    /// Nothing to do now; ask again after this long.
-    Idle {
-        retry_ms: u64,
-    },
+pub enum Outcome {
+    Done(Box<ShardDone>),
+    Failed(ShardFailed),
+}
+
+/// What a worker is to do next.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Next {
+    /// Shards to enumerate: one, or several small ones together so that
+    /// the round trip stays small beside the work.
+    Work(Vec<Assign>),
+    /// Nothing to do now; report again after this long.
+    Idle { retry_ms: u64 },
     /// The run is over.
     Done,
     /// The coordinator does not know this worker (declared dead, or another
     /// run): join again.
     Rejoin,
-    Result(Box<ShardDone>),
-    Failed(ShardFailed),
-    /// Reply to a result: whether it was taken (false for a duplicate or a
-    /// rejected one; `note` says which).
-    Ack {
-        accepted: bool,
-        note: String,
+}
+
+/// Protocol 2 has one request after joining, [`Msg::Report`], and one
+/// answer, [`Msg::Reply`]: a worker hands in the results of its last
+/// assignment and gets the next one in the same round trip (protocol 1
+/// needed two: result, then pull).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Msg {
+    Join(Join),
+    Welcome(Welcome),
+    /// The outcomes of the last assignment (none on the first report),
+    /// and a request for more work.
+    Report {
+        worker: String,
+        outcomes: Vec<Outcome>,
+    },
+    /// The answer to a report: why any outcome was not taken (a duplicate,
+    /// a rejected result), and what to do next.
+    Reply {
+        notes: Vec<String>,
+        next: Next,
     },
 }
 
@@ -239,8 +255,9 @@ mod tests {
 
     #[test]
     fn round_trip_and_version() {
-        let m = Msg::Pull {
+        let m = Msg::Report {
             worker: "w1".into(),
+            outcomes: vec![],
         };
         let b = encode(&m).unwrap();
         assert_eq!(decode(&b), Ok(Frame::Msg(m.clone())));
@@ -279,8 +296,11 @@ mod tests {
             fixtures: vec![],
         };
         for x in xs {
-            let m = Msg::Idle {
-                retry_ms: x.to_bits(),
+            let m = Msg::Reply {
+                notes: vec![],
+                next: Next::Idle {
+                    retry_ms: x.to_bits(),
+                },
             };
             let b = encode(&m).unwrap();
             assert_eq!(decode(&b), Ok(Frame::Msg(m)));
@@ -288,13 +308,16 @@ mod tests {
                 postcard::from_bytes(&postcard::to_allocvec(&vec![x]).unwrap()).unwrap();
             assert_eq!(v[0].to_bits(), x.to_bits());
         }
-        let m = Msg::Result(Box::new(ShardDone {
+        let m = Msg::Report {
             worker: "w".into(),
-            shard_id: 1,
-            digest: [7; 32],
-            micros: 5,
-            result: pr,
-        }));
+            outcomes: vec![Outcome::Done(Box::new(ShardDone {
+                worker: "w".into(),
+                shard_id: 1,
+                digest: [7; 32],
+                micros: 5,
+                result: pr,
+            }))],
+        };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
     }
 }

@@ -3,12 +3,12 @@
 //! shard-sized message over zenoh and over iceoryx2. A measurement, not a
 //! test: run it on an otherwise idle machine, in release mode.
 
-use super::{run_distributed, ClusterOptions, PartInput, TransportChoice};
+use super::{run_distributed, ClusterOptions, PartInput, TransportChoice, VerifyPolicy};
 use crate::part_job::{part_params, JobContext};
 use anyhow::{Context, Result};
 use fixplan_catalog::{load_catalog, load_kit};
 use fixplan_worker::iox::{self, IoxClient};
-use fixplan_worker::protocol::{encode, Msg, ShardDone};
+use fixplan_worker::protocol::{encode, Msg, Next, Outcome, ShardDone};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -31,8 +31,24 @@ pub struct BenchArgs {
     #[arg(long)]
     pub shard_size: Option<u64>,
     /// The catalogue this many times over (a longer run, steadier figures).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 20)]
     pub repeat: usize,
+    /// How much of each result the coordinator re-derives: `sample` (each
+    /// worker's first results, then one in 16), `all`, or `1/N`.
+    #[arg(long, value_name = "sample|all|1/N", default_value = "sample")]
+    pub verify: VerifyPolicy,
+}
+
+impl BenchArgs {
+    fn verify_name(&self) -> String {
+        match self.verify {
+            VerifyPolicy::All => "all".into(),
+            VerifyPolicy::Sample { one_in } => format!(
+                "sample (each worker's results in full until {} fixtures checked out, then 1 result in {one_in})",
+                super::state::FULL_CHECKS
+            ),
+        }
+    }
 }
 
 fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
@@ -66,12 +82,39 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
         .collect())
 }
 
+/// CPU time of this process so far (all its threads, the finished ones
+/// too): the coordinator's share of a run.
+pub fn process_cpu_secs() -> f64 {
+    let mut u = std::mem::MaybeUninit::<libc::rusage>::zeroed();
+    // SAFETY: getrusage only writes the struct it is given.
+    let ok = unsafe { libc::getrusage(libc::RUSAGE_SELF, u.as_mut_ptr()) } == 0;
+    if !ok {
+        return 0.0;
+    }
+    // SAFETY: initialised by the successful call above.
+    let u = unsafe { u.assume_init() };
+    let secs = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    secs(u.ru_utime) + secs(u.ru_stime)
+}
+
+/// One measured run.
+struct Run {
+    /// Start to finish (workers started, parts done, workers gone).
+    wall: f64,
+    /// First part out to last part out: the enumeration itself.
+    steady: f64,
+    /// CPU time of the coordinator process over the run.
+    coordinator_cpu: f64,
+    stats: super::state::Stats,
+}
+
 fn throughput(
     parts: &[PartInput],
     workers: usize,
     transport: TransportChoice,
     shard_size: Option<u64>,
-) -> Result<(f64, super::state::Stats)> {
+    verify: VerifyPolicy,
+) -> Result<Run> {
     let opts = ClusterOptions {
         key_prefix: fixplan_worker::host::unique_name("bench"),
         transport,
@@ -81,8 +124,10 @@ fn throughput(
         worker_threads: Some(1),
         expected_threads: Some(2),
         quiet: true,
+        verify,
         ..ClusterOptions::default()
     };
+    let cpu0 = process_cpu_secs();
     let t0 = Instant::now();
     let mut d = run_distributed(parts.to_vec(), opts)?;
     let mut first = None;
@@ -96,9 +141,12 @@ fn throughput(
         first.get_or_insert(last);
     }
     let stats = d.finish();
-    let secs = t0.elapsed().as_secs_f64();
-    eprintln!("  [{workers} {transport}] first part {:.3} s, last part {last:.3} s, finished {secs:.3} s", first.unwrap_or(0.0));
-    Ok((secs, stats))
+    Ok(Run {
+        wall: t0.elapsed().as_secs_f64(),
+        steady: last - first.unwrap_or(0.0),
+        coordinator_cpu: process_cpu_secs() - cpu0,
+        stats,
+    })
 }
 
 fn percentile(v: &mut [f64], p: f64) -> f64 {
@@ -111,13 +159,16 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
     let prep = parts.first().context("empty catalogue")?.prepare()?;
     let n = prep.combination_count().min(64);
     let result = prep.enumerate_range(0..n);
-    Ok(encode(&Msg::Result(Box::new(ShardDone {
+    Ok(encode(&Msg::Report {
         worker: "bench".into(),
-        shard_id: 1,
-        digest: [0; 32],
-        micros: 1,
-        result,
-    })))?)
+        outcomes: vec![Outcome::Done(Box::new(ShardDone {
+            worker: "bench".into(),
+            shard_id: 1,
+            digest: [0; 32],
+            micros: 1,
+            result,
+        }))],
+    })?)
 }
 
 fn round_trips_zenoh(msg: &[u8], n: usize) -> Result<Vec<f64>> {
@@ -130,9 +181,9 @@ fn round_trips_zenoh(msg: &[u8], n: usize) -> Result<Vec<f64>> {
         listen: vec![ep.clone()],
         ..ZenohOptions::default()
     })?;
-    let reply = encode(&Msg::Ack {
-        accepted: true,
-        note: String::new(),
+    let reply = encode(&Msg::Reply {
+        notes: Vec::new(),
+        next: Next::Idle { retry_ms: 1 },
     })?;
     let q = server
         .declare_queryable("bench/rt")
@@ -165,9 +216,9 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
     let stop = Arc::new(AtomicBool::new(false));
     let cleanup = Arc::new(AtomicBool::new(false));
     let (ready_tx, ready_rx) = std::sync::mpsc::channel();
-    let reply = encode(&Msg::Ack {
-        accepted: true,
-        note: String::new(),
+    let reply = encode(&Msg::Reply {
+        notes: Vec::new(),
+        next: Next::Idle { retry_ms: 1 },
     })?;
     let (p, s, st, cl) = (
         prefix.clone(),
@@ -207,37 +258,56 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
 pub fn bench_main(a: &BenchArgs) -> Result<()> {
     fixplan_worker::log::set_quiet(true);
     let parts = inputs(a)?;
-    println!("catalogue: {} parts", parts.len());
-    let (t1, s1) = throughput(&parts, 1, TransportChoice::Auto, a.shard_size)?;
-    let (t2, s2) = throughput(&parts, 2, TransportChoice::Auto, a.shard_size)?;
-    let (t2z, s2z) = throughput(&parts, 2, TransportChoice::Zenoh, a.shard_size)?;
     println!(
-        "1 worker  (iceoryx2): {t1:7.3} s  {:6.2} parts/s",
-        parts.len() as f64 / t1
+        "catalogue: {} parts, verification {}",
+        parts.len(),
+        a.verify_name()
     );
+    let runs = [
+        ("1 worker  (iceoryx2)", 1, TransportChoice::Auto),
+        ("2 workers (iceoryx2)", 2, TransportChoice::Auto),
+        ("2 workers (zenoh)   ", 2, TransportChoice::Zenoh),
+    ];
+    let mut out = Vec::new();
+    for (name, workers, transport) in runs {
+        out.push((
+            name,
+            throughput(&parts, workers, transport, a.shard_size, a.verify)?,
+        ));
+    }
+    let (base_wall, base_steady) = (out[0].1.wall, out[0].1.steady);
     println!(
-        "2 workers (iceoryx2): {t2:7.3} s  {:6.2} parts/s  speed-up {:.2}x",
-        parts.len() as f64 / t2,
-        t1 / t2
+        "{:22} {:>8} {:>9} {:>8} {:>9} {:>10} {:>12}",
+        "", "wall s", "parts/s", "speed-up", "steady s", "speed-up", "coordinator"
     );
+    for (name, r) in &out {
+        println!(
+            "{name:22} {:8.3} {:9.1} {:7.2}x {:9.3} {:9.2}x {:10.2}% cpu",
+            r.wall,
+            parts.len() as f64 / r.wall,
+            base_wall / r.wall,
+            r.steady,
+            base_steady / r.steady.max(1e-9),
+            100.0 * r.coordinator_cpu / r.wall,
+        );
+    }
     println!(
-        "2 workers (zenoh):    {t2z:7.3} s  {:6.2} parts/s  speed-up {:.2}x",
-        parts.len() as f64 / t2z,
-        t1 / t2z
+        "(wall: from starting the workers to their exit; steady: first part out to last part out; \
+         coordinator: CPU time of the coordinator process over the wall time)"
     );
-    for (name, s) in [
-        ("1 worker", &s1),
-        ("2 workers", &s2),
-        ("2 workers zenoh", &s2z),
-    ] {
+    for (name, r) in &out {
+        let s = &r.stats;
         let n = s.shards.max(1) as f64;
         println!(
-            "{name}: {} shards, coordinator {:.1} us/shard (handling requests, verification included), \
-             {:.0} B/shard results + {:.0} B/shard assignments, {} fixtures re-derived",
+            "{}: {} shards in {} requests, coordinator {:.1} us/shard handling requests, \
+             {:.0} B/shard results + {:.0} B/shard assignments, {} results checked in full ({} fixtures re-derived)",
+            name.trim_end(),
             s.shards,
+            s.requests,
             s.handle_micros as f64 / n,
             s.result_bytes as f64 / n,
             s.assign_bytes as f64 / n,
+            s.results_rederived,
             s.fixtures_rederived
         );
     }
@@ -245,7 +315,7 @@ pub fn bench_main(a: &BenchArgs) -> Result<()> {
     let mut z = round_trips_zenoh(&msg, a.round_trips)?;
     let mut i = round_trips_iox(&msg, a.round_trips)?;
     println!(
-        "round trip of a {} B result message (reply: ack), {} samples:",
+        "round trip of a {} B result message (reply: idle), {} samples:",
         msg.len(),
         a.round_trips
     );

@@ -1,7 +1,7 @@
 //! Command-line arguments of `fixplan coordinator`, `fixplan worker` and
 //! the `--workers` option of `fixplan run`, and their entry points.
 
-use super::{ClusterOptions, TransportChoice};
+use super::{ClusterOptions, TransportChoice, VerifyPolicy};
 use crate::progress::Totals;
 use crate::run::{run_loaded_with, RunOptions};
 use anyhow::{Context, Result};
@@ -85,6 +85,13 @@ pub struct CoordinatorArgs {
     /// again.
     #[arg(long, value_name = "SECONDS", default_value_t = 300)]
     pub lease: u64,
+    /// How much of each shard result is re-derived before it is merged:
+    /// `sample` (a worker's results in full until 16 of its fixtures
+    /// checked out, then one result in 16), `all` (every fixture that
+    /// enters a part's top-k, in every result; about 45 us per small part
+    /// on the coordinator), or `1/N`.
+    #[arg(long, value_name = "sample|all|1/N", default_value = "sample")]
+    pub verify: VerifyPolicy,
     /// Worker processes to start on this host as well.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub workers: usize,
@@ -127,6 +134,10 @@ pub struct RunClusterArgs {
     /// With --workers: transport of shard requests and results.
     #[arg(long, value_name = "auto|zenoh|iceoryx2", default_value = "auto")]
     pub transport: TransportChoice,
+    /// With --workers: how much of each shard result is re-derived
+    /// (`sample`, `all` or `1/N`; see `fixplan coordinator --help`).
+    #[arg(long, value_name = "sample|all|1/N", default_value = "sample")]
+    pub verify: VerifyPolicy,
 }
 
 /// `fixplan run`, with `--workers N` through the cluster.
@@ -141,6 +152,7 @@ pub fn run_main(opts: &RunOptions, cluster: &RunClusterArgs) -> Result<Totals> {
         local_workers: n,
         worker_threads: opts.threads.map(|t| (t / n).max(1)),
         quiet: true,
+        verify: cluster.verify,
         ..ClusterOptions::default()
     });
     run_loaded_with(&catalog, &spec, opts, copts.as_ref())
@@ -178,6 +190,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         local_workers: a.workers,
         expected_threads: Some(a.expected_threads.unwrap_or(4 * cores)),
         quiet: a.quiet,
+        verify: a.verify,
         ..ClusterOptions::default()
     };
     run_loaded_with(&catalog, &spec, &opts, Some(&copts)).context("coordinator")

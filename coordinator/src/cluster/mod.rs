@@ -30,6 +30,7 @@ use fixplan_worker::zenoh_link::ZenohOptions;
 use fixplan_worker::{info, iox};
 use rayon::prelude::*;
 use runtime::Runtime;
+pub use state::VerifyPolicy;
 use state::{Core, PartDone, PartSlot, Settings, Stats};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -78,6 +79,8 @@ pub struct ClusterOptions {
     pub expected_threads: Option<usize>,
     /// Less logging (local workers too).
     pub quiet: bool,
+    /// How much of each result is re-derived before it is merged.
+    pub verify: VerifyPolicy,
 }
 
 impl Default for ClusterOptions {
@@ -94,6 +97,7 @@ impl Default for ClusterOptions {
             worker_exe: None,
             expected_threads: None,
             quiet: false,
+            verify: VerifyPolicy::default(),
         }
     }
 }
@@ -226,6 +230,7 @@ pub fn run_distributed(
         .map(|(_, p, _)| (p.combination_count(), p.segments.len()))
         .collect();
     let sizes = plan::shard_sizes(&est, slots, opts.shard_size);
+    let batch_cost = plan::batch_cost(&est, slots);
     let slots_in: Vec<_> = dist
         .into_iter()
         .zip(sizes)
@@ -269,6 +274,8 @@ pub fn run_distributed(
         iox,
         lease: opts.lease,
         min_workers: opts.min_workers,
+        verify: opts.verify,
+        batch_cost,
     };
     let (core, index) = Core::new(settings, slots_in, tx);
     let core = Arc::new(core);

@@ -39,6 +39,20 @@ pub fn shard_sizes(parts: &[(u64, usize)], slots: usize, fixed: Option<u64>) -> 
         .collect()
 }
 
+/// Batches per expected worker thread: assignments group small shards up
+/// to about `total cost / (slots x BATCHES_PER_SLOT)`, so that a catalogue
+/// of small parts needs tens of round trips per worker, not one per part.
+pub const BATCHES_PER_SLOT: u64 = 32;
+
+/// The most cost one assignment carries (it always carries one shard,
+/// however big).
+pub fn batch_cost(parts: &[(u64, usize)], slots: usize) -> u64 {
+    let total: u64 = parts.iter().map(|&(c, s)| cost(c, s)).sum();
+    total
+        .div_ceil((slots.max(1) as u64) * BATCHES_PER_SLOT)
+        .max(1)
+}
+
 /// The shards of `0..count`: `size` combinations each, the last shorter.
 pub fn ranges(count: u64, size: u64) -> Vec<Range<u64>> {
     let size = size.max(1);

@@ -7,8 +7,8 @@ use super::verify;
 use fixplan_core::{merge, Fixture, PartialResult, PreparedPart};
 use fixplan_worker::part_input::short_hex;
 use fixplan_worker::protocol::{
-    decode, encode, encode_refused, refusal_for, Assign, DataPath, Digest, Frame, Join, Msg,
-    ShardDone, ShardFailed, TransportChoice, Welcome,
+    decode, encode, encode_refused, refusal_for, Assign, DataPath, Digest, Frame, Join, Msg, Next,
+    Outcome, ShardDone, ShardFailed, TransportChoice, Welcome,
 };
 use fixplan_worker::{info, warn};
 use std::collections::{HashMap, HashSet, VecDeque};
@@ -40,6 +40,8 @@ enum ShardStatus {
 struct ShardSlot {
     part: usize,
     range: Range<u64>,
+    /// [`super::plan::cost`] of the shard, for batching.
+    cost: u64,
     status: ShardStatus,
 }
 
@@ -48,6 +50,70 @@ struct WorkerSlot {
     leased: HashSet<u64>,
     got_done: bool,
     shards: u64,
+    threads: u64,
+    /// Fixtures of this worker re-derived so far (until there are
+    /// [`FULL_CHECKS`], all its results are checked in full).
+    rederived: u64,
+}
+
+/// How much of a shard result the coordinator re-derives before merging.
+/// Structural checks (range, counts, order, fixtures inside the shard,
+/// finite scores) are made on every result whatever the policy.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VerifyPolicy {
+    /// Every fixture that would enter its part's top-k, in every result.
+    All,
+    /// Every such fixture of a worker's results until [`FULL_CHECKS`] of
+    /// its fixtures have checked out (a worker built or running
+    /// differently shows up there), then of one result in `one_in`, picked
+    /// by a hash of the shard id (the same shards whichever worker runs
+    /// them).
+    Sample { one_in: u64 },
+}
+
+/// Fixtures of each worker re-derived before [`VerifyPolicy::Sample`]
+/// starts sampling its results.
+pub const FULL_CHECKS: u64 = 16;
+
+impl Default for VerifyPolicy {
+    fn default() -> Self {
+        VerifyPolicy::Sample { one_in: 16 }
+    }
+}
+
+impl std::str::FromStr for VerifyPolicy {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "all" => Ok(VerifyPolicy::All),
+            "sample" => Ok(VerifyPolicy::default()),
+            _ => s
+                .strip_prefix("1/")
+                .and_then(|n| n.parse::<u64>().ok())
+                .filter(|&n| n >= 1)
+                .map(|one_in| VerifyPolicy::Sample { one_in })
+                .ok_or_else(|| format!("unknown verification {s:?} (all, sample, or 1/N)")),
+        }
+    }
+}
+
+impl VerifyPolicy {
+    fn deep(self, shard_id: u64, rederived_from_worker: u64) -> bool {
+        match self {
+            VerifyPolicy::All => true,
+            VerifyPolicy::Sample { one_in } => {
+                rederived_from_worker < FULL_CHECKS
+                    || splitmix64(shard_id).is_multiple_of(one_in.max(1))
+            }
+        }
+    }
+}
+
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// Run-wide figures (for the benchmark and the final log line).
@@ -64,6 +130,11 @@ pub struct Stats {
     /// Bytes of results and assignments (frames, as sent).
     pub result_bytes: u64,
     pub assign_bytes: u64,
+    /// Results checked in full (every fixture entering the top-k re-derived).
+    pub results_rederived: u64,
+    /// Requests (reports) answered, and shards handed out.
+    pub requests: u64,
+    pub assigned: u64,
     /// Time spent in the coordinator handling requests.
     pub handle_micros: u64,
     /// Worker time enumerating, as reported.
@@ -78,6 +149,10 @@ pub struct Settings {
     pub iox: Option<DataPath>,
     pub lease: Duration,
     pub min_workers: usize,
+    pub verify: VerifyPolicy,
+    /// Cost of work ([`super::plan::cost`]) handed out in one assignment at
+    /// most: small shards travel together up to it.
+    pub batch_cost: u64,
 }
 
 pub(crate) struct State {
@@ -88,6 +163,9 @@ pub(crate) struct State {
     started: bool,
     open_parts: usize,
     banned: HashSet<String>,
+    /// Cost of the shards in the queue (batches shrink as it runs out, so
+    /// the last ones end together).
+    queued_cost: u64,
     pub stats: Stats,
 }
 
@@ -115,17 +193,22 @@ impl Core {
             started: false,
             open_parts: 0,
             banned: HashSet::new(),
+            queued_cost: 0,
             stats: Stats::default(),
         };
         let mut index = Vec::new();
         for (i, mut slot, ranges) in parts {
             let p = st.parts.len();
             slot.left = ranges.len();
+            let segments = slot.prep.segments.len();
             for r in ranges {
+                let cost = super::plan::cost(r.end - r.start, segments);
                 st.queue.push_back(st.shards.len() as u64);
+                st.queued_cost += cost;
                 st.shards.push(ShardSlot {
                     part: p,
                     range: r,
+                    cost,
                     status: ShardStatus::Queued,
                 });
             }
@@ -175,7 +258,8 @@ impl Core {
                 encode_refused("refused: unexpected message")
             }
             Ok(Frame::Msg(m)) => {
-                let is_result = matches!(m, Msg::Result(_));
+                let has_results =
+                    matches!(&m, Msg::Report { outcomes, .. } if !outcomes.is_empty());
                 let reply = match self.on_msg(m, part_index) {
                     Ok(r) => r,
                     Err(reason) => return encode_refused(&reason),
@@ -185,9 +269,15 @@ impl Core {
                     Err(e) => encode_refused(&format!("refused: {e}")),
                 };
                 let mut st = self.lock();
-                if is_result {
+                st.stats.requests += 1;
+                if has_results {
                     st.stats.result_bytes += bytes.len() as u64;
-                } else if matches!(reply, Msg::Assign(_)) {
+                }
+                if let Msg::Reply {
+                    next: Next::Work(_),
+                    ..
+                } = reply
+                {
                     st.stats.assign_bytes += out.len() as u64;
                 }
                 out
@@ -200,18 +290,31 @@ impl Core {
     /// The reply, or the reason of a refusal.
     fn on_msg(&self, m: Msg, part_index: &[usize]) -> Result<Msg, String> {
         let banned = |w: &str| self.lock().banned.contains(w);
+        let refusal =
+            |w: &str| format!("refused: worker {w} sent results that failed verification");
         match m {
-            Msg::Join(j) if banned(&j.worker) => Err(format!(
-                "refused: worker {} sent results that failed verification",
-                j.worker
-            )),
-            Msg::Pull { worker } if banned(&worker) => Err(format!(
-                "refused: worker {worker} sent results that failed verification"
-            )),
+            Msg::Join(j) if banned(&j.worker) => Err(refusal(&j.worker)),
+            Msg::Report { worker, .. } if banned(&worker) => Err(refusal(&worker)),
             Msg::Join(j) => self.join(j),
-            Msg::Pull { worker } => Ok(self.pull(&worker)),
-            Msg::Result(r) => Ok(self.result(*r, part_index)),
-            Msg::Failed(f) => Ok(self.failed(f, part_index)),
+            Msg::Report { worker, outcomes } => {
+                let mut notes = Vec::new();
+                for o in outcomes {
+                    let (id, taken) = match o {
+                        Outcome::Done(r) => (r.shard_id, self.result(*r, part_index)),
+                        Outcome::Failed(f) => (f.shard_id, self.failed(f, part_index)),
+                    };
+                    if let Err(note) = taken {
+                        notes.push(format!("shard {id} not taken: {note}"));
+                    }
+                }
+                if banned(&worker) {
+                    return Err(refusal(&worker));
+                }
+                Ok(Msg::Reply {
+                    notes,
+                    next: self.next_work(&worker),
+                })
+            }
             other => {
                 warn!(
                     ROLE,
@@ -248,7 +351,10 @@ impl Core {
         };
         let mut st = self.lock();
         if st.open_parts == 0 {
-            return Ok(Msg::Done);
+            return Ok(Msg::Reply {
+                notes: Vec::new(),
+                next: Next::Done,
+            });
         }
         st.stats.workers_joined += 1;
         let how = if data == DataPath::Zenoh {
@@ -271,6 +377,8 @@ impl Core {
                 leased: HashSet::new(),
                 got_done: false,
                 shards: 0,
+                threads: u64::from(j.threads.max(1)),
+                rederived: 0,
             },
         );
         if let Some(old) = old {
@@ -283,19 +391,24 @@ impl Core {
         }))
     }
 
-    fn pull(&self, worker: &str) -> Msg {
+    /// The next assignment of a worker that has just reported (and so
+    /// holds no shard any more).
+    fn next_work(&self, worker: &str) -> Next {
         let mut st = self.lock();
         let st = &mut *st;
         let Some(w) = st.workers.get_mut(worker) else {
-            return Msg::Rejoin;
+            return Next::Rejoin;
         };
+        // Anything still leased to it went out in a reply it never got.
+        let lost: Vec<u64> = w.leased.drain().collect();
         if st.open_parts == 0 {
             w.got_done = true;
-            return Msg::Done;
+            return Next::Done;
         }
+        requeue(st, lost.into_iter());
         if !st.started {
             if st.workers.len() < self.settings.min_workers {
-                return Msg::Idle { retry_ms: 200 };
+                return Next::Idle { retry_ms: 200 };
             }
             st.started = true;
             info!(
@@ -305,7 +418,18 @@ impl Core {
                 st.shards.len()
             );
         }
-        while let Some(id) = st.queue.pop_front() {
+        // Guided self-scheduling: a batch of about the cost left divided
+        // among twice the threads, at most `batch_cost`, so batches shrink
+        // towards the end and the workers finish together.
+        let threads: u64 = st.workers.values().map(|w| w.threads).sum();
+        let limit =
+            (st.queued_cost / (2 * threads.max(1))).clamp(1, self.settings.batch_cost.max(1));
+        let mut batch = Vec::new();
+        let mut cost = 0;
+        while cost < limit {
+            let Some(id) = st.queue.pop_front() else {
+                break;
+            };
             let sh = &mut st.shards[id as usize];
             if sh.status != ShardStatus::Queued {
                 continue;
@@ -314,8 +438,10 @@ impl Core {
                 worker: worker.to_string(),
                 until: Instant::now() + self.settings.lease,
             };
+            st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
+            cost += sh.cost;
             let Some(w) = st.workers.get_mut(worker) else {
-                return Msg::Rejoin;
+                return Next::Rejoin;
             };
             w.leased.insert(id);
             let part = &st.parts[sh.part];
@@ -324,19 +450,24 @@ impl Core {
             } else {
                 None
             };
-            return Msg::Assign(Assign {
+            batch.push(Assign {
                 shard_id: id,
                 digest: part.digest,
                 range: sh.range.clone(),
                 input,
             });
         }
-        // Short: the other shards may be done any moment, and then this
-        // worker learns at once that the run is over.
-        Msg::Idle { retry_ms: 5 }
+        if batch.is_empty() {
+            // Short: the other shards may be done any moment, and then this
+            // worker learns at once that the run is over.
+            return Next::Idle { retry_ms: 5 };
+        }
+        st.stats.assigned += batch.len() as u64;
+        Next::Work(batch)
     }
 
-    fn result(&self, r: ShardDone, part_index: &[usize]) -> Msg {
+    /// Takes one shard result: `Err(note)` when it is not merged.
+    fn result(&self, r: ShardDone, part_index: &[usize]) -> Result<(), String> {
         let mut st = self.lock();
         let st = &mut *st;
         st.stats.results += 1;
@@ -345,20 +476,18 @@ impl Core {
                 ROLE,
                 "dropped a result for unknown shard {} from worker {}", r.shard_id, r.worker
             );
-            return Msg::Ack {
-                accepted: false,
-                note: "unknown shard".into(),
-            };
+            return Err("unknown shard".into());
         };
         if sh.status == ShardStatus::Done {
             st.stats.duplicates += 1;
-            return Msg::Ack {
-                accepted: false,
-                note: "duplicate: this shard is already done".into(),
-            };
+            return Err("duplicate: this shard is already done".into());
         }
         let (p, range) = (sh.part, sh.range.clone());
         let part = &st.parts[p];
+        let deep = self.settings.verify.deep(
+            r.shard_id,
+            st.workers.get(&r.worker).map_or(0, |w| w.rederived),
+        );
         let check = if r.digest != part.digest {
             Err(format!(
                 "result for part {}, shard is of part {}",
@@ -366,7 +495,7 @@ impl Core {
                 short_hex(&part.digest)
             ))
         } else {
-            verify::check(&part.prep, &range, &r.result, &part.top)
+            verify::check(&part.prep, &range, &r.result, &part.top, deep)
         };
         if let Some(w) = st.workers.get_mut(&r.worker) {
             w.leased.remove(&r.shard_id);
@@ -388,17 +517,16 @@ impl Core {
                 }
                 st.banned.insert(r.worker.clone());
                 requeue(st, std::iter::once(r.shard_id));
-                return Msg::Ack {
-                    accepted: false,
-                    note: format!("rejected: {e}"),
-                };
+                return Err(format!("rejected: {e}"));
             }
         };
         st.stats.fixtures_rederived += checked as u64;
+        st.stats.results_rederived += u64::from(deep);
         st.stats.worker_micros += r.micros;
         st.shards[r.shard_id as usize].status = ShardStatus::Done;
         if let Some(w) = st.workers.get_mut(&r.worker) {
             w.shards += 1;
+            w.rederived += checked as u64;
         }
         let part = &mut st.parts[p];
         let top_k = part.prep.top_k;
@@ -418,26 +546,17 @@ impl Core {
                 .unwrap_or_else(|e| e.into_inner())
                 .send((idx, Ok((prep, merged))));
         }
-        Msg::Ack {
-            accepted: true,
-            note: String::new(),
-        }
+        Ok(())
     }
 
-    fn failed(&self, f: ShardFailed, part_index: &[usize]) -> Msg {
+    fn failed(&self, f: ShardFailed, part_index: &[usize]) -> Result<(), String> {
         let mut st = self.lock();
         let st = &mut *st;
         let Some(sh) = st.shards.get(f.shard_id as usize) else {
-            return Msg::Ack {
-                accepted: false,
-                note: "unknown shard".into(),
-            };
+            return Err("unknown shard".into());
         };
         if sh.status == ShardStatus::Done {
-            return Msg::Ack {
-                accepted: false,
-                note: "duplicate".into(),
-            };
+            return Err("duplicate".into());
         }
         let p = sh.part;
         if let Some(w) = st.workers.get_mut(&f.worker) {
@@ -461,10 +580,7 @@ impl Core {
                 .unwrap_or_else(|e| e.into_inner())
                 .send((idx, Err(f.message)));
         }
-        Msg::Ack {
-            accepted: true,
-            note: String::new(),
-        }
+        Ok(())
     }
 
     /// A worker's liveliness token vanished: its shards go back to the queue.
@@ -516,8 +632,9 @@ fn requeue(st: &mut State, ids: impl Iterator<Item = u64>) -> usize {
     let mut n = 0;
     for id in ids {
         if let Some(sh) = st.shards.get_mut(id as usize) {
-            if sh.status != ShardStatus::Done {
+            if sh.status != ShardStatus::Done && sh.status != ShardStatus::Queued {
                 sh.status = ShardStatus::Queued;
+                st.queued_cost += sh.cost;
                 st.queue.push_front(id);
                 st.stats.requeued += 1;
                 n += 1;
@@ -531,13 +648,130 @@ fn kind(m: &Msg) -> &'static str {
     match m {
         Msg::Join(_) => "join",
         Msg::Welcome(_) => "welcome",
-        Msg::Pull { .. } => "pull",
-        Msg::Assign(_) => "assign",
-        Msg::Idle { .. } => "idle",
-        Msg::Done => "done",
-        Msg::Rejoin => "rejoin",
-        Msg::Result(_) => "result",
-        Msg::Failed(_) => "failed",
-        Msg::Ack { .. } => "ack",
+        Msg::Report { .. } => "report",
+        Msg::Reply { .. } => "reply",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixplan_catalog::kit::{builtin_kit, METRIC_25};
+    use fixplan_core::{prepare, Params, Part};
+    use std::sync::mpsc::channel;
+
+    fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> (Core, Vec<usize>) {
+        let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
+        let slots = (0..parts)
+            .map(|i| {
+                let w = 100.0 + 10.0 * i as f64;
+                let part = Part {
+                    outline: vec![[0.0, 0.0], [w, 0.0], [w, 60.0], [0.0, 60.0]],
+                    access: vec![],
+                };
+                let prep = prepare(&part, &kit, &Params::default(), units).expect("prepare");
+                let ranges = super::super::plan::ranges(prep.combination_count(), shard);
+                let slot = PartSlot {
+                    prep: Arc::new(prep),
+                    input: Arc::new(vec![i as u8]),
+                    digest: [i as u8; 32],
+                    left: 0,
+                    partials: Vec::new(),
+                    top: Vec::new(),
+                    closed: false,
+                };
+                (i, slot, ranges)
+            })
+            .collect();
+        let settings = Settings {
+            run_id: "run".into(),
+            host_id: "host".into(),
+            transport: TransportChoice::Zenoh,
+            iox: None,
+            lease: Duration::from_secs(300),
+            min_workers: 1,
+            verify,
+            batch_cost: 1,
+        };
+        let (tx, rx) = channel();
+        // Parts never close in these tests; keep the channel open anyway.
+        std::mem::forget(rx);
+        Core::new(settings, slots, tx)
+    }
+
+    fn join(c: &Core, name: &str) {
+        let j = Join {
+            worker: name.into(),
+            host_id: "other".into(),
+            pid: 1,
+            threads: 1,
+            transport: TransportChoice::Zenoh,
+            software: "test".into(),
+        };
+        assert!(matches!(c.join(j), Ok(Msg::Welcome(_))));
+    }
+
+    fn ids(n: &Next) -> Vec<u64> {
+        match n {
+            Next::Work(b) => b.iter().map(|a| a.shard_id).collect(),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn shards_of_a_lost_reply_go_back_to_the_queue() {
+        let (c, _) = core(2, 8, VerifyPolicy::All);
+        join(&c, "w");
+        let first = ids(&c.next_work("w"));
+        assert!(!first.is_empty());
+        // The reply was lost: the worker reports again with no outcome.
+        let again = ids(&c.next_work("w"));
+        assert_eq!(again, first, "the same shards, handed out again");
+        assert_eq!(c.stats().requeued, first.len() as u64);
+        // An unknown worker is told to join.
+        assert_eq!(c.next_work("stranger"), Next::Rejoin);
+    }
+
+    #[test]
+    fn batches_shrink_as_the_queue_runs_out() {
+        let (mut c, _) = core(3, 4, VerifyPolicy::All);
+        let total = c.lock().queued_cost;
+        c.settings.batch_cost = total / 4;
+        join(&c, "w");
+        let mut sizes = Vec::new();
+        loop {
+            let n = c.next_work("w");
+            let Next::Work(b) = &n else { break };
+            let cost: u64 = b
+                .iter()
+                .map(|a| c.lock().shards[a.shard_id as usize].cost)
+                .sum();
+            sizes.push(cost);
+            // Drop the lease so the next call does not re-queue the batch.
+            c.lock().workers.get_mut("w").unwrap().leased.clear();
+            for a in b {
+                c.lock().shards[a.shard_id as usize].status = ShardStatus::Done;
+            }
+        }
+        assert!(sizes.len() >= 4, "{sizes:?}");
+        let max_shard = c.lock().shards.iter().map(|s| s.cost).max().unwrap();
+        assert!(sizes[0] <= total / 4 + max_shard, "{sizes:?}");
+        assert!(sizes.last() < sizes.first(), "{sizes:?}");
+        assert_eq!(sizes.iter().sum::<u64>(), total);
+    }
+
+    #[test]
+    fn sampling_checks_a_new_worker_in_full_then_one_result_in_n() {
+        let p = VerifyPolicy::Sample { one_in: 16 };
+        assert!((0..100).all(|id| p.deep(id, 0)));
+        assert!((0..100).all(|id| p.deep(id, FULL_CHECKS - 1)));
+        let hits = (0..16_000).filter(|&id| p.deep(id, FULL_CHECKS)).count();
+        assert!((800..1200).contains(&hits), "{hits}");
+        assert!((0..100).all(|id| VerifyPolicy::All.deep(id, 1000)));
+        assert_eq!("all".parse(), Ok(VerifyPolicy::All));
+        assert_eq!("1/4".parse(), Ok(VerifyPolicy::Sample { one_in: 4 }));
+        assert_eq!("sample".parse(), Ok(VerifyPolicy::default()));
+        assert!("1/0".parse::<VerifyPolicy>().is_err());
+        assert!("most".parse::<VerifyPolicy>().is_err());
     }
 }

@@ -38,12 +38,15 @@ pub fn enters(top: &[Fixture], top_k: usize, f: &Fixture) -> bool {
 }
 
 /// Checks a shard result against the shard it answers and the part's
-/// current top-k. Returns how many fixtures were re-derived.
+/// current top-k; `deep`: also re-derive every fixture that would enter
+/// the top-k (see [`super::state::VerifyPolicy`]). Returns how many
+/// fixtures were re-derived.
 pub fn check(
     prep: &PreparedPart,
     range: &Range<u64>,
     res: &PartialResult,
     top: &[Fixture],
+    deep: bool,
 ) -> Result<usize, String> {
     let count = prep.combination_count();
     if res.range != *range {
@@ -102,7 +105,7 @@ pub fn check(
         if !f.score.is_finite() {
             return Err(format!("fixture {i} has score {}", f.score));
         }
-        if enters(top, prep.top_k, f) {
+        if deep && enters(top, prep.top_k, f) {
             if !rederive(prep, f) {
                 return Err(format!(
                     "fixture {i} (segments {:?}, locators {:?}, score {}) does not check out: \
