@@ -7,6 +7,7 @@
 
 use crate::geometry::{cross, V2};
 use nalgebra::{Matrix3, Vector3};
+use std::sync::{Arc, LazyLock};
 
 /// A contact in the part frame: centre point (on the grown edge) and inward
 /// unit normal. The centre and the true contact point lie on the same line of
@@ -34,8 +35,12 @@ pub trait Metric: Send + Sync + std::fmt::Debug {
 pub struct MaxForceMetric {
     centroid: V2,
     rho: f64,
-    directions: Vec<Vector3<f64>>,
+    /// Shared by every part: computing the sphere was a fifth of `prepare`.
+    directions: Arc<[Vector3<f64>]>,
 }
+
+static SPHERE: LazyLock<Arc<[Vector3<f64>]>> =
+    LazyLock::new(|| fibonacci_sphere(MaxForceMetric::DIRECTIONS).into());
 
 impl MaxForceMetric {
     pub const DIRECTIONS: usize = 256;
@@ -44,7 +49,7 @@ impl MaxForceMetric {
         MaxForceMetric {
             centroid,
             rho,
-            directions: fibonacci_sphere(Self::DIRECTIONS),
+            directions: SPHERE.clone(),
         }
     }
 }

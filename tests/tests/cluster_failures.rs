@@ -67,6 +67,35 @@ fn worker_killed_mid_run_over_iceoryx2_loses_nothing() {
     assert!(shm_left().is_empty(), "{:?}", shm_left());
 }
 
+/// A worker that hangs (SIGSTOP: its process and connections stay up, so
+/// only the shard lease can tell) loses its shards to the other worker
+/// once their lease runs out, and the run still ends with the embedded
+/// results.
+#[test]
+fn a_hung_worker_loses_its_shards_when_their_lease_runs_out() {
+    let _g = serial();
+    let net = Net::new("hang");
+    let mut opts = net.options(TransportChoice::Zenoh);
+    opts.shard_size = Some(2);
+    opts.min_workers = 2;
+    opts.lease = Duration::from_secs(2);
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    let w1 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
+    let _w2 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
+    let d = run_distributed(inputs, opts).unwrap();
+    let stopper = std::thread::spawn(move || {
+        std::thread::sleep(Duration::from_millis(1500));
+        w1.signal("STOP");
+        w1
+    });
+    let (got, stats) = collect(d);
+    let w1 = stopper.join().expect("stopper thread");
+    drop(w1); // SIGKILL works on a stopped process
+    assert_eq!(got, want);
+    assert!(stats.requeued >= 1, "{stats:?}");
+}
+
 #[test]
 fn late_joiner_gets_work() {
     let _g = serial();

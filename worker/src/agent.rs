@@ -114,15 +114,9 @@ fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
 }
 
 /// One shard of an assignment, enumerated (on the calling rayon pool).
-fn shard_outcome(
-    worker: &str,
-    fault: Option<Fault>,
-    a: Assign,
-    prep: &Result<PreparedPart, String>,
-) -> Outcome {
+fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, String>) -> Outcome {
     let failed = |message: String| {
         Outcome::Failed(ShardFailed {
-            worker: worker.to_string(),
             shard_id: a.shard_id,
             message,
         })
@@ -143,7 +137,6 @@ fn shard_outcome(
                 }
             }
             Outcome::Done(Box::new(ShardDone {
-                worker: worker.to_string(),
                 shard_id: a.shard_id,
                 digest: a.digest,
                 micros: t0.elapsed().as_micros() as u64,
@@ -229,11 +222,10 @@ impl Agent {
                 (a, prep)
             })
             .collect();
-        let name = self.name.clone();
         let fault = self.opts.fault;
         let outcomes = self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| shard_outcome(&name, fault, a, &prep))
+                .map(|(a, prep)| shard_outcome(fault, a, &prep))
                 .collect::<Vec<_>>()
         });
         if let Some(Fault::SlowMs(ms)) = fault {

@@ -153,15 +153,25 @@ impl IoxClient {
     }
 }
 
-/// The coordinator's end: serves requests until `stop`, answering each
-/// with `handle(request bytes)`. `cleanup` asks for a dead-node sweep (a
-/// worker vanished). Returns when `stop` is set.
+/// How the coordinator steers its iceoryx2 server thread.
+#[derive(Debug, Default)]
+pub struct ServeControl {
+    /// Return as soon as seen.
+    pub stop: AtomicBool,
+    /// The run is ending: wait for requests in 1 ms steps instead of 100,
+    /// so that `stop` is seen at once (nothing else can wake the thread).
+    pub closing: AtomicBool,
+    /// A worker vanished: sweep dead nodes.
+    pub cleanup: AtomicBool,
+}
+
+/// The coordinator's end: serves requests until `ctl.stop`, answering each
+/// with `handle(request bytes)`.
 pub fn serve(
     prefix: &str,
     service: &str,
     ready: impl FnOnce(),
-    stop: &AtomicBool,
-    cleanup: &AtomicBool,
+    ctl: &ServeControl,
     mut handle: impl FnMut(&[u8]) -> Vec<u8>,
 ) -> Result<(), LinkError> {
     let node = node(prefix)?;
@@ -200,13 +210,19 @@ pub fn serve(
         .map_err(err("create response event"))?;
     let notifier = resp.notifier_builder().create().map_err(err("notifier"))?;
     ready();
-    while !stop.load(Ordering::SeqCst) {
-        if cleanup.swap(false, Ordering::SeqCst) {
+    while !ctl.stop.load(Ordering::SeqCst) {
+        if ctl.cleanup.swap(false, Ordering::SeqCst) {
             node.try_cleanup_dead_nodes();
         }
-        listener
-            .timed_wait(|_| {}, Duration::from_millis(20))
-            .map_err(err("wait"))?;
+        // Idle wake-ups cost ~40 us each (perf), so wait long while the run
+        // goes on: requests wake the thread anyway, and the last reports of
+        // a run (answered `Done`) come after `closing` is set.
+        let wait = if ctl.closing.load(Ordering::SeqCst) {
+            Duration::from_millis(1)
+        } else {
+            Duration::from_millis(100)
+        };
+        listener.timed_wait(|_| {}, wait).map_err(err("wait"))?;
         let mut answered = false;
         while let Some(active) = server.receive().map_err(err("receive"))? {
             let reply = handle(active.payload());

@@ -100,10 +100,9 @@ pub struct Assign {
     pub input: Option<Vec<u8>>,
 }
 
-/// A finished shard.
+/// A finished shard (of the worker named in the [`Msg::Report`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ShardDone {
-    pub worker: String,
     pub shard_id: u64,
     pub digest: Digest,
     pub micros: u64,
@@ -114,7 +113,6 @@ pub struct ShardDone {
 /// not prepare): the part becomes `invalid` with this message.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ShardFailed {
-    pub worker: String,
     pub shard_id: u64,
     pub message: String,
 }
@@ -311,7 +309,6 @@ mod tests {
         let m = Msg::Report {
             worker: "w".into(),
             outcomes: vec![Outcome::Done(Box::new(ShardDone {
-                worker: "w".into(),
                 shard_id: 1,
                 digest: [7; 32],
                 micros: 5,

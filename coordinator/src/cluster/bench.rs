@@ -11,7 +11,6 @@ use fixplan_worker::iox::{self, IoxClient};
 use fixplan_worker::protocol::{encode, Msg, Next, Outcome, ShardDone};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::Wait;
@@ -34,7 +33,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 20)]
     pub repeat: usize,
     /// How much of each result the coordinator re-derives: `sample` (each
-    /// worker's first results, then one in 16), `all`, or `1/N`.
+    /// worker's results until 16 of its fixtures check out, then one in
+    /// 32), `all`, or `1/N`.
     #[arg(long, value_name = "sample|all|1/N", default_value = "sample")]
     pub verify: VerifyPolicy,
 }
@@ -127,14 +127,17 @@ fn throughput(
         verify,
         ..ClusterOptions::default()
     };
+    let parts_in = parts.to_vec();
     let cpu0 = process_cpu_secs();
     let t0 = Instant::now();
-    let mut d = run_distributed(parts.to_vec(), opts)?;
+    let mut d = run_distributed(parts_in, opts)?;
     let mut first = None;
     let mut last = 0.0;
     let mut seen = 0;
     while seen < parts.len() {
-        let Some((_, r)) = d.next() else { break };
+        let Some((_, r)) = d.next_merged() else {
+            break;
+        };
         drop(r);
         seen += 1;
         last = t0.elapsed().as_secs_f64();
@@ -162,7 +165,6 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
     Ok(encode(&Msg::Report {
         worker: "bench".into(),
         outcomes: vec![Outcome::Done(Box::new(ShardDone {
-            worker: "bench".into(),
             shard_id: 1,
             digest: [0; 32],
             micros: 1,
@@ -213,19 +215,13 @@ fn round_trips_zenoh(msg: &[u8], n: usize) -> Result<Vec<f64>> {
 fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
     let prefix = iox::new_prefix();
     let service = "fixplan/bench".to_string();
-    let stop = Arc::new(AtomicBool::new(false));
-    let cleanup = Arc::new(AtomicBool::new(false));
+    let ctl = Arc::new(iox::ServeControl::default());
     let (ready_tx, ready_rx) = std::sync::mpsc::channel();
     let reply = encode(&Msg::Reply {
         notes: Vec::new(),
         next: Next::Idle { retry_ms: 1 },
     })?;
-    let (p, s, st, cl) = (
-        prefix.clone(),
-        service.clone(),
-        stop.clone(),
-        cleanup.clone(),
-    );
+    let (p, s, c) = (prefix.clone(), service.clone(), ctl.clone());
     let th = std::thread::spawn(move || {
         iox::serve(
             &p,
@@ -233,8 +229,7 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
             move || {
                 let _ = ready_tx.send(());
             },
-            &st,
-            &cl,
+            &c,
             |_| reply.clone(),
         )
     });
@@ -249,7 +244,8 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
         v.push(t.elapsed().as_secs_f64() * 1e6);
     }
     drop(client);
-    stop.store(true, std::sync::atomic::Ordering::SeqCst);
+    ctl.closing.store(true, std::sync::atomic::Ordering::SeqCst);
+    ctl.stop.store(true, std::sync::atomic::Ordering::SeqCst);
     let _ = th.join();
     iox::remove_prefix(&prefix);
     Ok(v.split_off(50))

@@ -87,7 +87,7 @@ pub struct CoordinatorArgs {
     pub lease: u64,
     /// How much of each shard result is re-derived before it is merged:
     /// `sample` (a worker's results in full until 16 of its fixtures
-    /// checked out, then one result in 16), `all` (every fixture that
+    /// checked out, then one result in 32), `all` (every fixture that
     /// enters a part's top-k, in every result; about 45 us per small part
     /// on the coordinator), or `1/N`.
     #[arg(long, value_name = "sample|all|1/N", default_value = "sample")]

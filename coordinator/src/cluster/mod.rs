@@ -31,7 +31,7 @@ use fixplan_worker::{info, iox};
 use rayon::prelude::*;
 use runtime::Runtime;
 pub use state::VerifyPolicy;
-use state::{Core, PartDone, PartSlot, Settings, Stats};
+use state::{Core, Finished, PartDone, PartSlot, Settings, Stats, WHOLE};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
@@ -110,8 +110,8 @@ fn cores() -> usize {
 
 /// Merged per-part results in input order, as the workers deliver them.
 pub struct Distributed {
-    rx: Receiver<PartDone>,
-    pending: BTreeMap<usize, Result<(Arc<PreparedPart>, PartialResult), String>>,
+    rx: Receiver<Vec<PartDone>>,
+    pending: BTreeMap<usize, Result<Finished, String>>,
     next: usize,
     total: usize,
     runtime: Option<Runtime>,
@@ -135,12 +135,14 @@ impl Distributed {
         }
         self.final_stats.clone()
     }
-}
 
-impl Iterator for Distributed {
-    type Item = (usize, Result<(PreparedPart, PartialResult), String>);
+    /// The next part's merged result, without preparing the part on the
+    /// coordinator (what a caller needs that only counts or ranks).
+    pub fn next_merged(&mut self) -> Option<(usize, Result<PartialResult, String>)> {
+        self.next_finished().map(|(i, r)| (i, r.map(|f| f.merged)))
+    }
 
-    fn next(&mut self) -> Option<Self::Item> {
+    fn next_finished(&mut self) -> Option<(usize, Result<Finished, String>)> {
         if self.next >= self.total {
             self.finish();
             return None;
@@ -149,13 +151,10 @@ impl Iterator for Distributed {
             if let Some(r) = self.pending.remove(&self.next) {
                 let i = self.next;
                 self.next += 1;
-                let r = r.map(|(p, m)| (Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()), m));
                 return Some((i, r));
             }
             match self.rx.recv_timeout(Duration::from_secs(30)) {
-                Ok((i, r)) => {
-                    self.pending.insert(i, r);
-                }
+                Ok(done) => self.pending.extend(done),
                 Err(RecvTimeoutError::Timeout) => {
                     info!(
                         "coordinator",
@@ -167,6 +166,24 @@ impl Iterator for Distributed {
                 Err(RecvTimeoutError::Disconnected) => return None,
             }
         }
+    }
+}
+
+impl Iterator for Distributed {
+    type Item = (usize, Result<(PreparedPart, PartialResult), String>);
+
+    /// The next part with its prepared form (for the report: plate
+    /// placement needs it), prepared here if the run did not need to.
+    fn next(&mut self) -> Option<Self::Item> {
+        let (i, r) = self.next_finished()?;
+        let r = r.and_then(|f| {
+            let prep = match f.prep {
+                Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
+                None => f.input.prepare().map_err(|e| e.to_string())?,
+            };
+            Ok((prep, f.merged))
+        });
+        Some((i, r))
     }
 }
 
@@ -182,16 +199,7 @@ pub fn run_distributed(
     fixplan_worker::log::init();
     iox::quiet_logs();
     let total = parts.len();
-    let (tx, rx) = channel::<PartDone>();
-    // Prepare every part here: the coordinator needs them to verify.
-    let prepared: Vec<_> = parts
-        .par_iter()
-        .map(|p| {
-            let prep = p.prepare().map_err(|e| e.to_string());
-            let bytes = p.encode().map_err(|e| e.to_string());
-            (prep, bytes)
-        })
-        .collect();
+    let (tx, rx) = channel::<Vec<PartDone>>();
     let threads = opts
         .worker_threads
         .unwrap_or_else(|| (cores() / opts.local_workers.max(1)).max(1));
@@ -200,22 +208,69 @@ pub fn run_distributed(
     } else {
         cores()
     });
-    let mut dist = Vec::new();
-    for (i, (prep, bytes)) in prepared.into_iter().enumerate() {
+    // Plan from estimates: a part that would be one shard anyway goes out
+    // whole and unprepared (preparing every part here cost the coordinator
+    // more than all else it does); only parts to be cut are prepared, for
+    // their exact combination count.
+    let est: Vec<(u64, usize)> = parts.iter().map(plan::estimate).collect();
+    let target = plan::target_cost(&est, slots);
+    let batch_cost = plan::batch_cost(&est, slots);
+    let whole: Vec<bool> = est
+        .iter()
+        .map(|&(c, n)| opts.shard_size.is_none() && plan::cost(c, n) <= target)
+        .collect();
+    let encoded: Vec<_> = parts
+        .par_iter()
+        .zip(whole.par_iter())
+        .map(|(p, &whole)| {
+            let prep = (!whole).then(|| p.prepare().map_err(|e| e.to_string()));
+            (prep, p.encode().map_err(|e| e.to_string()))
+        })
+        .collect();
+    let mut slots_in = Vec::new();
+    for (i, (source, (prep, bytes))) in parts.into_iter().zip(encoded).enumerate() {
         let bytes = bytes.map_err(|e| ClusterError::Input(i, e))?;
-        match prep {
-            Err(e) => {
-                let _ = tx.send((i, Err(e)));
+        let source = Arc::new(source);
+        let (prep, ranges, segments) = match prep {
+            None => (None, vec![WHOLE], est[i].1),
+            Some(Err(e)) => {
+                let _ = tx.send(vec![(i, Err(e))]);
+                continue;
             }
-            Ok(prep) if prep.combination_count() == 0 => {
-                let r = fixplan_worker::run_shard(&prep, 0..0);
-                let merged = fixplan_core::merge(prep.top_k, vec![r]);
-                let _ = tx.send((i, Ok((Arc::new(prep), merged))));
+            Some(Ok(prep)) => {
+                let (count, n) = (prep.combination_count(), prep.segments.len());
+                if count == 0 {
+                    let r = fixplan_worker::run_shard(&prep, 0..0);
+                    let merged = fixplan_core::merge(prep.top_k, vec![r]);
+                    let done = Finished {
+                        prep: Some(Arc::new(prep)),
+                        input: source,
+                        merged,
+                    };
+                    let _ = tx.send(vec![(i, Ok(done))]);
+                    continue;
+                }
+                let size = opts
+                    .shard_size
+                    .unwrap_or_else(|| plan::shard_size(target, count, n))
+                    .max(1);
+                (Some(Arc::new(prep)), plan::ranges(count, size), n)
             }
-            Ok(prep) => dist.push((i, prep, bytes)),
-        }
+        };
+        let slot = PartSlot {
+            digest: digest(&bytes),
+            top_k: source.params.top_k,
+            prep,
+            source,
+            input: Arc::new(bytes),
+            left: 0,
+            partials: Vec::new(),
+            top: Vec::new(),
+            closed: false,
+        };
+        slots_in.push((i, slot, ranges, segments));
     }
-    if dist.is_empty() {
+    if slots_in.is_empty() {
         return Ok(Distributed {
             rx,
             pending: BTreeMap::new(),
@@ -225,29 +280,6 @@ pub fn run_distributed(
             final_stats: Stats::default(),
         });
     }
-    let est: Vec<(u64, usize)> = dist
-        .iter()
-        .map(|(_, p, _)| (p.combination_count(), p.segments.len()))
-        .collect();
-    let sizes = plan::shard_sizes(&est, slots, opts.shard_size);
-    let batch_cost = plan::batch_cost(&est, slots);
-    let slots_in: Vec<_> = dist
-        .into_iter()
-        .zip(sizes)
-        .map(|((i, prep, bytes), size)| {
-            let ranges = plan::ranges(prep.combination_count(), size);
-            let slot = PartSlot {
-                digest: digest(&bytes),
-                prep: Arc::new(prep),
-                input: Arc::new(bytes),
-                left: 0,
-                partials: Vec::new(),
-                top: Vec::new(),
-                closed: false,
-            };
-            (i, slot, ranges)
-        })
-        .collect();
     let iox = if opts.transport == TransportChoice::Zenoh {
         None
     } else {

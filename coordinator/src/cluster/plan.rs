@@ -20,23 +20,40 @@ pub fn cost(combinations: u64, segments: usize) -> u64 {
     combinations.saturating_mul(segments.max(1) as u64)
 }
 
+/// The cost one shard should have: the catalogue's cost spread over
+/// [`SHARDS_PER_SLOT`] shards per expected worker thread.
+pub fn target_cost(parts: &[(u64, usize)], slots: usize) -> u64 {
+    let total: u64 = parts.iter().map(|&(c, s)| cost(c, s)).sum();
+    let target_shards = (slots.max(1) as u64) * SHARDS_PER_SLOT;
+    total.div_ceil(target_shards).max(1)
+}
+
+/// Combinations per shard of one part for a target shard cost.
+pub fn shard_size(target: u64, combinations: u64, segments: usize) -> u64 {
+    (target / segments.max(1) as u64)
+        .max(MIN_COMBINATIONS)
+        .min(combinations.max(1))
+}
+
 /// Combinations per shard for each part (`(combinations, segments)`),
 /// given the worker threads expected in all.
 pub fn shard_sizes(parts: &[(u64, usize)], slots: usize, fixed: Option<u64>) -> Vec<u64> {
     if let Some(s) = fixed {
         return parts.iter().map(|_| s.max(1)).collect();
     }
-    let total: u64 = parts.iter().map(|&(c, s)| cost(c, s)).sum();
-    let target_shards = (slots.max(1) as u64) * SHARDS_PER_SLOT;
-    let target_cost = total.div_ceil(target_shards).max(1);
+    let target = target_cost(parts, slots);
     parts
         .iter()
-        .map(|&(c, s)| {
-            (target_cost / s.max(1) as u64)
-                .max(MIN_COMBINATIONS)
-                .min(c.max(1))
-        })
+        .map(|&(c, s)| shard_size(target, c, s))
         .collect()
+}
+
+/// A part's cost before it is prepared, from its outline and access
+/// regions: every edge taken for one usable segment (trimming drops some,
+/// access regions can split some), as `(combinations, segments)`.
+pub fn estimate(input: &fixplan_worker::part_input::PartInput) -> (u64, usize) {
+    let n = input.part.outline.len() + input.part.access.iter().map(Vec::len).sum::<usize>();
+    (fixplan_core::combinations::combination_count(n), n)
 }
 
 /// Batches per expected worker thread: assignments group small shards up

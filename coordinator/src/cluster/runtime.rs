@@ -10,7 +10,7 @@ use fixplan_worker::iox;
 use fixplan_worker::protocol::DataPath;
 use fixplan_worker::warn;
 use fixplan_worker::zenoh_link::{open, Keys, ZenohOptions};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -21,7 +21,7 @@ use super::ClusterError;
 
 pub struct Runtime {
     pub core: Arc<Core>,
-    stop: Arc<AtomicBool>,
+    ctl: Arc<iox::ServeControl>,
     threads: Vec<JoinHandle<()>>,
     session: zenoh::Session,
     iox_prefix: Option<String>,
@@ -46,19 +46,13 @@ impl Runtime {
         key_prefix: &str,
     ) -> Result<Runtime, ClusterError> {
         let keys = Keys::new(key_prefix);
-        let stop = Arc::new(AtomicBool::new(false));
-        let cleanup = Arc::new(AtomicBool::new(false));
+        let ctl = Arc::new(iox::ServeControl::default());
         let mut threads = Vec::new();
         let mut iox_prefix = None;
         // iceoryx2 first: a worker may be told about it as soon as zenoh is up.
         if let Some(DataPath::Iceoryx2 { prefix, service }) = core.settings.iox.clone() {
             let (ready_tx, ready_rx) = std::sync::mpsc::channel::<Result<(), String>>();
-            let (c, st, cl, pi) = (
-                core.clone(),
-                stop.clone(),
-                cleanup.clone(),
-                part_index.clone(),
-            );
+            let (c, ct, pi) = (core.clone(), ctl.clone(), part_index.clone());
             let p2 = prefix.clone();
             threads.push(std::thread::spawn(move || {
                 let ready_tx2 = ready_tx.clone();
@@ -66,8 +60,7 @@ impl Runtime {
                     &p2,
                     &service,
                     move || drop(ready_tx2.send(Ok(()))),
-                    &st,
-                    &cl,
+                    &ct,
                     |b| c.handle(b, &pi),
                 );
                 if let Err(e) = r {
@@ -107,7 +100,7 @@ impl Runtime {
             keep.push(Box::new(q));
         }
         let c = core.clone();
-        let cl = cleanup.clone();
+        let ct = ctl.clone();
         let alive_prefix = format!("{}/alive/", keys.prefix);
         let sub = session
             .liveliness()
@@ -117,7 +110,7 @@ impl Runtime {
                 if sample.kind() == SampleKind::Delete {
                     let k = sample.key_expr().as_str();
                     c.worker_lost(k.strip_prefix(&alive_prefix).unwrap_or(k));
-                    cl.store(true, Ordering::SeqCst);
+                    ct.cleanup.store(true, Ordering::SeqCst);
                 }
             })
             .wait()
@@ -129,9 +122,9 @@ impl Runtime {
             .wait()
             .map_err(zerr)?;
         keep.push(Box::new(token));
-        let (c, st) = (core.clone(), stop.clone());
+        let (c, ct) = (core.clone(), ctl.clone());
         threads.push(std::thread::spawn(move || {
-            while !st.load(Ordering::SeqCst) {
+            while !ct.stop.load(Ordering::SeqCst) {
                 c.expire_leases();
                 // Woken early by `shutdown` (unpark), so stopping costs no wait.
                 std::thread::park_timeout(Duration::from_millis(100));
@@ -139,7 +132,7 @@ impl Runtime {
         }));
         Ok(Runtime {
             core,
-            stop,
+            ctl,
             threads,
             session,
             iox_prefix,
@@ -158,9 +151,10 @@ impl Runtime {
 
     /// Tells the workers the run is over (within `grace`), then stops.
     pub fn shutdown(&mut self, grace: Duration) {
-        if self.stop.load(Ordering::SeqCst) {
+        if self.ctl.stop.load(Ordering::SeqCst) {
             return;
         }
+        self.ctl.closing.store(true, Ordering::SeqCst);
         let until = Instant::now() + grace;
         while !self.core.all_told() && Instant::now() < until {
             std::thread::sleep(Duration::from_millis(2));
@@ -172,7 +166,7 @@ impl Runtime {
                     .max(Duration::from_millis(500)),
             );
         }
-        self.stop.store(true, Ordering::SeqCst);
+        self.ctl.stop.store(true, Ordering::SeqCst);
         for t in &self.threads {
             t.thread().unpark();
         }

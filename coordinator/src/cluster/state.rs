@@ -5,7 +5,7 @@
 
 use super::verify;
 use fixplan_core::{merge, Fixture, PartialResult, PreparedPart};
-use fixplan_worker::part_input::short_hex;
+use fixplan_worker::part_input::{short_hex, PartInput};
 use fixplan_worker::protocol::{
     decode, encode, encode_refused, refusal_for, Assign, DataPath, Digest, Frame, Join, Msg, Next,
     Outcome, ShardDone, ShardFailed, TransportChoice, Welcome,
@@ -18,10 +18,28 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// A finished part: merged result, or the message of why it failed.
-pub type PartDone = (usize, Result<(Arc<PreparedPart>, PartialResult), String>);
+pub type PartDone = (usize, Result<Finished, String>);
+
+/// A part's merged result, with the part prepared if the coordinator had
+/// to prepare it (to cut it into shards or to re-derive its fixtures).
+#[derive(Debug)]
+pub struct Finished {
+    pub prep: Option<Arc<PreparedPart>>,
+    pub input: Arc<PartInput>,
+    pub merged: PartialResult,
+}
+
+/// Shard range meaning "every combination of the part": a part that
+/// stays whole is sent without the coordinator preparing it (it does not
+/// know the exact count); the worker's enumeration stops at the count.
+pub const WHOLE: Range<u64> = 0..u64::MAX;
 
 pub(crate) struct PartSlot {
-    pub prep: Arc<PreparedPart>,
+    /// `None` until needed: small parts go out whole and are prepared here
+    /// only when a result of theirs is re-derived.
+    pub prep: Option<Arc<PreparedPart>>,
+    pub source: Arc<PartInput>,
+    pub top_k: usize,
     pub input: Arc<Vec<u8>>,
     pub digest: Digest,
     pub left: usize,
@@ -77,7 +95,7 @@ pub const FULL_CHECKS: u64 = 16;
 
 impl Default for VerifyPolicy {
     fn default() -> Self {
-        VerifyPolicy::Sample { one_in: 16 }
+        VerifyPolicy::Sample { one_in: 32 }
     }
 }
 
@@ -135,7 +153,8 @@ pub struct Stats {
     /// Requests (reports) answered, and shards handed out.
     pub requests: u64,
     pub assigned: u64,
-    /// Time spent in the coordinator handling requests.
+    /// CPU time of the coordinator's threads handling requests (thread
+    /// CPU clock: time the thread was preempted does not count).
     pub handle_micros: u64,
     /// Worker time enumerating, as reported.
     pub worker_micros: u64,
@@ -166,13 +185,17 @@ pub(crate) struct State {
     /// Cost of the shards in the queue (batches shrink as it runs out, so
     /// the last ones end together).
     queued_cost: u64,
+    /// Parts finished while answering the current request.
+    done: Vec<PartDone>,
     pub stats: Stats,
 }
 
 pub struct Core {
     pub settings: Settings,
     st: Mutex<State>,
-    tx: Mutex<Sender<PartDone>>,
+    /// Finished parts go to the consumer in one message per request (a
+    /// wake-up per part cost the coordinator more than merging them).
+    tx: Mutex<Sender<Vec<PartDone>>>,
 }
 
 const ROLE: &str = "coordinator";
@@ -182,8 +205,8 @@ impl Core {
     /// parts to distribute.
     pub(crate) fn new(
         settings: Settings,
-        parts: Vec<(usize, PartSlot, Vec<Range<u64>>)>,
-        tx: Sender<PartDone>,
+        parts: Vec<(usize, PartSlot, Vec<Range<u64>>, usize)>,
+        tx: Sender<Vec<PartDone>>,
     ) -> (Core, Vec<usize>) {
         let mut st = State {
             parts: Vec::new(),
@@ -194,15 +217,20 @@ impl Core {
             open_parts: 0,
             banned: HashSet::new(),
             queued_cost: 0,
+            done: Vec::new(),
             stats: Stats::default(),
         };
         let mut index = Vec::new();
-        for (i, mut slot, ranges) in parts {
+        for (i, mut slot, ranges, segments) in parts {
             let p = st.parts.len();
             slot.left = ranges.len();
-            let segments = slot.prep.segments.len();
             for r in ranges {
-                let cost = super::plan::cost(r.end - r.start, segments);
+                let combinations = if r == WHOLE {
+                    fixplan_core::combinations::combination_count(segments)
+                } else {
+                    r.end - r.start
+                };
+                let cost = super::plan::cost(combinations, segments);
                 st.queue.push_back(st.shards.len() as u64);
                 st.queued_cost += cost;
                 st.shards.push(ShardSlot {
@@ -247,7 +275,7 @@ impl Core {
     /// Answers one request. Never panics on input: unreadable frames are
     /// logged and answered with a refusal.
     pub fn handle(&self, bytes: &[u8], part_index: &[usize]) -> Vec<u8> {
-        let t0 = Instant::now();
+        let t0 = thread_cpu_micros();
         let reply = match decode(bytes) {
             Err(e) => {
                 warn!(ROLE, "dropped a message: {e}");
@@ -260,31 +288,42 @@ impl Core {
             Ok(Frame::Msg(m)) => {
                 let has_results =
                     matches!(&m, Msg::Report { outcomes, .. } if !outcomes.is_empty());
-                let reply = match self.on_msg(m, part_index) {
-                    Ok(r) => r,
-                    Err(reason) => return encode_refused(&reason),
-                };
-                let out = match encode(&reply) {
-                    Ok(b) => b,
-                    Err(e) => encode_refused(&format!("refused: {e}")),
-                };
-                let mut st = self.lock();
-                st.stats.requests += 1;
-                if has_results {
-                    st.stats.result_bytes += bytes.len() as u64;
+                match self.on_msg(m, part_index) {
+                    Ok(reply) => self.encode_reply(&reply, has_results, bytes.len()),
+                    Err(reason) => encode_refused(&reason),
                 }
-                if let Msg::Reply {
-                    next: Next::Work(_),
-                    ..
-                } = reply
-                {
-                    st.stats.assign_bytes += out.len() as u64;
-                }
-                out
             }
         };
-        self.lock().stats.handle_micros += t0.elapsed().as_micros() as u64;
+        let done = {
+            let mut st = self.lock();
+            st.stats.handle_micros += thread_cpu_micros().saturating_sub(t0);
+            std::mem::take(&mut st.done)
+        };
+        if !done.is_empty() {
+            let _ = self.tx.lock().unwrap_or_else(|e| e.into_inner()).send(done);
+        }
         reply
+    }
+
+    /// Encodes a reply, counting the bytes of results in and work out.
+    fn encode_reply(&self, reply: &Msg, has_results: bool, request_len: usize) -> Vec<u8> {
+        let out = match encode(reply) {
+            Ok(b) => b,
+            Err(e) => encode_refused(&format!("refused: {e}")),
+        };
+        let mut st = self.lock();
+        st.stats.requests += 1;
+        if has_results {
+            st.stats.result_bytes += request_len as u64;
+        }
+        if let Msg::Reply {
+            next: Next::Work(_),
+            ..
+        } = reply
+        {
+            st.stats.assign_bytes += out.len() as u64;
+        }
+        out
     }
 
     /// The reply, or the reason of a refusal.
@@ -300,8 +339,8 @@ impl Core {
                 let mut notes = Vec::new();
                 for o in outcomes {
                     let (id, taken) = match o {
-                        Outcome::Done(r) => (r.shard_id, self.result(*r, part_index)),
-                        Outcome::Failed(f) => (f.shard_id, self.failed(f, part_index)),
+                        Outcome::Done(r) => (r.shard_id, self.result(*r, &worker, part_index)),
+                        Outcome::Failed(f) => (f.shard_id, self.failed(f, &worker, part_index)),
                     };
                     if let Err(note) = taken {
                         notes.push(format!("shard {id} not taken: {note}"));
@@ -408,7 +447,7 @@ impl Core {
         requeue(st, lost.into_iter());
         if !st.started {
             if st.workers.len() < self.settings.min_workers {
-                return Next::Idle { retry_ms: 200 };
+                return Next::Idle { retry_ms: 10 };
             }
             st.started = true;
             info!(
@@ -467,14 +506,14 @@ impl Core {
     }
 
     /// Takes one shard result: `Err(note)` when it is not merged.
-    fn result(&self, r: ShardDone, part_index: &[usize]) -> Result<(), String> {
+    fn result(&self, r: ShardDone, worker: &str, part_index: &[usize]) -> Result<(), String> {
         let mut st = self.lock();
         let st = &mut *st;
         st.stats.results += 1;
         let Some(sh) = st.shards.get(r.shard_id as usize) else {
             warn!(
                 ROLE,
-                "dropped a result for unknown shard {} from worker {}", r.shard_id, r.worker
+                "dropped a result for unknown shard {} from worker {}", r.shard_id, worker
             );
             return Err("unknown shard".into());
         };
@@ -483,21 +522,33 @@ impl Core {
             return Err("duplicate: this shard is already done".into());
         }
         let (p, range) = (sh.part, sh.range.clone());
-        let part = &st.parts[p];
         let deep = self.settings.verify.deep(
             r.shard_id,
-            st.workers.get(&r.worker).map_or(0, |w| w.rederived),
+            st.workers.get(worker).map_or(0, |w| w.rederived),
         );
+        let part = &mut st.parts[p];
         let check = if r.digest != part.digest {
             Err(format!(
                 "result for part {}, shard is of part {}",
                 short_hex(&r.digest),
                 short_hex(&part.digest)
             ))
+        } else if deep && part.prep.is_none() {
+            match part.source.prepare() {
+                Ok(prep) => {
+                    let prep = Arc::new(prep);
+                    part.prep = Some(prep.clone());
+                    verify::check(&prep, &range, &r.result, &part.top, true)
+                }
+                Err(e) => Err(format!("the coordinator cannot prepare the part: {e}")),
+            }
         } else {
-            verify::check(&part.prep, &range, &r.result, &part.top, deep)
+            match &part.prep {
+                Some(prep) => verify::check(prep, &range, &r.result, &part.top, deep),
+                None => verify::check_shape(part.top_k, &range, &r.result).map(|()| 0),
+            }
         };
-        if let Some(w) = st.workers.get_mut(&r.worker) {
+        if let Some(w) = st.workers.get_mut(worker) {
             w.leased.remove(&r.shard_id);
         }
         let checked = match check {
@@ -509,13 +560,13 @@ impl Core {
                     "rejected shard {} (part #{}, combinations {range:?}) from worker {}: {e}; it goes back to the queue",
                     r.shard_id,
                     part_index.get(p).copied().unwrap_or(p),
-                    r.worker
+                    worker
                 );
                 // A worker that sends a bad result gets no more work.
-                if let Some(w) = st.workers.remove(&r.worker) {
+                if let Some(w) = st.workers.remove(worker) {
                     requeue(st, w.leased.into_iter());
                 }
-                st.banned.insert(r.worker.clone());
+                st.banned.insert(worker.to_string());
                 requeue(st, std::iter::once(r.shard_id));
                 return Err(format!("rejected: {e}"));
             }
@@ -524,32 +575,40 @@ impl Core {
         st.stats.results_rederived += u64::from(deep);
         st.stats.worker_micros += r.micros;
         st.shards[r.shard_id as usize].status = ShardStatus::Done;
-        if let Some(w) = st.workers.get_mut(&r.worker) {
+        if let Some(w) = st.workers.get_mut(worker) {
             w.shards += 1;
             w.rederived += checked as u64;
         }
         let part = &mut st.parts[p];
-        let top_k = part.prep.top_k;
-        let mut lists = vec![std::mem::take(&mut part.top), r.result.fixtures.clone()];
-        part.top = fixplan_core::ranking::merge_ranked(std::mem::take(&mut lists), top_k);
-        part.partials.push(r.result);
+        let top_k = part.top_k;
+        let mut result = r.result;
+        if range == WHOLE {
+            // As the embedded run cuts it: `0..count`.
+            result.range = 0..result.counts.combinations;
+        }
         part.left -= 1;
+        if part.left > 0 {
+            // The running top-k only serves the checks of the shards to come.
+            let lists = vec![std::mem::take(&mut part.top), result.fixtures.clone()];
+            part.top = fixplan_core::ranking::merge_ranked(lists, top_k);
+        }
+        part.partials.push(result);
         if part.left == 0 && !part.closed {
             part.closed = true;
             let merged = merge(top_k, std::mem::take(&mut part.partials));
-            let prep = part.prep.clone();
+            let done = Finished {
+                prep: part.prep.clone(),
+                input: part.source.clone(),
+                merged,
+            };
             st.open_parts -= 1;
             let idx = part_index.get(p).copied().unwrap_or(p);
-            let _ = self
-                .tx
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .send((idx, Ok((prep, merged))));
+            st.done.push((idx, Ok(done)));
         }
         Ok(())
     }
 
-    fn failed(&self, f: ShardFailed, part_index: &[usize]) -> Result<(), String> {
+    fn failed(&self, f: ShardFailed, worker: &str, part_index: &[usize]) -> Result<(), String> {
         let mut st = self.lock();
         let st = &mut *st;
         let Some(sh) = st.shards.get(f.shard_id as usize) else {
@@ -559,13 +618,13 @@ impl Core {
             return Err("duplicate".into());
         }
         let p = sh.part;
-        if let Some(w) = st.workers.get_mut(&f.worker) {
+        if let Some(w) = st.workers.get_mut(worker) {
             w.leased.remove(&f.shard_id);
         }
         let idx = part_index.get(p).copied().unwrap_or(p);
         warn!(
             ROLE,
-            "part #{idx}: worker {} failed shard {}: {}", f.worker, f.shard_id, f.message
+            "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
         );
         for sh in st.shards.iter_mut().filter(|s| s.part == p) {
             sh.status = ShardStatus::Done;
@@ -574,11 +633,7 @@ impl Core {
         if !part.closed {
             part.closed = true;
             st.open_parts -= 1;
-            let _ = self
-                .tx
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .send((idx, Err(f.message)));
+            st.done.push((idx, Err(f.message)));
         }
         Ok(())
     }
@@ -627,6 +682,19 @@ impl Core {
     }
 }
 
+/// CPU time of the calling thread.
+fn thread_cpu_micros() -> u64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime only writes the struct it is given.
+    if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } != 0 {
+        return 0;
+    }
+    t.tv_sec as u64 * 1_000_000 + t.tv_nsec as u64 / 1000
+}
+
 /// Puts shards that are not done back at the front of the queue.
 fn requeue(st: &mut State, ids: impl Iterator<Item = u64>) -> usize {
     let mut n = 0;
@@ -657,7 +725,7 @@ fn kind(m: &Msg) -> &'static str {
 mod tests {
     use super::*;
     use fixplan_catalog::kit::{builtin_kit, METRIC_25};
-    use fixplan_core::{prepare, Params, Part};
+    use fixplan_core::{Params, Part};
     use std::sync::mpsc::channel;
 
     fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> (Core, Vec<usize>) {
@@ -669,10 +737,19 @@ mod tests {
                     outline: vec![[0.0, 0.0], [w, 0.0], [w, 60.0], [0.0, 60.0]],
                     access: vec![],
                 };
-                let prep = prepare(&part, &kit, &Params::default(), units).expect("prepare");
+                let source = PartInput {
+                    part,
+                    kit: kit.clone(),
+                    params: Params::default(),
+                    units,
+                };
+                let prep = source.prepare().expect("prepare");
                 let ranges = super::super::plan::ranges(prep.combination_count(), shard);
+                let segments = prep.segments.len();
                 let slot = PartSlot {
-                    prep: Arc::new(prep),
+                    top_k: prep.top_k,
+                    prep: Some(Arc::new(prep)),
+                    source: Arc::new(source),
                     input: Arc::new(vec![i as u8]),
                     digest: [i as u8; 32],
                     left: 0,
@@ -680,7 +757,7 @@ mod tests {
                     top: Vec::new(),
                     closed: false,
                 };
-                (i, slot, ranges)
+                (i, slot, ranges, segments)
             })
             .collect();
         let settings = Settings {

@@ -37,6 +37,58 @@ pub fn enters(top: &[Fixture], top_k: usize, f: &Fixture) -> bool {
             .is_some_and(|w| f.rank_cmp(w) == Ordering::Less)
 }
 
+/// The checks of the fixture list that hold for any shard: at most
+/// `top_k`, no more than the admissible count, in rank order, finite
+/// scores.
+fn check_list(top_k: usize, res: &PartialResult) -> Result<(), String> {
+    if top_k != 0 && res.fixtures.len() > top_k {
+        return Err(format!("{} fixtures, top_k is {top_k}", res.fixtures.len()));
+    }
+    if (res.fixtures.len() as u64) > res.counts.admissible {
+        return Err(format!(
+            "{} fixtures but {} admissible",
+            res.fixtures.len(),
+            res.counts.admissible
+        ));
+    }
+    if res
+        .fixtures
+        .windows(2)
+        .any(|w| w[0].rank_cmp(&w[1]) != Ordering::Less)
+    {
+        return Err("fixtures not in rank order".into());
+    }
+    match res.fixtures.iter().position(|f| !f.score.is_finite()) {
+        Some(i) => Err(format!("fixture {i} has score {}", res.fixtures[i].score)),
+        None => Ok(()),
+    }
+}
+
+/// The checks that need no prepared part, for a part sent whole and not
+/// re-derived: the result must be a whole enumeration with counts
+/// consistent with its own segment count, and fixtures of that part.
+pub fn check_shape(top_k: usize, range: &Range<u64>, res: &PartialResult) -> Result<(), String> {
+    let n = res.counts.segments;
+    let count = fixplan_core::combinations::combination_count(n as usize);
+    if res.range != *range || res.counts.combinations != count {
+        return Err(format!(
+            "result for combinations {:?} ({} of {n} segments), the shard is the whole part",
+            res.range, res.counts.combinations
+        ));
+    }
+    check_list(top_k, res)?;
+    for (i, f) in res.fixtures.iter().enumerate() {
+        let [a, b, c] = f.segments;
+        if !(a <= b && b <= c && (c as u64) < n && a != c) || f.clamp_segment as u64 >= n {
+            return Err(format!(
+                "fixture {i} on segments {:?}, not of the part",
+                f.segments
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Checks a shard result against the shard it answers and the part's
 /// current top-k; `deep`: also re-derive every fixture that would enter
 /// the top-k (see [`super::state::VerifyPolicy`]). Returns how many
@@ -64,27 +116,7 @@ pub fn check(
             prep.segments.len()
         ));
     }
-    if prep.top_k != 0 && res.fixtures.len() > prep.top_k {
-        return Err(format!(
-            "{} fixtures, top_k is {}",
-            res.fixtures.len(),
-            prep.top_k
-        ));
-    }
-    if (res.fixtures.len() as u64) > res.counts.admissible {
-        return Err(format!(
-            "{} fixtures but {} admissible",
-            res.fixtures.len(),
-            res.counts.admissible
-        ));
-    }
-    if res
-        .fixtures
-        .windows(2)
-        .any(|w| w[0].rank_cmp(&w[1]) != Ordering::Less)
-    {
-        return Err("fixtures not in rank order".into());
-    }
+    check_list(prep.top_k, res)?;
     let n = prep.segments.len();
     let (first, last) = match (
         combination_at(n, range.start),
@@ -101,9 +133,6 @@ pub fn check(
                 "fixture {i} on segments {:?}, outside the shard",
                 f.segments
             ));
-        }
-        if !f.score.is_finite() {
-            return Err(format!("fixture {i} has score {}", f.score));
         }
         if deep && enters(top, prep.top_k, f) {
             if !rederive(prep, f) {

@@ -31,6 +31,14 @@ impl Proc {
             let _ = c.wait();
         }
     }
+    /// Sends a signal by name (`STOP`, `CONT`, ...) with kill(1).
+    pub fn signal(&self, name: &str) {
+        let ok = Command::new("kill")
+            .args([format!("-{name}"), self.pid().to_string()])
+            .status()
+            .is_ok_and(|s| s.success());
+        assert!(ok, "kill -{name} {}", self.pid());
+    }
     /// Waits for the exit (up to `t`), returning the code and stderr.
     pub fn wait_output(&mut self, t: Duration) -> (Option<i32>, String) {
         let Some(mut c) = self.child.take() else {
