@@ -55,3 +55,40 @@ fn run_with_local_workers_equals_embedded() {
     assert_eq!(fixtures_channel(&emb), fixtures_channel(&dist));
     assert!(shm_left().is_empty(), "{:?}", shm_left());
 }
+
+/// More workers on the coordinator's host than its shared memory serves:
+/// the extra ones fall back to zenoh, and the results do not change.
+#[test]
+fn workers_beyond_the_shared_memory_limit_use_zenoh() {
+    let _g = serial();
+    let net = Net::new("many");
+    let mut opts = net.options(TransportChoice::Auto);
+    let n = fixplan_worker::iox::DEFAULT_CLIENTS + 1;
+    opts.min_workers = n;
+    opts.shard_size = Some(4);
+    let inputs = inputs(5);
+    let want = embedded(&inputs);
+    // Slow reports keep every worker connected while the last ones join.
+    let mut workers: Vec<_> = (0..n)
+        .map(|_| net.worker_captured(&["--fault", "slow:300"]))
+        .collect();
+    let d = fixplan_coordinator::cluster::run_distributed(inputs, opts).unwrap();
+    let mut got = Vec::new();
+    for (i, r) in d {
+        assert_eq!(i, got.len());
+        got.push(r.map(|(_, m)| bytes(&m)));
+    }
+    assert_eq!(got, want);
+    let logs: Vec<String> = workers
+        .iter_mut()
+        .map(|w| w.wait_output(std::time::Duration::from_secs(30)).1)
+        .collect();
+    let over = |t: &str| {
+        logs.iter()
+            .filter(|l| l.contains(&format!("shards over {t}")))
+            .count()
+    };
+    assert_eq!(over("iceoryx2"), n - 1, "{logs:#?}");
+    assert_eq!(over("zenoh"), 1, "{logs:#?}");
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
+}

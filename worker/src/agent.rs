@@ -336,7 +336,18 @@ impl Agent {
             let link = match &welcome.data {
                 DataPath::Zenoh => DataLink::Zenoh,
                 DataPath::Iceoryx2 { prefix, service } => {
-                    DataLink::Iox(Box::new(IoxClient::open(prefix, service)?))
+                    match IoxClient::open(prefix, service) {
+                        Ok(c) => DataLink::Iox(Box::new(c)),
+                        // The coordinator's shared memory is full (more
+                        // workers on this host than it serves): zenoh
+                        // reaches the same coordinator, unless iceoryx2
+                        // was asked for.
+                        Err(e) if self.opts.transport != TransportChoice::Iceoryx2 => {
+                            warn!(self.role(), "iceoryx2 unavailable ({e}); shards over zenoh");
+                            DataLink::Zenoh
+                        }
+                        Err(e) => return Err(e.into()),
+                    }
                 }
             };
             info!(
@@ -344,9 +355,9 @@ impl Agent {
                 "joined run {} ({} threads, shards over {})",
                 welcome.run_id,
                 self.pool.current_num_threads(),
-                match welcome.data {
-                    DataPath::Zenoh => "zenoh",
-                    DataPath::Iceoryx2 { .. } => "iceoryx2",
+                match link {
+                    DataLink::Zenoh => "zenoh",
+                    DataLink::Iox(_) => "iceoryx2",
                 }
             );
             if self.serve_run(link)? {

@@ -25,11 +25,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 type Ipc = ipc::Service;
-/// Worker processes per host. iceoryx2 sizes the server's response
-/// bookkeeping by this and sweeps all of it when a client leaves: at 256,
-/// each leaving worker cost the coordinator about 45 ms (perf), most of the
-/// end-of-run time of `bench-cluster`.
-const MAX_CLIENTS: usize = 16;
+/// Worker processes of one host served by shared memory, unless the
+/// coordinator starts more itself. iceoryx2 sizes the server's response
+/// bookkeeping by this and sweeps all of it when a client leaves, and the
+/// sweep costs the coordinator about 45 ms at 256 clients, 3 ms at 16
+/// (perf). Workers beyond it fall back to zenoh.
+pub const DEFAULT_CLIENTS: usize = 4;
 const SLICE_HINT: usize = 4096;
 /// Start of every prefix this crate creates.
 pub const PREFIX_HEAD: &str = "fxp";
@@ -165,22 +166,24 @@ pub struct ServeControl {
     pub cleanup: AtomicBool,
 }
 
-/// The coordinator's end: serves requests until `ctl.stop`, answering each
-/// with `handle(request bytes)`.
+/// The coordinator's end: serves requests of up to `max_clients` workers
+/// until `ctl.stop`, answering each with `handle(request bytes)`.
 pub fn serve(
     prefix: &str,
     service: &str,
+    max_clients: usize,
     ready: impl FnOnce(),
     ctl: &ServeControl,
     mut handle: impl FnMut(&[u8]) -> Vec<u8>,
 ) -> Result<(), LinkError> {
+    let max_clients = max_clients.max(1);
     let node = node(prefix)?;
     let rr = node
         .service_builder(&name(service)?)
         .request_response::<[u8], [u8]>()
-        .max_clients(MAX_CLIENTS)
+        .max_clients(max_clients)
         .max_servers(1)
-        .max_nodes(MAX_CLIENTS + 2)
+        .max_nodes(max_clients + 2)
         .max_active_requests_per_client(2)
         .max_response_buffer_size(2)
         .create()
@@ -194,9 +197,9 @@ pub fn serve(
     let req = node
         .service_builder(&name(&format!("{service}/req"))?)
         .event()
-        .max_notifiers(MAX_CLIENTS)
+        .max_notifiers(max_clients)
         .max_listeners(1)
-        .max_nodes(MAX_CLIENTS + 2)
+        .max_nodes(max_clients + 2)
         .create()
         .map_err(err("create request event"))?;
     let listener = req.listener_builder().create().map_err(err("listener"))?;
@@ -204,8 +207,8 @@ pub fn serve(
         .service_builder(&name(&format!("{service}/resp"))?)
         .event()
         .max_notifiers(1)
-        .max_listeners(MAX_CLIENTS)
-        .max_nodes(MAX_CLIENTS + 2)
+        .max_listeners(max_clients)
+        .max_nodes(max_clients + 2)
         .create()
         .map_err(err("create response event"))?;
     let notifier = resp.notifier_builder().create().map_err(err("notifier"))?;

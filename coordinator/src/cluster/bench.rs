@@ -226,6 +226,7 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
         iox::serve(
             &p,
             &s,
+            1,
             move || {
                 let _ = ready_tx.send(());
             },

@@ -304,6 +304,7 @@ pub fn run_distributed(
         host_id: fixplan_worker::host::host_id(),
         transport: opts.transport,
         iox,
+        iox_clients: opts.local_workers.max(iox::DEFAULT_CLIENTS),
         lease: opts.lease,
         min_workers: opts.min_workers,
         verify: opts.verify,

@@ -59,6 +59,7 @@ impl Runtime {
                 let r = iox::serve(
                     &p2,
                     &service,
+                    c.settings.iox_clients,
                     move || drop(ready_tx2.send(Ok(()))),
                     &ct,
                     |b| c.handle(b, &pi),

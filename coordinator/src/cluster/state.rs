@@ -166,6 +166,8 @@ pub struct Settings {
     pub transport: TransportChoice,
     /// The iceoryx2 data path, when the coordinator serves one.
     pub iox: Option<DataPath>,
+    /// Workers it serves at most (more on this host use zenoh).
+    pub iox_clients: usize,
     pub lease: Duration,
     pub min_workers: usize,
     pub verify: VerifyPolicy,
@@ -622,10 +624,20 @@ impl Core {
             w.leased.remove(&f.shard_id);
         }
         let idx = part_index.get(p).copied().unwrap_or(p);
-        warn!(
-            ROLE,
-            "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
-        );
+        // A part sent whole was not prepared here: if it cannot be, that is
+        // the input's fault and the coordinator's own message stands (the
+        // embedded run's); otherwise the worker's enumeration failed.
+        let part = &mut st.parts[p];
+        let message = match part.prep.is_none().then(|| part.source.prepare()) {
+            Some(Err(e)) => e.to_string(),
+            _ => {
+                warn!(
+                    ROLE,
+                    "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
+                );
+                f.message
+            }
+        };
         for sh in st.shards.iter_mut().filter(|s| s.part == p) {
             sh.status = ShardStatus::Done;
         }
@@ -633,7 +645,7 @@ impl Core {
         if !part.closed {
             part.closed = true;
             st.open_parts -= 1;
-            st.done.push((idx, Err(f.message)));
+            st.done.push((idx, Err(message)));
         }
         Ok(())
     }
@@ -765,6 +777,7 @@ mod tests {
             host_id: "host".into(),
             transport: TransportChoice::Zenoh,
             iox: None,
+            iox_clients: 1,
             lease: Duration::from_secs(300),
             min_workers: 1,
             verify,
