@@ -104,6 +104,12 @@ enum Cmd {
     Worker(crate::cluster::cli::WorkerArgs),
     /// Measure the cluster: catalogue throughput with 1 and 2 local workers,
     /// coordinator time and bytes per shard, zenoh vs iceoryx2 round trip.
+    ///
+    /// Per run: wall time from starting the workers to their exit, the
+    /// speed-up over one worker, the steady part (first part out to last
+    /// part out), and the coordinator process's CPU time as a share of the
+    /// wall time. Run it on an otherwise idle machine; `--repeat 100` for
+    /// figures where the start and stop of the run weigh little.
     BenchCluster(crate::cluster::bench::BenchArgs),
     /// Measure the enumeration per part on one thread: wall time, where it
     /// goes (setup enumeration, clamp placement, admissibility checks,
