@@ -209,11 +209,6 @@ pub fn run_loaded_search(
 ) -> Result<Totals> {
     fixplan_core::prepare::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
     search.validate()?;
-    if cluster.is_some() && search.good_enough.is_some() {
-        bail!(
-            "--good-enough runs in this process only (its stopping rule is not in the worker protocol yet); drop --workers"
-        );
-    }
     let mut params = spec.params.clone();
     if let Some(k) = opts.top_k {
         params.top_k = k;

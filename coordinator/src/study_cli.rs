@@ -120,9 +120,8 @@ pub struct SearchArgs {
     /// order) that admits a fixture scoring SCORE or better: the part's
     /// status stays `ok`, its part message says `"stopped": "good_enough"`
     /// and `stopped_at` (the combination index), and its fixtures are those
-    /// of combinations 0..=stopped_at, whatever the threads. With
-    /// --grid-steps, a hit at a coarse step ends the part. Not with
-    /// --workers (yet).
+    /// of combinations 0..=stopped_at, whatever the threads or workers.
+    /// With --grid-steps, a hit at a coarse step ends the part.
     #[arg(long, value_name = "SCORE")]
     pub good_enough: Option<f64>,
 }

@@ -491,17 +491,45 @@ fn good_enough_stops_early_with_a_good_fixture() {
         fixtures.push(fixtures_channel(&out));
     }
     assert_eq!(fixtures[0], fixtures[1], "depends on the thread count");
-    // Not with --workers.
-    let out = fixplan()
-        .args(["run", "--workers", "1", "--good-enough", "2", "--catalog"])
-        .arg(&catalog)
-        .arg("-o")
-        .arg(dir.path().join("x.mcap"))
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
+    // Through workers: the same stop, the same bytes.
+    let mut stops = Vec::new();
+    for extra in [&["--threads", "1"][..], &["--workers", "2"][..]] {
+        let out = dir.path().join(format!("gw{}.mcap", extra[0]));
+        ok(fixplan()
+            .args([
+                "run",
+                "-q",
+                "--top-k",
+                "0",
+                "--shard-size",
+                "7",
+                "--catalog",
+            ])
+            .arg(&catalog)
+            .args(extra)
+            .args(["--good-enough", &threshold.to_string(), "-o"])
+            .arg(&out)
+            .output()
+            .unwrap());
+        let parts = part_msgs(&out);
+        let mut s: Vec<(String, Value, Value)> = parts
+            .iter()
+            .map(|(id, p)| (id.clone(), p["stopped"].clone(), p["stopped_at"].clone()))
+            .collect();
+        s.sort_by(|a, b| a.0.cmp(&b.0));
+        stops.push(s);
+        fixtures.push(fixtures_channel(&out));
+    }
+    assert_eq!(stops[0], stops[1]);
     assert!(
-        String::from_utf8_lossy(&out.stderr).contains("--good-enough runs in this process only")
+        stops[1].iter().any(|s| s.1 == "good_enough"),
+        "{:?}",
+        stops[1]
+    );
+    assert_eq!(fixtures[0], fixtures[2]);
+    assert_eq!(
+        fixtures[2], fixtures[3],
+        "workers differ from the embedded run"
     );
 }
 

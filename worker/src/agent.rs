@@ -127,10 +127,10 @@ fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, St
     };
     let t0 = Instant::now();
     let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        crate::run_shard(prep, a.range.clone())
+        crate::run_shard_until(prep, a.range.clone(), a.good_enough)
     }));
     match out {
-        Ok(mut result) => {
+        Ok((mut result, hit)) => {
             if fault == Some(Fault::CorruptScore) {
                 if let Some(f) = result.fixtures.first_mut() {
                     f.score *= 0.5;
@@ -141,6 +141,7 @@ fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, St
                 digest: a.digest,
                 micros: t0.elapsed().as_micros() as u64,
                 result,
+                hit,
             }))
         }
         Err(p) => failed(format!(

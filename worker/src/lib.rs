@@ -32,3 +32,18 @@ pub struct Shard {
 pub fn run_shard(prep: &PreparedPart, range: Range<u64>) -> PartialResult {
     prep.enumerate_range(range)
 }
+
+/// Enumerates a shard, or with `good_enough` the shortest prefix of it that
+/// admits a fixture scoring that or better (the hit index with it): the
+/// prefixes of a part's shards merge into the embedded run's
+/// [`PreparedPart::enumerate_until`] result.
+pub fn run_shard_until(
+    prep: &PreparedPart,
+    range: Range<u64>,
+    good_enough: Option<f64>,
+) -> (PartialResult, Option<u64>) {
+    match good_enough {
+        Some(g) => prep.enumerate_until(range, g),
+        None => (prep.enumerate_range(range), None),
+    }
+}

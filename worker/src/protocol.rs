@@ -98,6 +98,9 @@ pub struct Assign {
     /// The part's wire input ([`crate::part_input::PartInput::encode`]),
     /// only the first time this worker gets a shard of the part.
     pub input: Option<Vec<u8>>,
+    /// `--good-enough`: stop the shard at its first combination that admits
+    /// a fixture scoring this or better ([`ShardDone::hit`]).
+    pub good_enough: Option<f64>,
 }
 
 /// A finished shard (of the worker named in the [`Msg::Report`]).
@@ -106,7 +109,11 @@ pub struct ShardDone {
     pub shard_id: u64,
     pub digest: Digest,
     pub micros: u64,
+    /// The enumeration of the shard, or with `good_enough` of its prefix
+    /// up to and including `hit`.
     pub result: PartialResult,
+    /// `good_enough`: the combination where the shard stopped.
+    pub hit: Option<u64>,
 }
 
 /// A shard the worker could not enumerate (a panic, or an input it could
@@ -313,6 +320,7 @@ mod tests {
                 digest: [7; 32],
                 micros: 5,
                 result: pr,
+                hit: Some(4),
             }))],
         };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));

@@ -169,6 +169,7 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
             digest: [0; 32],
             micros: 1,
             result,
+            hit: None,
         }))],
     })?)
 }

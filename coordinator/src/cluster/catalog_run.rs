@@ -55,7 +55,9 @@ pub fn start(
             Err(_) => direct.push(i),
         }
     }
-    let dist = run_distributed(inputs, opts.clone())?;
+    let mut opts = opts.clone();
+    opts.good_enough = ctx.search.good_enough;
+    let dist = run_distributed(inputs, opts)?;
     Ok(CatalogJobs {
         dist,
         map,
@@ -65,6 +67,36 @@ pub fn start(
 }
 
 impl CatalogJobs {
+    /// Sends one part's outcome; true when the receiver is gone.
+    #[allow(clippy::too_many_arguments)]
+    fn send_part(
+        &self,
+        ctx: &JobContext,
+        cp: &CatalogPart,
+        i: usize,
+        result: SolveResult,
+        summaries: &mut Vec<StepSummary>,
+        stopped_at: Option<u64>,
+        t0: std::time::Instant,
+        tx: &Sender<(usize, Result<PartOutcome, serde_json::Error>)>,
+    ) -> bool {
+        let info = SearchInfo {
+            steps: ctx
+                .search
+                .grid_steps
+                .is_some()
+                .then(|| std::mem::take(summaries)),
+            stopped_at,
+            ..SearchInfo::default()
+        };
+        let timing = Timing {
+            enumerate_ms: t0.elapsed().as_secs_f64() * 1e3,
+            ..Timing::default()
+        };
+        tx.send((i, part_outcome_with(ctx, i, cp, result, timing, &info)))
+            .is_err()
+    }
+
     /// Sends every part's outcome to `tx` (in catalogue order for the
     /// distributed ones), then ends the run.
     pub fn deliver(
@@ -82,17 +114,31 @@ impl CatalogJobs {
         let mut t_step = t0;
         let mut summaries: Vec<StepSummary> = Vec::new();
         let mut failed: Option<SolveResult> = None;
-        for (j, r) in self.dist.by_ref() {
+        // `--good-enough`: the step that stopped a part ends it, as in the
+        // embedded search (the workers ran its finer steps all the same).
+        let mut stopped: Option<(usize, SolveResult, u64)> = None;
+        while let Some((j, r)) = self.dist.next_part() {
             let (i, k) = self.map[j];
             let cp = &parts[i];
-            let result = match r {
-                Ok((prep, merged)) => report(&prep, &merged),
-                Err(msg) => SolveResult::invalid(format!("{}: {msg}", cp.id)),
-            };
             if k == 0 {
                 summaries.clear();
                 failed = None;
+                stopped = None;
             }
+            let last_step = k + 1 == self.steps.len();
+            if stopped.as_ref().is_some_and(|s| s.0 == i) {
+                if last_step {
+                    let (_, result, at) = stopped.take().expect("checked above");
+                    if self.send_part(ctx, cp, i, result, &mut summaries, Some(at), t0, tx) {
+                        break;
+                    }
+                }
+                continue;
+            }
+            let (result, hit) = match r {
+                Ok(s) => (report(&s.prep, &s.merged), s.stopped_at),
+                Err(msg) => (SolveResult::invalid(format!("{}: {msg}", cp.id)), None),
+            };
             let now = std::time::Instant::now();
             let ms = (now - t_step).as_secs_f64() * 1e3;
             t_step = now;
@@ -103,29 +149,25 @@ impl CatalogJobs {
                 self.steps[k],
                 &result,
                 summaries.last(),
-                None,
+                hit,
                 ms,
             ));
-            if k + 1 < self.steps.len() {
+            if let Some(at) = hit {
+                let result = failed.take().unwrap_or(result);
+                if last_step {
+                    if self.send_part(ctx, cp, i, result, &mut summaries, Some(at), t0, tx) {
+                        break;
+                    }
+                } else {
+                    stopped = Some((i, result, at));
+                }
+                continue;
+            }
+            if !last_step {
                 continue;
             }
             let result = failed.take().unwrap_or(result);
-            let info = SearchInfo {
-                steps: ctx
-                    .search
-                    .grid_steps
-                    .is_some()
-                    .then(|| std::mem::take(&mut summaries)),
-                ..SearchInfo::default()
-            };
-            let timing = Timing {
-                enumerate_ms: t0.elapsed().as_secs_f64() * 1e3,
-                ..Timing::default()
-            };
-            if tx
-                .send((i, part_outcome_with(ctx, i, cp, result, timing, &info)))
-                .is_err()
-            {
+            if self.send_part(ctx, cp, i, result, &mut summaries, None, t0, tx) {
                 break;
             }
         }

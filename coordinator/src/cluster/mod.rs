@@ -81,6 +81,9 @@ pub struct ClusterOptions {
     pub quiet: bool,
     /// How much of each result is re-derived before it is merged.
     pub verify: VerifyPolicy,
+    /// `--good-enough`: every part stops at its first combination that
+    /// admits a fixture scoring this or better (the embedded run's rule).
+    pub good_enough: Option<f64>,
 }
 
 impl Default for ClusterOptions {
@@ -98,6 +101,7 @@ impl Default for ClusterOptions {
             expected_threads: None,
             quiet: false,
             verify: VerifyPolicy::default(),
+            good_enough: None,
         }
     }
 }
@@ -169,21 +173,39 @@ impl Distributed {
     }
 }
 
-impl Iterator for Distributed {
-    type Item = (usize, Result<(PreparedPart, PartialResult), String>);
+/// A part's merged result with its prepared form (for the report: plate
+/// placement needs it) and, with `--good-enough`, where it stopped.
+pub struct Solved {
+    pub prep: PreparedPart,
+    pub merged: PartialResult,
+    pub stopped_at: Option<u64>,
+}
 
-    /// The next part with its prepared form (for the report: plate
-    /// placement needs it), prepared here if the run did not need to.
-    fn next(&mut self) -> Option<Self::Item> {
+impl Distributed {
+    /// The next part, prepared here if the run did not need to.
+    pub fn next_part(&mut self) -> Option<(usize, Result<Solved, String>)> {
         let (i, r) = self.next_finished()?;
         let r = r.and_then(|f| {
             let prep = match f.prep {
                 Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
                 None => f.input.prepare().map_err(|e| e.to_string())?,
             };
-            Ok((prep, f.merged))
+            Ok(Solved {
+                prep,
+                merged: f.merged,
+                stopped_at: f.stopped_at,
+            })
         });
         Some((i, r))
+    }
+}
+
+impl Iterator for Distributed {
+    type Item = (usize, Result<(PreparedPart, PartialResult), String>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.next_part()
+            .map(|(i, r)| (i, r.map(|s| (s.prep, s.merged))))
     }
 }
 
@@ -246,6 +268,7 @@ pub fn run_distributed(
                         prep: Some(Arc::new(prep)),
                         input: source,
                         merged,
+                        stopped_at: None,
                     };
                     let _ = tx.send(vec![(i, Ok(done))]);
                     continue;
@@ -263,7 +286,9 @@ pub fn run_distributed(
             prep,
             source,
             input: Arc::new(bytes),
-            left: 0,
+            shard_ids: 0..0,
+            good_enough: opts.good_enough,
+            stop: None,
             partials: Vec::new(),
             top: Vec::new(),
             closed: false,

@@ -27,6 +27,8 @@ pub struct Finished {
     pub prep: Option<Arc<PreparedPart>>,
     pub input: Arc<PartInput>,
     pub merged: PartialResult,
+    /// `--good-enough`: the combination where the part stopped.
+    pub stopped_at: Option<u64>,
 }
 
 /// Shard range meaning "every combination of the part": a part that
@@ -42,7 +44,12 @@ pub(crate) struct PartSlot {
     pub top_k: usize,
     pub input: Arc<Vec<u8>>,
     pub digest: Digest,
-    pub left: usize,
+    /// Ids of its shards (contiguous, in combination order).
+    pub shard_ids: Range<u64>,
+    /// `--good-enough` threshold, and the first hit reported so far: the
+    /// part ends with the shards up to the hit, the rest are dropped.
+    pub good_enough: Option<f64>,
+    pub stop: Option<u64>,
     pub partials: Vec<PartialResult>,
     pub top: Vec<Fixture>,
     pub closed: bool,
@@ -225,7 +232,8 @@ impl Core {
         let mut index = Vec::new();
         for (i, mut slot, ranges, segments) in parts {
             let p = st.parts.len();
-            slot.left = ranges.len();
+            let first = st.shards.len() as u64;
+            slot.shard_ids = first..first + ranges.len() as u64;
             for r in ranges {
                 let combinations = if r == WHOLE {
                     fixplan_core::combinations::combination_count(segments)
@@ -475,6 +483,13 @@ impl Core {
             if sh.status != ShardStatus::Queued {
                 continue;
             }
+            let part = &st.parts[sh.part];
+            if part.closed || part.stop.is_some_and(|s| sh.range.start > s) {
+                // Past a `--good-enough` hit: not needed any more.
+                sh.status = ShardStatus::Done;
+                st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
+                continue;
+            }
             sh.status = ShardStatus::Leased {
                 worker: worker.to_string(),
                 until: Instant::now() + self.settings.lease,
@@ -496,6 +511,7 @@ impl Core {
                 digest: part.digest,
                 range: sh.range.clone(),
                 input,
+                good_enough: part.good_enough,
             });
         }
         if batch.is_empty() {
@@ -523,7 +539,12 @@ impl Core {
             st.stats.duplicates += 1;
             return Err("duplicate: this shard is already done".into());
         }
-        let (p, range) = (sh.part, sh.range.clone());
+        let (p, shard_range) = (sh.part, sh.range.clone());
+        // A shard stopped by `--good-enough` answers for its prefix.
+        let range = match r.hit {
+            Some(h) if shard_range.contains(&h) => shard_range.start..h + 1,
+            _ => shard_range.clone(),
+        };
         let deep = self.settings.verify.deep(
             r.shard_id,
             st.workers.get(worker).map_or(0, |w| w.rederived),
@@ -535,6 +556,9 @@ impl Core {
                 short_hex(&r.digest),
                 short_hex(&part.digest)
             ))
+        } else if let Err(e) = verify::check_stop(part.good_enough, &shard_range, r.hit, &r.result)
+        {
+            Err(e)
         } else if deep && part.prep.is_none() {
             match part.source.prepare() {
                 Ok(prep) => {
@@ -584,26 +608,43 @@ impl Core {
         let part = &mut st.parts[p];
         let top_k = part.top_k;
         let mut result = r.result;
-        if range == WHOLE {
+        if shard_range == WHOLE && r.hit.is_none() {
             // As the embedded run cuts it: `0..count`.
             result.range = 0..result.counts.combinations;
         }
-        part.left -= 1;
-        if part.left > 0 {
+        if let Some(h) = r.hit {
+            part.stop = Some(part.stop.map_or(h, |s| s.min(h)));
+        }
+        let (stop, ids) = (part.stop, part.shard_ids.clone());
+        let counts = |id: u64| stop.is_none_or(|s| st.shards[id as usize].range.start <= s);
+        let open = ids
+            .clone()
+            .any(|id| counts(id) && st.shards[id as usize].status != ShardStatus::Done);
+        let part = &mut st.parts[p];
+        if open {
             // The running top-k only serves the checks of the shards to come.
             let lists = vec![std::mem::take(&mut part.top), result.fixtures.clone()];
             part.top = fixplan_core::ranking::merge_ranked(lists, top_k);
         }
         part.partials.push(result);
-        if part.left == 0 && !part.closed {
+        if !open && !part.closed {
             part.closed = true;
-            let merged = merge(top_k, std::mem::take(&mut part.partials));
+            // Shards past the stop: results that came in are left out,
+            // the others are never handed out (or are duplicates later).
+            let kept = std::mem::take(&mut part.partials)
+                .into_iter()
+                .filter(|r| stop.is_none_or(|s| r.range.start <= s))
+                .collect();
             let done = Finished {
                 prep: part.prep.clone(),
                 input: part.source.clone(),
-                merged,
+                merged: merge(top_k, kept),
+                stopped_at: stop,
             };
             st.open_parts -= 1;
+            for id in ids {
+                st.shards[id as usize].status = ShardStatus::Done;
+            }
             let idx = part_index.get(p).copied().unwrap_or(p);
             st.done.push((idx, Ok(done)));
         }
@@ -764,7 +805,9 @@ mod tests {
                     source: Arc::new(source),
                     input: Arc::new(vec![i as u8]),
                     digest: [i as u8; 32],
-                    left: 0,
+                    shard_ids: 0..0,
+                    good_enough: None,
+                    stop: None,
                     partials: Vec::new(),
                     top: Vec::new(),
                     closed: false,

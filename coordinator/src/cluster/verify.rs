@@ -65,14 +65,16 @@ fn check_list(top_k: usize, res: &PartialResult) -> Result<(), String> {
 }
 
 /// The checks that need no prepared part, for a part sent whole and not
-/// re-derived: the result must be a whole enumeration with counts
-/// consistent with its own segment count, and fixtures of that part.
+/// re-derived: the result must cover `range` (the whole part, or its
+/// prefix up to a `--good-enough` hit) with counts consistent with its own
+/// segment count, and hold fixtures of that part.
 pub fn check_shape(top_k: usize, range: &Range<u64>, res: &PartialResult) -> Result<(), String> {
     let n = res.counts.segments;
     let count = fixplan_core::combinations::combination_count(n as usize);
-    if res.range != *range || res.counts.combinations != count {
+    let want = range.end.min(count).saturating_sub(range.start);
+    if res.range != *range || res.counts.combinations != want {
         return Err(format!(
-            "result for combinations {:?} ({} of {n} segments), the shard is the whole part",
+            "result for combinations {:?} ({} of {n} segments), expected {range:?}",
             res.range, res.counts.combinations
         ));
     }
@@ -87,6 +89,33 @@ pub fn check_shape(top_k: usize, range: &Range<u64>, res: &PartialResult) -> Res
         }
     }
     Ok(())
+}
+
+/// `--good-enough`: a shard stops exactly when it admits a fixture scoring
+/// the threshold or better, and its best fixture (first, lowest score)
+/// tells whether it did.
+pub fn check_stop(
+    good_enough: Option<f64>,
+    shard: &Range<u64>,
+    hit: Option<u64>,
+    res: &PartialResult,
+) -> Result<(), String> {
+    let best = res.fixtures.first().map(|f| f.score);
+    match (good_enough, hit) {
+        (None, None) => Ok(()),
+        (None, Some(h)) => Err(format!("stopped at {h} without --good-enough")),
+        (Some(_), Some(h)) if !shard.contains(&h) => {
+            Err(format!("stopped at {h}, outside the shard {shard:?}"))
+        }
+        (Some(g), Some(h)) if best.is_none_or(|b| b > g) => Err(format!(
+            "stopped at {h} but no fixture scores {g} or better"
+        )),
+        (Some(g), None) if best.is_some_and(|b| b <= g) => Err(format!(
+            "a fixture scores {} (good enough: {g}) but the shard did not stop",
+            best.unwrap_or(g)
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Checks a shard result against the shard it answers and the part's
@@ -146,4 +175,48 @@ pub fn check(
         }
     }
     Ok(checked)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixplan_catalog::kit::{builtin_kit, METRIC_25};
+    use fixplan_core::{prepare, Params, Part};
+
+    #[test]
+    fn a_stop_must_match_the_scores() {
+        let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
+        let part = Part {
+            outline: vec![[0.0, 0.0], [120.0, 0.0], [120.0, 70.0], [0.0, 70.0]],
+            access: vec![],
+        };
+        let params = Params {
+            top_k: 0,
+            ..Params::default()
+        };
+        let prep = prepare(&part, &kit, &params, units).expect("prepare");
+        let all = 0..prep.combination_count();
+        let full = prep.enumerate_range(all.clone());
+        let mut scores: Vec<f64> = full.fixtures.iter().map(|f| f.score).collect();
+        scores.sort_by(f64::total_cmp);
+        assert!(scores.len() > 4, "{}", scores.len());
+        let g = scores[scores.len() / 2];
+        let (res, hit) = prep.enumerate_until(all.clone(), g);
+        let h = hit.expect("the median score is reached");
+        assert_eq!(res.counts.combinations, h + 1);
+        assert_eq!(check_stop(Some(g), &all, hit, &res), Ok(()));
+        // Hiding the stop, claiming one without --good-enough, or outside.
+        assert!(check_stop(Some(g), &all, None, &res).is_err());
+        assert!(check_stop(None, &all, hit, &res).is_err());
+        assert!(check_stop(Some(g), &(0..h), hit, &res).is_err());
+        // A threshold nothing reaches: no stop, and a claimed one is false.
+        let low = scores[0] - 1.0;
+        assert_eq!(check_stop(Some(low), &all, None, &full), Ok(()));
+        assert!(check_stop(Some(low), &all, Some(0), &full).is_err());
+        assert_eq!(check_stop(None, &all, None, &full), Ok(()));
+        // The prefix checks out against the part as a shard of it.
+        let prefix = 0..h + 1;
+        assert!(check(&prep, &prefix, &res, &[], true).is_ok());
+        assert!(check(&prep, &all, &res, &[], false).is_err());
+    }
 }
