@@ -19,52 +19,66 @@ fn collect(mut d: Distributed) -> (Vec<Result<Vec<u8>, String>>, Stats) {
     (got, d.finish())
 }
 
-#[test]
-fn worker_killed_mid_run_loses_nothing() {
+type Got = Vec<Result<Vec<u8>, String>>;
+
+/// Two workers that report slowly, on 5 parts in 2-combination shards;
+/// 1.5 s into the run `upset` is done to the first. Returns what the run
+/// gave, its figures, and the embedded results to compare with.
+fn upset_one_worker(
+    tag: &str,
+    transport: TransportChoice,
+    lease: Duration,
+    upset: fn(&mut Proc),
+) -> (Got, Stats, Got) {
     let _g = serial();
-    let net = Net::new("kill");
-    let mut opts = net.options(TransportChoice::Zenoh);
+    let net = Net::new(tag);
+    let mut opts = net.options(transport);
     opts.shard_size = Some(2);
     opts.min_workers = 2;
+    opts.lease = lease;
     let inputs = inputs(5);
     let want = embedded(&inputs);
-    let mut w1 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
-    let _w2 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
+    let flags: &[&str] = match transport {
+        TransportChoice::Zenoh => &["--transport", "zenoh", "--fault", "slow:150"],
+        _ => &["--fault", "slow:150"],
+    };
+    let mut w1 = net.worker(flags);
+    let _w2 = net.worker(flags);
     let d = run_distributed(inputs, opts).unwrap();
-    let killer = std::thread::spawn(move || {
+    let upsetter = std::thread::spawn(move || {
         std::thread::sleep(Duration::from_millis(1500));
-        w1.sigkill();
+        upset(&mut w1);
         w1
     });
     let (got, stats) = collect(d);
-    drop(killer.join());
+    drop(upsetter.join()); // killed (SIGKILL works on a stopped process too)
+                           // Checked while this test still holds the lock on shared memory.
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
+    (got, stats, want)
+}
+
+#[test]
+fn worker_killed_mid_run_loses_nothing() {
+    let (got, stats, want) = upset_one_worker(
+        "kill",
+        TransportChoice::Zenoh,
+        Duration::from_secs(300),
+        Proc::sigkill,
+    );
     assert_eq!(got, want);
     assert!(stats.workers_lost >= 1, "{stats:?}");
-    eprintln!("after the kill: {stats:?}");
 }
 
 #[test]
 fn worker_killed_mid_run_over_iceoryx2_loses_nothing() {
-    let _g = serial();
-    let net = Net::new("killiox");
-    let mut opts = net.options(TransportChoice::Iceoryx2);
-    opts.shard_size = Some(2);
-    opts.min_workers = 2;
-    let inputs = inputs(5);
-    let want = embedded(&inputs);
-    let mut w1 = net.worker(&["--fault", "slow:150"]);
-    let _w2 = net.worker(&["--fault", "slow:150"]);
-    let d = run_distributed(inputs, opts).unwrap();
-    let killer = std::thread::spawn(move || {
-        std::thread::sleep(Duration::from_millis(1500));
-        w1.sigkill();
-        w1
-    });
-    let (got, stats) = collect(d);
-    drop(killer.join());
+    let (got, stats, want) = upset_one_worker(
+        "killiox",
+        TransportChoice::Iceoryx2,
+        Duration::from_secs(300),
+        Proc::sigkill,
+    );
     assert_eq!(got, want);
     assert!(stats.workers_lost >= 1, "{stats:?}");
-    assert!(shm_left().is_empty(), "{:?}", shm_left());
 }
 
 /// A worker that hangs (SIGSTOP: its process and connections stay up, so
@@ -73,25 +87,12 @@ fn worker_killed_mid_run_over_iceoryx2_loses_nothing() {
 /// results.
 #[test]
 fn a_hung_worker_loses_its_shards_when_their_lease_runs_out() {
-    let _g = serial();
-    let net = Net::new("hang");
-    let mut opts = net.options(TransportChoice::Zenoh);
-    opts.shard_size = Some(2);
-    opts.min_workers = 2;
-    opts.lease = Duration::from_secs(2);
-    let inputs = inputs(5);
-    let want = embedded(&inputs);
-    let w1 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
-    let _w2 = net.worker(&["--transport", "zenoh", "--fault", "slow:150"]);
-    let d = run_distributed(inputs, opts).unwrap();
-    let stopper = std::thread::spawn(move || {
-        std::thread::sleep(Duration::from_millis(1500));
-        w1.signal("STOP");
-        w1
-    });
-    let (got, stats) = collect(d);
-    let w1 = stopper.join().expect("stopper thread");
-    drop(w1); // SIGKILL works on a stopped process
+    let (got, stats, want) = upset_one_worker(
+        "hang",
+        TransportChoice::Zenoh,
+        Duration::from_secs(2),
+        |w| w.signal("STOP"),
+    );
     assert_eq!(got, want);
     assert!(stats.requeued >= 1, "{stats:?}");
 }
