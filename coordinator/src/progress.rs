@@ -73,7 +73,7 @@ impl Progress {
         }
         match &self.bar {
             Some(b) => b.println(line),
-            None => eprintln!("{line}"),
+            None => say(format_args!("{line}")),
         }
     }
 
@@ -104,13 +104,13 @@ impl Progress {
                     Status::NoFixture => "no fixture".to_string(),
                     Status::Invalid => format!("invalid: {}", o.error.as_deref().unwrap_or("?")),
                 };
-                eprintln!(
+                say(format_args!(
                     "[{done}/{}] {}: {what}  ({} fixtures so far, {:.1} s)",
                     self.total,
                     o.id,
                     self.totals.admissible,
                     self.start.elapsed().as_secs_f64()
-                );
+                ));
             }
             None => {}
         }
@@ -142,4 +142,11 @@ pub fn summary_table(t: &Totals, elapsed: Duration, output: &str) -> String {
     }
     row(&mut s, "time", format!("{:.2} s", elapsed.as_secs_f64()));
     s
+}
+
+/// A line on standard error. A closed stderr (`fixplan run 2>&1 | head`)
+/// must not stop the run: `eprintln!` would panic, so the error is dropped.
+fn say(args: std::fmt::Arguments) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{args}");
 }

@@ -323,6 +323,16 @@ pub fn run_loaded_search(
             });
         }
         drop(tx);
+        // However this loop ends (even by a panic), the drivers must not be
+        // left waiting at the gate, or the scope would never close.
+        struct Release<'a>(&'a AtomicBool, &'a Condvar);
+        impl Drop for Release<'_> {
+            fn drop(&mut self) {
+                self.0.store(true, Ordering::SeqCst);
+                self.1.notify_all();
+            }
+        }
+        let _release = Release(&abort, &gate.1);
         let mut pending = BTreeMap::new();
         let mut expected = start;
         'recv: for (i, out) in rx.iter() {
@@ -372,14 +382,14 @@ pub fn run_loaded_search(
     })?;
     let totals = progress.totals.clone();
     if !opts.quiet {
-        print!(
-            "{}",
-            summary_table(
-                &totals,
-                progress.elapsed(),
-                &opts.output.display().to_string()
-            )
+        // `?`, not `print!`: a closed stdout (`| head`) is an error the
+        // command line ends quietly on, not a panic.
+        let table = summary_table(
+            &totals,
+            progress.elapsed(),
+            &opts.output.display().to_string(),
         );
+        std::io::Write::write_all(&mut std::io::stdout(), table.as_bytes())?;
     }
     Ok(totals)
 }

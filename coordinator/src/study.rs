@@ -664,14 +664,16 @@ pub fn study_main(opts: &StudyOptions, cluster: Option<&ClusterOptions>) -> Resu
             .with_context(|| format!("{}: cannot write", p.display()))?;
     }
     if !opts.quiet {
-        print!("{}", table(&rep));
+        use std::io::Write;
+        let mut out = std::io::stdout().lock();
+        out.write_all(table(&rep).as_bytes())?;
         for (what, p) in [
             ("results", &opts.output),
             ("CSV", &opts.csv),
             ("chart", &opts.chart),
         ] {
             if let Some(p) = p {
-                println!("{what}: {}", p.display());
+                writeln!(out, "{what}: {}", p.display())?;
             }
         }
     }

@@ -631,3 +631,47 @@ fn help_teaches_the_options() {
         assert!(text.contains(flag), "{flag} missing from:\n{text}");
     }
 }
+
+/// `fixplan run ... 2>&1 | head -1`: the reader goes away after one line;
+/// the run must still finish its file and exit cleanly (it used to panic
+/// on the closed stderr and then wait forever for its own threads).
+#[test]
+fn a_closed_terminal_pipe_neither_hangs_nor_loses_the_file() {
+    use std::io::{BufRead, BufReader};
+    let dir = tempfile::tempdir().unwrap();
+    for extra in [&["--threads", "1"][..], &["--workers", "1"][..]] {
+        let out = dir
+            .path()
+            .join(format!("{}.mcap", extra[0].trim_start_matches('-')));
+        let mut child = fixplan()
+            .args(["run", "-o"])
+            .arg(&out)
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut first = String::new();
+        BufReader::new(child.stderr.take().unwrap())
+            .read_line(&mut first)
+            .unwrap();
+        assert!(first.starts_with("fixplan run"), "{first}");
+        drop(child.stdout.take()); // both ends closed, like `head` exiting
+        let until = Instant::now() + Duration::from_secs(60);
+        let status = loop {
+            if let Some(s) = child.try_wait().unwrap() {
+                break s;
+            }
+            if Instant::now() > until {
+                let _ = child.kill();
+                panic!("fixplan run {extra:?} hung after its output was closed");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        assert!(status.success(), "{extra:?}: {status:?}");
+        assert!(
+            ResultsFile::open(&out).is_ok(),
+            "{extra:?}: no results file"
+        );
+    }
+}

@@ -23,7 +23,10 @@ pub fn line(level: &str, role: &str, msg: &str) {
         return;
     }
     let t = START.get_or_init(Instant::now).elapsed().as_secs_f64();
-    eprintln!("[{t:9.3}s {level} {role}] {msg}");
+    // Not `eprintln!`: a closed stderr must not panic a worker or the
+    // coordinator in the middle of a run.
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "[{t:9.3}s {level} {role}] {msg}");
 }
 
 #[macro_export]
