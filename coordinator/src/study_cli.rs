@@ -2,7 +2,6 @@
 //! `--good-enough` on `fixplan run`.
 
 use crate::cluster::cli::RunClusterArgs;
-use crate::cluster::ClusterOptions;
 use crate::progress::Totals;
 use crate::refine::{parse_grid_steps, SearchOptions};
 use crate::run::{run_loaded_search, RunOptions};
@@ -139,18 +138,6 @@ impl SearchArgs {
     }
 }
 
-fn cluster_options(cluster: &RunClusterArgs, threads: Option<usize>) -> Option<ClusterOptions> {
-    cluster.workers.filter(|&n| n > 0).map(|n| ClusterOptions {
-        key_prefix: fixplan_worker::host::unique_name("fixplan-run"),
-        transport: cluster.transport,
-        min_workers: 1,
-        local_workers: n,
-        worker_threads: threads.map(|t| (t / n).max(1)),
-        quiet: true,
-        ..ClusterOptions::default()
-    })
-}
-
 /// `fixplan run --grid-steps ... / --good-enough ...` (with or without
 /// `--workers`).
 pub fn run_search_main(
@@ -160,7 +147,7 @@ pub fn run_search_main(
 ) -> Result<Totals> {
     let catalog = load_catalog(&opts.catalog)?;
     let spec = load_kit(&opts.kit, catalog.units)?;
-    let mut copts = cluster_options(cluster, opts.threads);
+    let mut copts = cluster.options(opts.threads, opts.quiet);
     if let Some(c) = copts.as_mut() {
         c.shard_size = opts.shard_size;
     }
@@ -185,6 +172,6 @@ pub fn study_cli_main(a: &StudyArgs, default_catalog: PathBuf) -> Result<StudyRe
         no_share: a.no_share,
         quiet: a.quiet,
     };
-    let copts = cluster_options(&a.cluster, a.threads);
+    let copts = a.cluster.options(a.threads, a.quiet);
     study_main(&opts, copts.as_ref())
 }

@@ -140,21 +140,34 @@ pub struct RunClusterArgs {
     pub verify: VerifyPolicy,
 }
 
+impl RunClusterArgs {
+    /// The cluster of `--workers N` (none without it): N local worker
+    /// processes sharing `threads` (default: this host's cores).
+    pub fn options(&self, threads: Option<usize>, quiet: bool) -> Option<ClusterOptions> {
+        let n = self.workers.filter(|&n| n > 0)?;
+        // The coordinator's own log lines follow the command's --quiet.
+        fixplan_worker::log::set_quiet(quiet);
+        Some(ClusterOptions {
+            key_prefix: fixplan_worker::host::unique_name("fixplan-run"),
+            transport: self.transport,
+            min_workers: 1,
+            local_workers: n,
+            worker_threads: threads.map(|t| (t / n).max(1)),
+            quiet: true,
+            verify: self.verify,
+            ..ClusterOptions::default()
+        })
+    }
+}
+
 /// `fixplan run`, with `--workers N` through the cluster.
 pub fn run_main(opts: &RunOptions, cluster: &RunClusterArgs) -> Result<Totals> {
     let catalog = load_catalog(&opts.catalog)?;
     let spec = load_kit(&opts.kit, catalog.units)?;
-    let copts = cluster.workers.filter(|&n| n > 0).map(|n| ClusterOptions {
-        key_prefix: fixplan_worker::host::unique_name("fixplan-run"),
-        transport: cluster.transport,
-        min_workers: 1,
-        shard_size: opts.shard_size,
-        local_workers: n,
-        worker_threads: opts.threads.map(|t| (t / n).max(1)),
-        quiet: true,
-        verify: cluster.verify,
-        ..ClusterOptions::default()
-    });
+    let mut copts = cluster.options(opts.threads, opts.quiet);
+    if let Some(c) = copts.as_mut() {
+        c.shard_size = opts.shard_size;
+    }
     run_loaded_with(&catalog, &spec, opts, copts.as_ref())
 }
 
