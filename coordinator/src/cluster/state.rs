@@ -348,6 +348,11 @@ impl Core {
             Msg::Report { worker, outcomes } => {
                 let mut notes = Vec::new();
                 for o in outcomes {
+                    // One bad result and nothing else of this worker counts
+                    // (its other shards are back in the queue already).
+                    if banned(&worker) {
+                        break;
+                    }
                     let (id, taken) = match o {
                         Outcome::Done(r) => (r.shard_id, self.result(*r, &worker, part_index)),
                         Outcome::Failed(f) => (f.shard_id, self.failed(f, &worker, part_index)),
@@ -863,6 +868,70 @@ mod tests {
         assert_eq!(c.stats().requeued, first.len() as u64);
         // An unknown worker is told to join.
         assert_eq!(c.next_work("stranger"), Next::Rejoin);
+    }
+
+    #[test]
+    fn nothing_else_of_a_report_counts_after_a_bad_result() {
+        let (mut c, index) = core(1, 4, VerifyPolicy::All);
+        c.settings.batch_cost = u64::MAX;
+        join(&c, "liar");
+        let Next::Work(batch) = c.next_work("liar") else {
+            panic!("no work")
+        };
+        let prep = c.lock().parts[0].prep.clone().expect("prepared");
+        let mut outcomes: Vec<(bool, Outcome)> = batch
+            .iter()
+            .map(|a| {
+                let mut result = prep.enumerate_range(a.range.clone());
+                let bad = !result.fixtures.is_empty();
+                if let Some(f) = result.fixtures.first_mut() {
+                    f.score *= 0.5;
+                }
+                let done = ShardDone {
+                    shard_id: a.shard_id,
+                    digest: a.digest,
+                    micros: 1,
+                    result,
+                    hit: None,
+                };
+                (bad, Outcome::Done(Box::new(done)))
+            })
+            .collect();
+        // One corrupted result first, honest ones after it.
+        let first_bad = outcomes
+            .iter()
+            .position(|o| o.0)
+            .expect("a shard with fixtures");
+        let bad = outcomes.remove(first_bad);
+        let mut honest: Vec<Outcome> = outcomes.into_iter().filter(|o| !o.0).map(|o| o.1).collect();
+        assert!(!honest.is_empty(), "need honest shards too");
+        let ids: Vec<u64> = honest
+            .iter()
+            .map(|o| match o {
+                Outcome::Done(d) => d.shard_id,
+                Outcome::Failed(f) => f.shard_id,
+            })
+            .collect();
+        honest.insert(0, bad.1);
+        let report = encode(&Msg::Report {
+            worker: "liar".into(),
+            outcomes: honest,
+        })
+        .expect("encode");
+        let reply = decode(&c.handle(&report, &index)).expect("decode");
+        assert!(
+            matches!(reply, Frame::Refused(ref r) if r.contains("liar")),
+            "{reply:?}"
+        );
+        let st = c.lock();
+        assert_eq!(st.stats.rejected, 1);
+        for id in ids {
+            assert_ne!(
+                st.shards[id as usize].status,
+                ShardStatus::Done,
+                "shard {id}"
+            );
+        }
     }
 
     #[test]
