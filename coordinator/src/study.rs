@@ -3,8 +3,8 @@
 //! to buy or which clamp to add.
 //!
 //! Every (kit, part) goes through the per-part path of `fixplan run`
-//! ([`part_job::solve_part`] in this process, or the workers of
-//! [`cluster::run_distributed`] with `--workers N`), so a study scales out
+//! ([`crate::part_job::solve_part`] in this process, or the workers of
+//! [`crate::cluster::run_distributed`] with `--workers N`), so a study scales out
 //! like a run. Work is shared only where that is provably exact:
 //!
 //! - **the same kit twice** (a sweep point equal to a listed kit): solved

@@ -2,7 +2,7 @@
 //!
 //! These types are the contract between the catalogue readers, the CLI and the
 //! enumeration: everything is in the catalogue's length unit here; the
-//! enumeration converts to lattice units itself (see [`crate::prepare`]).
+//! enumeration converts to lattice units itself (see [`crate::prepare()`]).
 
 use serde::{Deserialize, Serialize};
 

@@ -1,9 +1,9 @@
 //! fixplan-core: the complete fixture enumeration of Brost & Goldberg (1996)
 //! as specified by SPEC.md, pure (no I/O) and deterministic.
 //!
-//! Pipeline: [`prepare`] a part (segments, pair bounds) once, then
+//! Pipeline: [`prepare()`] a part (segments, pair bounds) once, then
 //! [`PreparedPart::enumerate_range`] any range of segment combinations into a
-//! [`PartialResult`], and [`merge`] the pieces. [`solve`] does all of it for
+//! [`PartialResult`], and [`merge`] the pieces. [`solve()`] does all of it for
 //! one part and returns the result format of SPEC Appendix A.
 
 pub mod admissibility;

@@ -3,7 +3,7 @@
 //! queryable replies with one encoded message).
 //!
 //! Key expressions under the run's prefix `P` (default `fixplan`):
-//! - `P/join`: queryable of the coordinator; [`Msg::Join`] -> `Welcome`/refusal;
+//! - `P/join`: queryable of the coordinator; [`crate::protocol::Msg::Join`] -> `Welcome`/refusal;
 //! - `P/work`: queryable of the coordinator; `Report` -> `Reply`;
 //! - `P/alive/WORKER`: liveliness token of each worker;
 //! - `P/coordinator`: liveliness token of the coordinator.

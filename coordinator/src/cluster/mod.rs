@@ -11,7 +11,7 @@
 //! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
 //! - [`local`]: worker processes on this host (`fixplan run --workers N`);
 //! - [`catalog_run`]: `fixplan coordinator` and `fixplan run --workers N`;
-//! - [`bench`]: `fixplan bench-cluster`.
+//! - [`mod@bench`]: `fixplan bench-cluster`.
 
 pub mod bench;
 pub mod catalog_run;
