@@ -50,7 +50,7 @@ pub(crate) struct PartSlot {
     /// part ends with the shards up to the hit, the rest are dropped.
     pub good_enough: Option<f64>,
     pub stop: Option<u64>,
-    pub partials: Vec<PartialResult>,
+    pub partials: Vec<Held>,
     pub top: Vec<Fixture>,
     pub closed: bool,
 }
@@ -68,9 +68,19 @@ struct ShardSlot {
     /// [`super::plan::cost`] of the shard, for batching.
     cost: u64,
     status: ShardStatus,
+    /// The worker whose result was taken.
+    by: Option<Arc<str>>,
+}
+
+/// A shard result held until its part is complete.
+pub(crate) struct Held {
+    shard: u64,
+    hit: Option<u64>,
+    result: PartialResult,
 }
 
 struct WorkerSlot {
+    name: Arc<str>,
     parts_sent: HashSet<usize>,
     leased: HashSet<u64>,
     got_done: bool,
@@ -248,6 +258,7 @@ impl Core {
                     range: r,
                     cost,
                     status: ShardStatus::Queued,
+                    by: None,
                 });
             }
             st.parts.push(slot);
@@ -427,6 +438,7 @@ impl Core {
         let old = st.workers.insert(
             j.worker.clone(),
             WorkerSlot {
+                name: j.worker.as_str().into(),
                 parts_sent: HashSet::new(),
                 leased: HashSet::new(),
                 got_done: false,
@@ -599,6 +611,7 @@ impl Core {
                 }
                 st.banned.insert(worker.to_string());
                 requeue(st, std::iter::once(r.shard_id));
+                redo_work_of(st, worker);
                 return Err(format!("rejected: {e}"));
             }
         };
@@ -609,6 +622,7 @@ impl Core {
         if let Some(w) = st.workers.get_mut(worker) {
             w.shards += 1;
             w.rederived += checked as u64;
+            st.shards[r.shard_id as usize].by = Some(w.name.clone());
         }
         let part = &mut st.parts[p];
         let top_k = part.top_k;
@@ -631,13 +645,18 @@ impl Core {
             let lists = vec![std::mem::take(&mut part.top), result.fixtures.clone()];
             part.top = fixplan_core::ranking::merge_ranked(lists, top_k);
         }
-        part.partials.push(result);
+        part.partials.push(Held {
+            shard: r.shard_id,
+            hit: r.hit,
+            result,
+        });
         if !open && !part.closed {
             part.closed = true;
             // Shards past the stop: results that came in are left out,
             // the others are never handed out (or are duplicates later).
             let kept = std::mem::take(&mut part.partials)
                 .into_iter()
+                .map(|h| h.result)
                 .filter(|r| stop.is_none_or(|s| r.range.start <= s))
                 .collect();
             let done = Finished {
@@ -740,6 +759,50 @@ impl Core {
     }
 }
 
+/// A worker failed a check: what it did for parts still open is done
+/// again (its results there were taken, most of them unchecked under
+/// [`VerifyPolicy::Sample`]). Parts already delivered keep theirs: a
+/// worker is checked in full until it has earned some trust, which is
+/// where a build or platform that computes differently shows up.
+fn redo_work_of(st: &mut State, worker: &str) {
+    let mine = |sh: &ShardSlot| sh.by.as_deref() == Some(worker);
+    let parts: HashSet<usize> = st
+        .shards
+        .iter()
+        .filter(|sh| mine(sh) && !st.parts[sh.part].closed)
+        .map(|sh| sh.part)
+        .collect();
+    for p in parts {
+        let part = &mut st.parts[p];
+        part.partials
+            .retain(|h| st.shards[h.shard as usize].by.as_deref() != Some(worker));
+        let held: HashSet<u64> = part.partials.iter().map(|h| h.shard).collect();
+        part.stop = part.partials.iter().filter_map(|h| h.hit).min();
+        let lists = part
+            .partials
+            .iter()
+            .map(|h| h.result.fixtures.clone())
+            .collect();
+        part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k);
+        let stop = part.stop;
+        for id in part.shard_ids.clone() {
+            let sh = &mut st.shards[id as usize];
+            // Done but not held: this worker's, or skipped past a stop
+            // that may have been its.
+            if sh.status == ShardStatus::Done
+                && !held.contains(&id)
+                && stop.is_none_or(|s| sh.range.start <= s)
+            {
+                sh.status = ShardStatus::Queued;
+                sh.by = None;
+                st.queue.push_front(id);
+                st.queued_cost += sh.cost;
+                st.stats.requeued += 1;
+            }
+        }
+    }
+}
+
 /// CPU time of the calling thread.
 fn thread_cpu_micros() -> u64 {
     let mut t = libc::timespec {
@@ -787,6 +850,17 @@ mod tests {
     use std::sync::mpsc::channel;
 
     fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> (Core, Vec<usize>) {
+        let (c, index, rx) = core_rx(parts, shard, verify);
+        // Keep the channel open for parts that do close.
+        std::mem::forget(rx);
+        (c, index)
+    }
+
+    fn core_rx(
+        parts: usize,
+        shard: u64,
+        verify: VerifyPolicy,
+    ) -> (Core, Vec<usize>, std::sync::mpsc::Receiver<Vec<PartDone>>) {
         let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
         let slots = (0..parts)
             .map(|i| {
@@ -832,9 +906,87 @@ mod tests {
             batch_cost: 1,
         };
         let (tx, rx) = channel();
-        // Parts never close in these tests; keep the channel open anyway.
-        std::mem::forget(rx);
-        Core::new(settings, slots, tx)
+        let (c, index) = Core::new(settings, slots, tx);
+        (c, index, rx)
+    }
+
+    /// The honest outcome of each shard of `batch` (part 0).
+    fn honest(c: &Core, batch: &[Assign]) -> Vec<Outcome> {
+        let prep = c.lock().parts[0].prep.clone().expect("prepared");
+        batch
+            .iter()
+            .map(|a| {
+                Outcome::Done(Box::new(ShardDone {
+                    shard_id: a.shard_id,
+                    digest: a.digest,
+                    micros: 1,
+                    result: prep.enumerate_range(a.range.clone()),
+                    hit: None,
+                }))
+            })
+            .collect()
+    }
+
+    fn report(c: &Core, index: &[usize], worker: &str, outcomes: Vec<Outcome>) -> Frame {
+        let msg = Msg::Report {
+            worker: worker.into(),
+            outcomes,
+        };
+        decode(&c.handle(&encode(&msg).expect("encode"), index)).expect("decode")
+    }
+
+    #[test]
+    fn a_banned_worker_s_work_on_open_parts_is_done_again() {
+        let (mut c, index, rx) = core_rx(1, 4, VerifyPolicy::All);
+        let total = c.lock().queued_cost;
+        c.settings.batch_cost = total / 4;
+        join(&c, "a");
+        join(&c, "b");
+        let Next::Work(first) = c.next_work("a") else {
+            panic!("no work")
+        };
+        let first_ids: Vec<u64> = first.iter().map(|a| a.shard_id).collect();
+        // `a` hands in honest results and gets more work...
+        let Frame::Msg(Msg::Reply {
+            next: Next::Work(second),
+            ..
+        }) = report(&c, &index, "a", honest(&c, &first))
+        else {
+            panic!("no second batch")
+        };
+        assert!(first_ids
+            .iter()
+            .all(|&id| c.lock().shards[id as usize].status == ShardStatus::Done));
+        // ...then lies about one fixture of it.
+        let mut lies = honest(&c, &second);
+        let forged = lies.iter_mut().find_map(|o| match o {
+            Outcome::Done(d) if !d.result.fixtures.is_empty() => Some(d),
+            _ => None,
+        });
+        forged.expect("a shard with fixtures").result.fixtures[0].score *= 0.5;
+        assert!(matches!(report(&c, &index, "a", lies), Frame::Refused(_)));
+        // Its first, accepted results are back in the queue.
+        for &id in &first_ids {
+            assert_eq!(c.lock().shards[id as usize].status, ShardStatus::Queued);
+        }
+        // `b` does everything; the part comes out as one enumeration.
+        let mut outcomes = Vec::new();
+        loop {
+            match report(&c, &index, "b", outcomes) {
+                Frame::Msg(Msg::Reply {
+                    next: Next::Work(b),
+                    ..
+                }) => outcomes = honest(&c, &b),
+                Frame::Msg(Msg::Reply {
+                    next: Next::Done, ..
+                }) => break,
+                f => panic!("{f:?}"),
+            }
+        }
+        let done = rx.try_recv().expect("the part");
+        let Ok(f) = &done[0].1 else { panic!("failed") };
+        let prep = c.lock().parts[0].prep.clone().expect("prepared");
+        assert_eq!(f.merged, prep.enumerate_all());
     }
 
     fn join(c: &Core, name: &str) {
