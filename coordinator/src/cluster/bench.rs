@@ -45,7 +45,7 @@ impl BenchArgs {
             VerifyPolicy::All => "all".into(),
             VerifyPolicy::Sample { one_in } => format!(
                 "sample (each worker's results in full until {} fixtures checked out, then 1 result in {one_in})",
-                super::state::FULL_CHECKS
+                super::verify::FULL_CHECKS
             ),
         }
     }

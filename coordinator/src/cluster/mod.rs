@@ -7,7 +7,7 @@
 //! - [`run_distributed`]: parts in, merged per-part results out, in order;
 //! - [`plan`]: shard sizes from a cost estimate;
 //! - [`state`]: queue, leases, workers, merging (transport-free);
-//! - [`verify`]: the checks of a shard result (fixtures re-derived);
+//! - [`verify`]: the checks of a shard result and how many are re-derived;
 //! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
 //! - [`local`]: worker processes on this host (`fixplan run --workers N`);
 //! - [`catalog_run`]: `fixplan coordinator` and `fixplan run --workers N`;
@@ -30,7 +30,6 @@ use fixplan_worker::zenoh_link::ZenohOptions;
 use fixplan_worker::{info, iox};
 use rayon::prelude::*;
 use runtime::Runtime;
-pub use state::VerifyPolicy;
 use state::{Core, Finished, PartDone, PartSlot, Settings, Stats, WHOLE};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -38,6 +37,7 @@ use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
 use thiserror::Error;
+pub use verify::VerifyPolicy;
 
 #[derive(Debug, Error)]
 pub enum ClusterError {

@@ -3,7 +3,7 @@
 //! bytes through [`Core::handle`] (zenoh queryables and the iceoryx2 server
 //! call it alike) and the answer goes back as bytes.
 
-use super::verify;
+use super::verify::{self, VerifyPolicy};
 use fixplan_core::{merge, Fixture, PartialResult, PreparedPart};
 use fixplan_worker::part_input::{short_hex, PartInput};
 use fixplan_worker::protocol::{
@@ -87,68 +87,8 @@ struct WorkerSlot {
     shards: u64,
     threads: u64,
     /// Fixtures of this worker re-derived so far (until there are
-    /// [`FULL_CHECKS`], all its results are checked in full).
+    /// [`verify::FULL_CHECKS`], all its results are checked in full).
     rederived: u64,
-}
-
-/// How much of a shard result the coordinator re-derives before merging.
-/// Structural checks (range, counts, order, fixtures inside the shard,
-/// finite scores) are made on every result whatever the policy.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum VerifyPolicy {
-    /// Every fixture that would enter its part's top-k, in every result.
-    All,
-    /// Every such fixture of a worker's results until [`FULL_CHECKS`] of
-    /// its fixtures have checked out (a worker built or running
-    /// differently shows up there), then of one result in `one_in`, picked
-    /// by a hash of the shard id (the same shards whichever worker runs
-    /// them).
-    Sample { one_in: u64 },
-}
-
-/// Fixtures of each worker re-derived before [`VerifyPolicy::Sample`]
-/// starts sampling its results.
-pub const FULL_CHECKS: u64 = 16;
-
-impl Default for VerifyPolicy {
-    fn default() -> Self {
-        VerifyPolicy::Sample { one_in: 32 }
-    }
-}
-
-impl std::str::FromStr for VerifyPolicy {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "all" => Ok(VerifyPolicy::All),
-            "sample" => Ok(VerifyPolicy::default()),
-            _ => s
-                .strip_prefix("1/")
-                .and_then(|n| n.parse::<u64>().ok())
-                .filter(|&n| n >= 1)
-                .map(|one_in| VerifyPolicy::Sample { one_in })
-                .ok_or_else(|| format!("unknown verification {s:?} (all, sample, or 1/N)")),
-        }
-    }
-}
-
-impl VerifyPolicy {
-    fn deep(self, shard_id: u64, rederived_from_worker: u64) -> bool {
-        match self {
-            VerifyPolicy::All => true,
-            VerifyPolicy::Sample { one_in } => {
-                rederived_from_worker < FULL_CHECKS
-                    || splitmix64(shard_id).is_multiple_of(one_in.max(1))
-            }
-        }
-    }
-}
-
-fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// Run-wide figures (for the benchmark and the final log line).
@@ -1112,20 +1052,5 @@ mod tests {
         assert!(sizes[0] <= total / 4 + max_shard, "{sizes:?}");
         assert!(sizes.last() < sizes.first(), "{sizes:?}");
         assert_eq!(sizes.iter().sum::<u64>(), total);
-    }
-
-    #[test]
-    fn sampling_checks_a_new_worker_in_full_then_one_result_in_n() {
-        let p = VerifyPolicy::Sample { one_in: 16 };
-        assert!((0..100).all(|id| p.deep(id, 0)));
-        assert!((0..100).all(|id| p.deep(id, FULL_CHECKS - 1)));
-        let hits = (0..16_000).filter(|&id| p.deep(id, FULL_CHECKS)).count();
-        assert!((800..1200).contains(&hits), "{hits}");
-        assert!((0..100).all(|id| VerifyPolicy::All.deep(id, 1000)));
-        assert_eq!("all".parse(), Ok(VerifyPolicy::All));
-        assert_eq!("1/4".parse(), Ok(VerifyPolicy::Sample { one_in: 4 }));
-        assert_eq!("sample".parse(), Ok(VerifyPolicy::default()));
-        assert!("1/0".parse::<VerifyPolicy>().is_err());
-        assert!("most".parse::<VerifyPolicy>().is_err());
     }
 }

@@ -1,8 +1,9 @@
 //! Trust but verify: the checks a shard result must pass before it is
-//! merged. Every fixture that would enter the part's top-k is re-derived
-//! from the part the coordinator holds (its locator setup enumerated again
-//! and the clamp placed again), which recomputes form closure, admissibility
-//! and score; the fixture must come out identical.
+//! merged. Every result gets the shape checks; for the results the
+//! [`VerifyPolicy`] picks, every fixture that would enter the part's top-k
+//! is re-derived from the part the coordinator holds (its locator setup
+//! enumerated again and the clamp placed again), which recomputes form
+//! closure, admissibility and score; the fixture must come out identical.
 
 use fixplan_core::admissibility::Scratch;
 use fixplan_core::clamp::Accumulator;
@@ -10,6 +11,67 @@ use fixplan_core::combinations::combination_at;
 use fixplan_core::{Fixture, PartialResult, PreparedPart};
 use std::cmp::Ordering;
 use std::ops::Range;
+
+/// How much of a shard result the coordinator re-derives before merging.
+/// Structural checks (range, counts, order, fixtures inside the shard,
+/// finite scores) are made on every result whatever the policy.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VerifyPolicy {
+    /// Every fixture that would enter its part's top-k, in every result.
+    All,
+    /// Every such fixture of a worker's results until [`FULL_CHECKS`] of
+    /// its fixtures have checked out (a worker built or running
+    /// differently shows up there), then of one result in `one_in`, picked
+    /// by a hash of the shard id (the same shards whichever worker runs
+    /// them).
+    Sample { one_in: u64 },
+}
+
+/// Fixtures of each worker re-derived before [`VerifyPolicy::Sample`]
+/// starts sampling its results.
+pub const FULL_CHECKS: u64 = 16;
+
+impl Default for VerifyPolicy {
+    fn default() -> Self {
+        VerifyPolicy::Sample { one_in: 32 }
+    }
+}
+
+impl std::str::FromStr for VerifyPolicy {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "all" => Ok(VerifyPolicy::All),
+            "sample" => Ok(VerifyPolicy::default()),
+            _ => s
+                .strip_prefix("1/")
+                .and_then(|n| n.parse::<u64>().ok())
+                .filter(|&n| n >= 1)
+                .map(|one_in| VerifyPolicy::Sample { one_in })
+                .ok_or_else(|| format!("unknown verification {s:?} (all, sample, or 1/N)")),
+        }
+    }
+}
+
+impl VerifyPolicy {
+    /// Whether to re-derive the fixtures of this result.
+    pub(crate) fn deep(self, shard_id: u64, rederived_from_worker: u64) -> bool {
+        match self {
+            VerifyPolicy::All => true,
+            VerifyPolicy::Sample { one_in } => {
+                rederived_from_worker < FULL_CHECKS
+                    || splitmix64(shard_id).is_multiple_of(one_in.max(1))
+            }
+        }
+    }
+}
+
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
 
 /// Whether `f` is exactly what the enumeration gives for its segments,
 /// locators, clamp segment and rotation (core's own code path, restricted to
@@ -120,7 +182,7 @@ pub fn check_stop(
 
 /// Checks a shard result against the shard it answers and the part's
 /// current top-k; `deep`: also re-derive every fixture that would enter
-/// the top-k (see [`super::state::VerifyPolicy`]). Returns how many
+/// the top-k (see [`VerifyPolicy`]). Returns how many
 /// fixtures were re-derived.
 pub fn check(
     prep: &PreparedPart,
@@ -182,6 +244,21 @@ mod tests {
     use super::*;
     use fixplan_catalog::kit::{builtin_kit, METRIC_25};
     use fixplan_core::{prepare, Params, Part};
+
+    #[test]
+    fn sampling_checks_a_new_worker_in_full_then_one_result_in_n() {
+        let p = VerifyPolicy::Sample { one_in: 16 };
+        assert!((0..100).all(|id| p.deep(id, 0)));
+        assert!((0..100).all(|id| p.deep(id, FULL_CHECKS - 1)));
+        let hits = (0..16_000).filter(|&id| p.deep(id, FULL_CHECKS)).count();
+        assert!((800..1200).contains(&hits), "{hits}");
+        assert!((0..100).all(|id| VerifyPolicy::All.deep(id, 1000)));
+        assert_eq!("all".parse(), Ok(VerifyPolicy::All));
+        assert_eq!("1/4".parse(), Ok(VerifyPolicy::Sample { one_in: 4 }));
+        assert_eq!("sample".parse(), Ok(VerifyPolicy::default()));
+        assert!("1/0".parse::<VerifyPolicy>().is_err());
+        assert!("most".parse::<VerifyPolicy>().is_err());
+    }
 
     #[test]
     fn a_stop_must_match_the_scores() {
