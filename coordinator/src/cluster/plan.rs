@@ -61,6 +61,11 @@ pub fn estimate(input: &fixplan_worker::part_input::PartInput) -> (u64, usize) {
 /// of small parts needs tens of round trips per worker, not one per part.
 pub const BATCHES_PER_SLOT: u64 = 32;
 
+/// Shards in one assignment at most, whatever their cost: keeps messages
+/// (inputs out, results back) and what a lost worker takes with it
+/// bounded on huge catalogues of small parts.
+pub const MAX_BATCH_SHARDS: usize = 256;
+
 /// The most cost one assignment carries (it always carries one shard,
 /// however big).
 pub fn batch_cost(parts: &[(u64, usize)], slots: usize) -> u64 {

@@ -432,7 +432,7 @@ impl Core {
             (st.queued_cost / (2 * threads.max(1))).clamp(1, self.settings.batch_cost.max(1));
         let mut batch = Vec::new();
         let mut cost = 0;
-        while cost < limit {
+        while cost < limit && batch.len() < super::plan::MAX_BATCH_SHARDS {
             let Some(id) = st.queue.pop_front() else {
                 break;
             };
