@@ -85,3 +85,29 @@ pub fn catalog() -> (Catalog, KitSpec) {
     };
     (cat, spec)
 }
+
+/// The output of a command that must have succeeded; both streams shown
+/// if it did not.
+pub fn ok(out: std::process::Output) -> std::process::Output {
+    assert!(
+        out.status.success(),
+        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+/// The fixtures channel of a complete results file, part by part: what
+/// must be byte-identical however the run was split.
+pub fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
+    let f = fixplan_coordinator::results::ResultsFile::open(path).unwrap();
+    let mut v = Vec::new();
+    let c = f.for_each_part(|_, m| {
+        v.push(m.fixtures.clone());
+        true
+    });
+    assert!(c.unwrap().complete);
+    v
+}

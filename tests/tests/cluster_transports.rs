@@ -7,6 +7,7 @@ mod cluster_support;
 use cluster_support::*;
 use fixplan_coordinator::cluster::TransportChoice;
 use fixplan_coordinator::run::{run_loaded, run_loaded_with};
+use fixplan_tests::fixtures_channel;
 
 fn two_workers(transport: TransportChoice, flag: &str) {
     let _g = serial();

@@ -7,7 +7,7 @@ use fixplan_coordinator::run::{run_loaded, RunOptions};
 use fixplan_core::Status;
 use std::path::{Path, PathBuf};
 
-use fixplan_tests::catalog;
+use fixplan_tests::{catalog, fixtures_channel};
 
 fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
     RunOptions {
@@ -20,17 +20,6 @@ fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
         shard_size: shard,
         quiet: true,
     }
-}
-
-fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
-    let f = ResultsFile::open(path).unwrap();
-    let mut v = Vec::new();
-    let c = f.for_each_part(|_, m| {
-        v.push(m.fixtures.clone());
-        true
-    });
-    assert!(c.unwrap().complete);
-    v
 }
 
 #[test]

@@ -5,24 +5,14 @@
 use fixplan_catalog::kit::write_kit_toml;
 use fixplan_coordinator::study::{read_mcap, StudyKitMsg};
 use fixplan_core::Units;
+use fixplan_tests::ok;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 fn fixplan() -> Command {
     Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
-}
-
-fn ok(out: Output) -> Output {
-    assert!(
-        out.status.success(),
-        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
 }
 
 /// Parts of the sample catalogue (inline copies) with quantities: some

@@ -4,7 +4,6 @@
 #![allow(dead_code)]
 
 use fixplan_coordinator::cluster::{ClusterOptions, PartInput, TransportChoice};
-use fixplan_coordinator::results::ResultsFile;
 use fixplan_coordinator::run::RunOptions;
 use fixplan_core::PartialResult;
 use fixplan_worker::zenoh_link::ZenohOptions;
@@ -186,17 +185,6 @@ pub fn run_opts(out: &Path, top_k: usize) -> RunOptions {
         shard_size: None,
         quiet: true,
     }
-}
-
-pub fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
-    let f = ResultsFile::open(path).unwrap();
-    let mut v = Vec::new();
-    let c = f.for_each_part(|_, m| {
-        v.push(m.fixtures.clone());
-        true
-    });
-    assert!(c.unwrap().complete);
-    v
 }
 
 /// iceoryx2 files left by runs of this test process.
