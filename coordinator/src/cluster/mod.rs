@@ -112,6 +112,14 @@ fn cores() -> usize {
         .unwrap_or(1)
 }
 
+/// A part's merged result with its prepared form (for the report: plate
+/// placement needs it) and, with `--good-enough`, where it stopped.
+pub struct Solved {
+    pub prep: PreparedPart,
+    pub merged: PartialResult,
+    pub stopped_at: Option<u64>,
+}
+
 /// Merged per-part results in input order, as the workers deliver them.
 pub struct Distributed {
     rx: Receiver<Vec<PartDone>>,
@@ -146,6 +154,23 @@ impl Distributed {
         self.next_finished().map(|(i, r)| (i, r.map(|f| f.merged)))
     }
 
+    /// The next part, prepared here if the run did not need to.
+    pub fn next_part(&mut self) -> Option<(usize, Result<Solved, String>)> {
+        let (i, r) = self.next_finished()?;
+        let r = r.and_then(|f| {
+            let prep = match f.prep {
+                Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
+                None => f.input.prepare().map_err(|e| e.to_string())?,
+            };
+            Ok(Solved {
+                prep,
+                merged: f.merged,
+                stopped_at: f.stopped_at,
+            })
+        });
+        Some((i, r))
+    }
+
     fn next_finished(&mut self) -> Option<(usize, Result<Finished, String>)> {
         if self.next >= self.total {
             self.finish();
@@ -170,33 +195,6 @@ impl Distributed {
                 Err(RecvTimeoutError::Disconnected) => return None,
             }
         }
-    }
-}
-
-/// A part's merged result with its prepared form (for the report: plate
-/// placement needs it) and, with `--good-enough`, where it stopped.
-pub struct Solved {
-    pub prep: PreparedPart,
-    pub merged: PartialResult,
-    pub stopped_at: Option<u64>,
-}
-
-impl Distributed {
-    /// The next part, prepared here if the run did not need to.
-    pub fn next_part(&mut self) -> Option<(usize, Result<Solved, String>)> {
-        let (i, r) = self.next_finished()?;
-        let r = r.and_then(|f| {
-            let prep = match f.prep {
-                Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
-                None => f.input.prepare().map_err(|e| e.to_string())?,
-            };
-            Ok(Solved {
-                prep,
-                merged: f.merged,
-                stopped_at: f.stopped_at,
-            })
-        });
-        Some((i, r))
     }
 }
 
@@ -282,12 +280,10 @@ pub fn run_distributed(
         };
         let slot = PartSlot {
             digest: digest(&bytes),
-            top_k: source.params.top_k,
             prep,
             source,
             input: Arc::new(bytes),
             shard_ids: 0..0,
-            good_enough: opts.good_enough,
             stop: None,
             partials: Vec::new(),
             top: Vec::new(),
@@ -333,6 +329,7 @@ pub fn run_distributed(
         lease: opts.lease,
         min_workers: opts.min_workers,
         verify: opts.verify,
+        good_enough: opts.good_enough,
         batch_cost,
     };
     let (core, index) = Core::new(settings, slots_in, tx);

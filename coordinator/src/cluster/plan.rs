@@ -35,19 +35,6 @@ pub fn shard_size(target: u64, combinations: u64, segments: usize) -> u64 {
         .min(combinations.max(1))
 }
 
-/// Combinations per shard for each part (`(combinations, segments)`),
-/// given the worker threads expected in all.
-pub fn shard_sizes(parts: &[(u64, usize)], slots: usize, fixed: Option<u64>) -> Vec<u64> {
-    if let Some(s) = fixed {
-        return parts.iter().map(|_| s.max(1)).collect();
-    }
-    let target = target_cost(parts, slots);
-    parts
-        .iter()
-        .map(|&(c, s)| shard_size(target, c, s))
-        .collect()
-}
-
 /// A part's cost before it is prepared, from its outline and access
 /// regions: every edge taken for one usable segment (trimming drops some,
 /// access regions can split some), as `(combinations, segments)`.
@@ -89,9 +76,10 @@ mod tests {
 
     #[test]
     fn sizes_balance_cost() {
-        let s = shard_sizes(&[(10, 4), (100_000, 40)], 2, None);
-        assert_eq!(s[0], 10);
-        let shards_big = 100_000u64.div_ceil(s[1]);
+        let parts = [(10, 4), (100_000, 40)];
+        let target = target_cost(&parts, 2);
+        assert_eq!(shard_size(target, 10, 4), 10);
+        let shards_big = 100_000u64.div_ceil(shard_size(target, 100_000, 40));
         assert!((8..=20).contains(&shards_big), "{shards_big}");
         assert_eq!(ranges(10, 4), vec![0..4, 4..8, 8..10]);
         assert!(ranges(0, 4).is_empty());

@@ -41,18 +41,22 @@ pub(crate) struct PartSlot {
     /// only when a result of theirs is re-derived.
     pub prep: Option<Arc<PreparedPart>>,
     pub source: Arc<PartInput>,
-    pub top_k: usize,
     pub input: Arc<Vec<u8>>,
     pub digest: Digest,
     /// Ids of its shards (contiguous, in combination order).
     pub shard_ids: Range<u64>,
-    /// `--good-enough` threshold, and the first hit reported so far: the
-    /// part ends with the shards up to the hit, the rest are dropped.
-    pub good_enough: Option<f64>,
+    /// The first `--good-enough` hit reported so far: the part ends with
+    /// the shards up to it, the rest are dropped.
     pub stop: Option<u64>,
     pub partials: Vec<Held>,
     pub top: Vec<Fixture>,
     pub closed: bool,
+}
+
+impl PartSlot {
+    fn top_k(&self) -> usize {
+        self.source.params.top_k
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -128,6 +132,8 @@ pub struct Settings {
     pub lease: Duration,
     pub min_workers: usize,
     pub verify: VerifyPolicy,
+    /// `--good-enough` threshold of every part.
+    pub good_enough: Option<f64>,
     /// Cost of work ([`super::plan::cost`]) handed out in one assignment at
     /// most: small shards travel together up to it.
     pub batch_cost: u64,
@@ -468,7 +474,7 @@ impl Core {
                 digest: part.digest,
                 range: sh.range.clone(),
                 input,
-                good_enough: part.good_enough,
+                good_enough: self.settings.good_enough,
             });
         }
         if batch.is_empty() {
@@ -513,7 +519,8 @@ impl Core {
                 short_hex(&r.digest),
                 short_hex(&part.digest)
             ))
-        } else if let Err(e) = verify::check_stop(part.good_enough, &shard_range, r.hit, &r.result)
+        } else if let Err(e) =
+            verify::check_stop(self.settings.good_enough, &shard_range, r.hit, &r.result)
         {
             Err(e)
         } else if deep && part.prep.is_none() {
@@ -528,7 +535,7 @@ impl Core {
         } else {
             match &part.prep {
                 Some(prep) => verify::check(prep, &range, &r.result, &part.top, deep),
-                None => verify::check_shape(part.top_k, &range, &r.result).map(|()| 0),
+                None => verify::check_shape(part.top_k(), &range, &r.result).map(|()| 0),
             }
         };
         if let Some(w) = st.workers.get_mut(worker) {
@@ -565,7 +572,7 @@ impl Core {
             st.shards[r.shard_id as usize].by = Some(w.name.clone());
         }
         let part = &mut st.parts[p];
-        let top_k = part.top_k;
+        let top_k = part.top_k();
         let mut result = r.result;
         if shard_range == WHOLE && r.hit.is_none() {
             // As the embedded run cuts it: `0..count`.
@@ -723,7 +730,7 @@ fn redo_work_of(st: &mut State, worker: &str) {
             .iter()
             .map(|h| h.result.fixtures.clone())
             .collect();
-        part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k);
+        part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k());
         let stop = part.stop;
         for id in part.shard_ids.clone() {
             let sh = &mut st.shards[id as usize];
@@ -819,13 +826,11 @@ mod tests {
                 let ranges = super::super::plan::ranges(prep.combination_count(), shard);
                 let segments = prep.segments.len();
                 let slot = PartSlot {
-                    top_k: prep.top_k,
                     prep: Some(Arc::new(prep)),
                     source: Arc::new(source),
                     input: Arc::new(vec![i as u8]),
                     digest: [i as u8; 32],
                     shard_ids: 0..0,
-                    good_enough: None,
                     stop: None,
                     partials: Vec::new(),
                     top: Vec::new(),
@@ -843,6 +848,7 @@ mod tests {
             lease: Duration::from_secs(300),
             min_workers: 1,
             verify,
+            good_enough: None,
             batch_cost: 1,
         };
         let (tx, rx) = channel();
