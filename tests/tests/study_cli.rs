@@ -527,27 +527,42 @@ fn good_enough_stops_early_with_a_good_fixture() {
 fn grid_steps_on_workers_match_embedded() {
     let dir = tempfile::tempdir().unwrap();
     let catalog = setup(dir.path());
-    let mut got = Vec::new();
-    for extra in [&[][..], &["--workers", "2"][..]] {
-        let out = dir.path().join(format!("w{}.mcap", extra.len()));
-        ok(fixplan()
-            .args(["run", "-q", "--grid-steps", "2,1", "--catalog"])
-            .arg(&catalog)
-            .args(extra)
-            .arg("-o")
-            .arg(&out)
-            .output()
-            .unwrap());
-        let parts: Vec<Value> = part_msgs(&out)
-            .into_values()
-            .map(|mut p| {
-                for s in p["refine"].as_array_mut().into_iter().flatten() {
-                    s["enumerate_ms"] = Value::Null;
-                }
-                p["refine"].clone()
-            })
-            .collect();
-        got.push((fixtures_channel(&out), parts));
+    // Plain, and with a threshold every fixture meets: then each part that
+    // has one stops at the coarse step and the fine step is dropped.
+    for search in [&[][..], &["--good-enough", "1e9"][..]] {
+        let mut got = Vec::new();
+        for extra in [&[][..], &["--workers", "2"][..]] {
+            let out = dir
+                .path()
+                .join(format!("w{}g{}.mcap", extra.len(), search.len()));
+            ok(fixplan()
+                .args(["run", "-q", "--grid-steps", "2,1", "--catalog"])
+                .arg(&catalog)
+                .args(search)
+                .args(extra)
+                .arg("-o")
+                .arg(&out)
+                .output()
+                .unwrap());
+            let parts: Vec<Value> = part_msgs(&out)
+                .into_values()
+                .map(|mut p| {
+                    for s in p["refine"].as_array_mut().into_iter().flatten() {
+                        s["enumerate_ms"] = Value::Null;
+                    }
+                    serde_json::json!([p["refine"], p["stopped"], p["stopped_at"]])
+                })
+                .collect();
+            got.push((fixtures_channel(&out), parts));
+        }
+        assert_eq!(got[0], got[1], "{search:?}");
+        if !search.is_empty() {
+            let one_step = got[0]
+                .1
+                .iter()
+                .filter(|p| p[0].as_array().is_some_and(|r| r.len() == 1) && p[1] == "good_enough")
+                .count();
+            assert!(one_step > 0, "no part stopped at the coarse step");
+        }
     }
-    assert_eq!(got[0], got[1]);
 }

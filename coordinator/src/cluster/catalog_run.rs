@@ -66,26 +66,49 @@ pub fn start(
     })
 }
 
+/// One grid step of a part as it came back: its result, the combination
+/// where `--good-enough` stopped it, and the time since the previous step.
+type StepOut = (SolveResult, Option<u64>, f64);
+
 impl CatalogJobs {
-    /// Sends one part's outcome; true when the receiver is gone.
-    #[allow(clippy::too_many_arguments)]
-    fn send_part(
+    /// The outcome of a part from its steps, coarse to fine, as the
+    /// embedded search makes it: summaries up to the first step stopped by
+    /// `--good-enough` (the workers ran the finer ones all the same), the
+    /// result of that step or the last, unless a step failed.
+    fn part_outcome(
         &self,
         ctx: &JobContext,
-        cp: &CatalogPart,
         i: usize,
-        result: SolveResult,
-        summaries: &mut Vec<StepSummary>,
-        stopped_at: Option<u64>,
+        cp: &CatalogPart,
+        steps: Vec<StepOut>,
         t0: std::time::Instant,
-        tx: &Sender<(usize, Result<PartOutcome, serde_json::Error>)>,
-    ) -> bool {
+    ) -> Result<PartOutcome, serde_json::Error> {
+        let mut summaries: Vec<StepSummary> = Vec::new();
+        let mut failed: Option<SolveResult> = None;
+        let mut last = None;
+        let mut stopped_at = None;
+        for (k, (result, hit, ms)) in steps.into_iter().enumerate() {
+            summaries.push(step_summary(
+                self.steps[k],
+                &result,
+                summaries.last(),
+                hit,
+                ms,
+            ));
+            if result.status == fixplan_core::Status::Invalid && failed.is_none() {
+                failed = Some(result.clone());
+            }
+            last = Some(result);
+            if hit.is_some() {
+                stopped_at = hit;
+                break;
+            }
+        }
+        let result = failed
+            .or(last)
+            .unwrap_or_else(|| SolveResult::invalid(format!("{}: no grid step", cp.id)));
         let info = SearchInfo {
-            steps: ctx
-                .search
-                .grid_steps
-                .is_some()
-                .then(|| std::mem::take(summaries)),
+            steps: ctx.search.grid_steps.is_some().then_some(summaries),
             stopped_at,
             ..SearchInfo::default()
         };
@@ -93,8 +116,7 @@ impl CatalogJobs {
             enumerate_ms: t0.elapsed().as_secs_f64() * 1e3,
             ..Timing::default()
         };
-        tx.send((i, part_outcome_with(ctx, i, cp, result, timing, &info)))
-            .is_err()
+        part_outcome_with(ctx, i, cp, result, timing, &info)
     }
 
     /// Sends every part's outcome to `tx` (in catalogue order for the
@@ -112,62 +134,26 @@ impl CatalogJobs {
         }
         let t0 = std::time::Instant::now();
         let mut t_step = t0;
-        let mut summaries: Vec<StepSummary> = Vec::new();
-        let mut failed: Option<SolveResult> = None;
-        // `--good-enough`: the step that stopped a part ends it, as in the
-        // embedded search (the workers ran its finer steps all the same).
-        let mut stopped: Option<(usize, SolveResult, u64)> = None;
+        // The steps of one part come back one after another, in order.
+        let mut steps: Vec<StepOut> = Vec::new();
         while let Some((j, r)) = self.dist.next_part() {
             let (i, k) = self.map[j];
             let cp = &parts[i];
-            if k == 0 {
-                summaries.clear();
-                failed = None;
-                stopped = None;
-            }
-            let last_step = k + 1 == self.steps.len();
-            if stopped.as_ref().is_some_and(|s| s.0 == i) {
-                if last_step {
-                    let (_, result, at) = stopped.take().expect("checked above");
-                    if self.send_part(ctx, cp, i, result, &mut summaries, Some(at), t0, tx) {
-                        break;
-                    }
-                }
-                continue;
-            }
-            let (result, hit) = match r {
-                Ok(s) => (report(&s.prep, &s.merged), s.stopped_at),
-                Err(msg) => (SolveResult::invalid(format!("{}: {msg}", cp.id)), None),
-            };
             let now = std::time::Instant::now();
             let ms = (now - t_step).as_secs_f64() * 1e3;
             t_step = now;
-            if result.status == fixplan_core::Status::Invalid && failed.is_none() {
-                failed = Some(result.clone());
+            // Steps past a `--good-enough` stop are not reported.
+            if steps.last().is_none_or(|s| s.1.is_none()) {
+                steps.push(match r {
+                    Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
+                    Err(msg) => (SolveResult::invalid(format!("{}: {msg}", cp.id)), None, ms),
+                });
             }
-            summaries.push(step_summary(
-                self.steps[k],
-                &result,
-                summaries.last(),
-                hit,
-                ms,
-            ));
-            if let Some(at) = hit {
-                let result = failed.take().unwrap_or(result);
-                if last_step {
-                    if self.send_part(ctx, cp, i, result, &mut summaries, Some(at), t0, tx) {
-                        break;
-                    }
-                } else {
-                    stopped = Some((i, result, at));
-                }
+            if k + 1 < self.steps.len() {
                 continue;
             }
-            if !last_step {
-                continue;
-            }
-            let result = failed.take().unwrap_or(result);
-            if self.send_part(ctx, cp, i, result, &mut summaries, None, t0, tx) {
+            let out = self.part_outcome(ctx, i, cp, std::mem::take(&mut steps), t0);
+            if tx.send((i, out)).is_err() {
                 break;
             }
         }
