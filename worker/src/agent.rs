@@ -239,15 +239,13 @@ impl Agent {
     /// or asks for a new join (false).
     fn serve_run(&mut self, link: DataLink) -> Result<bool, WorkerError> {
         let mut last_heard = Instant::now();
-        let mut outcomes: Vec<Outcome> = Vec::new();
+        // Kept until a reply comes: sent again as it is if none does.
+        let mut report = Msg::Report {
+            worker: self.name.clone(),
+            outcomes: Vec::new(),
+        };
         loop {
-            let reply = self.send(
-                &link,
-                &Msg::Report {
-                    worker: self.name.clone(),
-                    outcomes: outcomes.clone(),
-                },
-            );
+            let reply = self.send(&link, &report);
             let (notes, next) = match reply {
                 Ok(Frame::Msg(Msg::Reply { notes, next })) => (notes, next),
                 Ok(Frame::Msg(m)) => {
@@ -271,21 +269,25 @@ impl Agent {
                 }
             };
             last_heard = Instant::now();
-            outcomes.clear();
             for n in notes {
                 warn!(self.role(), "{n}");
             }
-            match next {
+            let outcomes = match next {
                 Next::Work(batch) => {
                     self.summary.shards += batch.len() as u64;
-                    outcomes = self.work_on(batch);
+                    self.work_on(batch)
                 }
                 Next::Idle { retry_ms } => {
-                    std::thread::sleep(Duration::from_millis(retry_ms.clamp(1, 2000)))
+                    std::thread::sleep(Duration::from_millis(retry_ms.clamp(1, 2000)));
+                    Vec::new()
                 }
                 Next::Done => return Ok(true),
                 Next::Rejoin => return Ok(false),
-            }
+            };
+            report = Msg::Report {
+                worker: self.name.clone(),
+                outcomes,
+            };
         }
     }
 
