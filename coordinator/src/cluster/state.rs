@@ -57,6 +57,16 @@ impl PartSlot {
     fn top_k(&self) -> usize {
         self.source.params.top_k
     }
+
+    /// The part prepared, here and once, if it was sent out unprepared.
+    fn prepared(&mut self) -> Result<Arc<PreparedPart>, fixplan_core::PrepareError> {
+        if let Some(p) = &self.prep {
+            return Ok(p.clone());
+        }
+        let p = Arc::new(self.source.prepare()?);
+        self.prep = Some(p.clone());
+        Ok(p)
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -523,18 +533,14 @@ impl Core {
             verify::check_stop(self.settings.good_enough, &shard_range, r.hit, &r.result)
         {
             Err(e)
-        } else if deep && part.prep.is_none() {
-            match part.source.prepare() {
-                Ok(prep) => {
-                    let prep = Arc::new(prep);
-                    part.prep = Some(prep.clone());
-                    verify::check(&prep, &range, &r.result, &part.top, true)
-                }
+        } else if deep {
+            match part.prepared() {
+                Ok(prep) => verify::check(&prep, &range, &r.result, &part.top, true),
                 Err(e) => Err(format!("the coordinator cannot prepare the part: {e}")),
             }
         } else {
             match &part.prep {
-                Some(prep) => verify::check(prep, &range, &r.result, &part.top, deep),
+                Some(prep) => verify::check(prep, &range, &r.result, &part.top, false),
                 None => verify::check_shape(part.top_k(), &range, &r.result).map(|()| 0),
             }
         };
@@ -639,10 +645,9 @@ impl Core {
         // A part sent whole was not prepared here: if it cannot be, that is
         // the input's fault and the coordinator's own message stands (the
         // embedded run's); otherwise the worker's enumeration failed.
-        let part = &mut st.parts[p];
-        let message = match part.prep.is_none().then(|| part.source.prepare()) {
-            Some(Err(e)) => e.to_string(),
-            _ => {
+        let message = match st.parts[p].prepared() {
+            Err(e) => e.to_string(),
+            Ok(_) => {
                 warn!(
                     ROLE,
                     "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
