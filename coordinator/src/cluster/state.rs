@@ -738,18 +738,14 @@ fn redo_work_of(st: &mut State, worker: &str) {
         part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k());
         let stop = part.stop;
         for id in part.shard_ids.clone() {
-            let sh = &mut st.shards[id as usize];
+            let sh = &st.shards[id as usize];
             // Done but not held: this worker's, or skipped past a stop
             // that may have been its.
             if sh.status == ShardStatus::Done
                 && !held.contains(&id)
                 && stop.is_none_or(|s| sh.range.start <= s)
             {
-                sh.status = ShardStatus::Queued;
-                sh.by = None;
-                st.queue.push_front(id);
-                st.queued_cost += sh.cost;
-                st.stats.requeued += 1;
+                back_in_queue(st, id);
             }
         }
     }
@@ -768,16 +764,23 @@ fn thread_cpu_micros() -> u64 {
     t.tv_sec as u64 * 1_000_000 + t.tv_nsec as u64 / 1000
 }
 
+/// Puts one shard back at the front of the queue, whatever became of it.
+fn back_in_queue(st: &mut State, id: u64) {
+    let sh = &mut st.shards[id as usize];
+    sh.status = ShardStatus::Queued;
+    sh.by = None;
+    st.queued_cost += sh.cost;
+    st.queue.push_front(id);
+    st.stats.requeued += 1;
+}
+
 /// Puts shards that are not done back at the front of the queue.
 fn requeue(st: &mut State, ids: impl Iterator<Item = u64>) -> usize {
     let mut n = 0;
     for id in ids {
         if let Some(sh) = st.shards.get_mut(id as usize) {
             if sh.status != ShardStatus::Done && sh.status != ShardStatus::Queued {
-                sh.status = ShardStatus::Queued;
-                st.queued_cost += sh.cost;
-                st.queue.push_front(id);
-                st.stats.requeued += 1;
+                back_in_queue(st, id);
                 n += 1;
             }
         }
