@@ -82,21 +82,6 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
         .collect())
 }
 
-/// CPU time of this process so far (all its threads, the finished ones
-/// too): the coordinator's share of a run.
-pub fn process_cpu_secs() -> f64 {
-    let mut u = std::mem::MaybeUninit::<libc::rusage>::zeroed();
-    // SAFETY: getrusage only writes the struct it is given.
-    let ok = unsafe { libc::getrusage(libc::RUSAGE_SELF, u.as_mut_ptr()) } == 0;
-    if !ok {
-        return 0.0;
-    }
-    // SAFETY: initialised by the successful call above.
-    let u = unsafe { u.assume_init() };
-    let secs = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-    secs(u.ru_utime) + secs(u.ru_stime)
-}
-
 /// One measured run.
 struct Run {
     /// Start to finish (workers started, parts done, workers gone).
@@ -128,7 +113,7 @@ fn throughput(
         ..ClusterOptions::default()
     };
     let parts_in = parts.to_vec();
-    let cpu0 = process_cpu_secs();
+    let cpu0 = super::cpu_time::process_micros();
     let t0 = Instant::now();
     let mut d = run_distributed(parts_in, opts)?;
     let mut first = None;
@@ -147,7 +132,7 @@ fn throughput(
     Ok(Run {
         wall: t0.elapsed().as_secs_f64(),
         steady: last - first.unwrap_or(0.0),
-        coordinator_cpu: process_cpu_secs() - cpu0,
+        coordinator_cpu: super::cpu_time::process_micros().saturating_sub(cpu0) as f64 * 1e-6,
         stats,
     })
 }

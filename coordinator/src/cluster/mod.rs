@@ -11,11 +11,13 @@
 //! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
 //! - [`local`]: worker processes on this host (`fixplan run --workers N`);
 //! - [`catalog_run`]: `fixplan coordinator` and `fixplan run --workers N`;
-//! - [`mod@bench`]: `fixplan bench-cluster`.
+//! - [`mod@bench`]: `fixplan bench-cluster`;
+//! - [`cpu_time`]: CPU clocks for its figures.
 
 pub mod bench;
 pub mod catalog_run;
 pub mod cli;
+pub mod cpu_time;
 pub mod local;
 pub mod plan;
 pub mod runtime;

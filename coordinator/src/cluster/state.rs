@@ -252,7 +252,7 @@ impl Core {
     /// Answers one request. Never panics on input: unreadable frames are
     /// logged and answered with a refusal.
     pub fn handle(&self, bytes: &[u8], part_index: &[usize]) -> Vec<u8> {
-        let t0 = thread_cpu_micros();
+        let t0 = super::cpu_time::thread_micros();
         let reply = match decode(bytes) {
             Err(e) => {
                 warn!(ROLE, "dropped a message: {e}");
@@ -273,7 +273,7 @@ impl Core {
         };
         let done = {
             let mut st = self.lock();
-            st.stats.handle_micros += thread_cpu_micros().saturating_sub(t0);
+            st.stats.handle_micros += super::cpu_time::thread_micros().saturating_sub(t0);
             std::mem::take(&mut st.done)
         };
         if !done.is_empty() {
@@ -749,19 +749,6 @@ fn redo_work_of(st: &mut State, worker: &str) {
             }
         }
     }
-}
-
-/// CPU time of the calling thread.
-fn thread_cpu_micros() -> u64 {
-    let mut t = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime only writes the struct it is given.
-    if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } != 0 {
-        return 0;
-    }
-    t.tv_sec as u64 * 1_000_000 + t.tv_nsec as u64 / 1000
 }
 
 /// Puts one shard back at the front of the queue, whatever became of it.
