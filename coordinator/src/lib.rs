@@ -1,28 +1,20 @@
 //! The fixplan command line and the coordinator of distributed runs.
 //!
-//! - [`run`]: `fixplan run`, whole catalogues into an MCAP results file;
-//! - [`part_job`]: one part through the shard/merge path of the workers;
-//! - [`mcap_out`], [`results`], [`messages`]: writing and reading results;
-//! - [`scene`], [`draw`], [`render`]: Foxglove scenes and SVG pictures;
-//! - [`show`]: tables and JSON lines from a results file;
-//! - [`bench_cmd`]: `fixplan bench`, where the enumeration spends its time;
-//! - [`cluster`]: the coordinator and workers of distributed runs.
+//! A part's path through the code, from catalogue file to MCAP message:
+//! `fixplan-catalog` reads it; [`run`] makes it a job and hands it to a
+//! backend (threads here, or [`cluster`] workers), which solves it through
+//! [`job`] (shards, grid steps, merge); [`run`] turns the result into the
+//! part's messages ([`output`], with the scene of [`view`]) and writes them
+//! in catalogue order. [`study`] runs many kits through the same path,
+//! [`bench`] measures it, and [`cli`] is the command line over all of it.
+//! Imports flow one way: `cli` -> `bench`, `study` -> `run` -> `cluster`,
+//! `view` -> `output` -> `job` (`scripts/import_cycles.py` checks it).
 
-pub mod bench_cmd;
+pub mod bench;
 pub mod cli;
 pub mod cluster;
-pub mod draw;
-pub mod mcap_out;
-pub mod messages;
-pub mod part_job;
-pub mod progress;
-pub mod refine;
-pub mod render;
-pub mod results;
+pub mod job;
+pub mod output;
 pub mod run;
-pub mod scene;
-pub mod show;
-pub mod solve_cmd;
 pub mod study;
-pub mod study_cli;
-pub mod sweep;
+pub mod view;

@@ -102,7 +102,7 @@ pub fn ok(out: std::process::Output) -> std::process::Output {
 /// The fixtures channel of a complete results file, part by part: what
 /// must be byte-identical however the run was split.
 pub fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
-    let f = fixplan_coordinator::results::ResultsFile::open(path).unwrap();
+    let f = fixplan_coordinator::output::ResultsFile::open(path).unwrap();
     let mut v = Vec::new();
     let c = f.for_each_part(|_, m| {
         v.push(m.fixtures.clone());

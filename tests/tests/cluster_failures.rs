@@ -4,18 +4,14 @@
 mod cluster_support;
 
 use cluster_support::*;
-use fixplan_coordinator::cluster::state::Stats;
+use fixplan_coordinator::cluster::scheduler::Stats;
 use fixplan_coordinator::cluster::{run_distributed, Distributed, TransportChoice};
 use fixplan_worker::protocol::{decode, encode, encode_as, Frame, Msg, Next, PROTOCOL_VERSION};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::time::Duration;
 
 fn collect(mut d: Distributed) -> (Vec<Result<Vec<u8>, String>>, Stats) {
-    let mut got = Vec::new();
-    for (i, r) in d.by_ref() {
-        assert_eq!(i, got.len(), "parts in order");
-        got.push(r.map(|(_, m)| bytes(&m)));
-    }
+    let got = in_order(&mut d);
     (got, d.finish())
 }
 

@@ -140,11 +140,8 @@ fn workers_in_separate_network_namespaces() {
             .expect("start a worker in a namespace");
         workers.push(Proc { child: Some(child) });
     }
-    let mut got = Vec::new();
     let mut d = d;
-    for (_, r) in d.by_ref() {
-        got.push(r.map(|(_, m)| bytes(&m)));
-    }
+    let got = in_order(&mut d);
     let stats = d.finish();
     assert_eq!(got, want);
     assert_eq!(stats.workers_joined, 2, "{stats:?}");

@@ -6,7 +6,7 @@ mod cluster_support;
 
 use cluster_support::*;
 use fixplan_coordinator::cluster::TransportChoice;
-use fixplan_coordinator::run::{run_loaded, run_loaded_with};
+use fixplan_coordinator::run::run_catalog;
 use fixplan_tests::fixtures_channel;
 
 fn two_workers(transport: TransportChoice, flag: &str) {
@@ -15,14 +15,14 @@ fn two_workers(transport: TransportChoice, flag: &str) {
     let (cat, spec) = catalog();
     let emb = dir.path().join("emb.mcap");
     let dist = dir.path().join("dist.mcap");
-    run_loaded(&cat, &spec, &run_opts(&emb, 5)).unwrap();
+    run_catalog(&cat, &spec, &run_opts(&emb, 5, None)).unwrap();
     let net = Net::new("two");
     let mut opts = net.options(transport);
     opts.min_workers = 2;
     opts.shard_size = Some(3);
     let _w1 = net.worker(&["--transport", flag]);
     let _w2 = net.worker(&["--transport", flag]);
-    let totals = run_loaded_with(&cat, &spec, &run_opts(&dist, 5), Some(&opts)).unwrap();
+    let totals = run_catalog(&cat, &spec, &run_opts(&dist, 5, Some(opts))).unwrap();
     assert_eq!(totals.parts(), 6);
     assert_eq!(fixtures_channel(&emb), fixtures_channel(&dist));
     assert!(shm_left().is_empty(), "{:?}", shm_left());
@@ -45,14 +45,14 @@ fn run_with_local_workers_equals_embedded() {
     let (cat, spec) = catalog();
     let emb = dir.path().join("emb.mcap");
     let dist = dir.path().join("dist.mcap");
-    run_loaded(&cat, &spec, &run_opts(&emb, 0)).unwrap();
+    run_catalog(&cat, &spec, &run_opts(&emb, 0, None)).unwrap();
     let net = Net::new("local");
     let mut opts = net.options(TransportChoice::Auto);
     opts.local_workers = 2;
     opts.worker_threads = Some(1);
     opts.worker_exe = Some(EXE.into());
     opts.quiet = true;
-    run_loaded_with(&cat, &spec, &run_opts(&dist, 0), Some(&opts)).unwrap();
+    run_catalog(&cat, &spec, &run_opts(&dist, 0, Some(opts))).unwrap();
     assert_eq!(fixtures_channel(&emb), fixtures_channel(&dist));
     assert!(shm_left().is_empty(), "{:?}", shm_left());
 }
@@ -73,12 +73,9 @@ fn workers_beyond_the_shared_memory_limit_use_zenoh() {
     let mut workers: Vec<_> = (0..n)
         .map(|_| net.worker_captured(&["--fault", "slow:300"]))
         .collect();
-    let d = fixplan_coordinator::cluster::run_distributed(inputs, opts).unwrap();
-    let mut got = Vec::new();
-    for (i, r) in d {
-        assert_eq!(i, got.len());
-        got.push(r.map(|(_, m)| bytes(&m)));
-    }
+    let mut d = fixplan_coordinator::cluster::run_distributed(inputs, opts).unwrap();
+    let got = in_order(&mut d);
+    d.finish();
     assert_eq!(got, want);
     let logs: Vec<String> = workers
         .iter_mut()

@@ -169,7 +169,12 @@ fn toml_points(o: &Outline) -> String {
 fn write_manifest(dir: &Path) -> PathBuf {
     let mut s = String::from("name = \"golden\"\nunits = \"mm\"\n\n");
     for (id, outline, access) in parts() {
-        writeln!(s, "[[part]]\nid = \"{id}\"\noutline = {}", toml_points(&outline)).unwrap();
+        writeln!(
+            s,
+            "[[part]]\nid = \"{id}\"\noutline = {}",
+            toml_points(&outline)
+        )
+        .unwrap();
         if !access.is_empty() {
             let a: Vec<String> = access.iter().map(toml_points).collect();
             writeln!(s, "access = [{}]", a.join(", ")).unwrap();

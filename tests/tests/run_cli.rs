@@ -3,8 +3,8 @@
 //! SIGKILL, invalid parts, and the MCAP file read back channel by channel
 //! (Rust reader here, Python's `mcap` package when it is installed).
 
-use fixplan_coordinator::messages::*;
-use fixplan_coordinator::results::ResultsFile;
+use fixplan_coordinator::output::messages::*;
+use fixplan_coordinator::output::ResultsFile;
 use fixplan_tests::ok;
 use serde_json::Value;
 use std::collections::BTreeMap;

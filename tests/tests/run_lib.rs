@@ -1,9 +1,10 @@
-//! `run_loaded` on catalogues built in memory: the results file does not
+//! `run_catalog` on catalogues built in memory: the results file does not
 //! depend on threads or shard size, invalid parts do not stop the run, and
 //! every channel reads back.
 
-use fixplan_coordinator::results::{PartRecord, ResultsFile};
-use fixplan_coordinator::run::{run_loaded, RunOptions};
+use fixplan_coordinator::output::{PartRecord, ResultsFile};
+use fixplan_coordinator::run::backend::Backend;
+use fixplan_coordinator::run::{run_catalog, RunOptions};
 use fixplan_core::Status;
 use std::path::{Path, PathBuf};
 
@@ -14,11 +15,14 @@ fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
         catalog: PathBuf::from("mem"),
         kit: "case-kit".into(),
         top_k: Some(5),
-        threads: Some(threads),
         output: out.to_path_buf(),
         resume: false,
         shard_size: shard,
         quiet: true,
+        search: Default::default(),
+        backend: Backend::Embedded {
+            threads: Some(threads),
+        },
     }
 }
 
@@ -29,9 +33,9 @@ fn same_bytes_whatever_threads_and_shards() {
     let a = dir.path().join("a.mcap");
     let b = dir.path().join("b.mcap");
     let c = dir.path().join("c.mcap");
-    let t = run_loaded(&cat, &spec, &opts(&a, 1, Some(1))).unwrap();
-    run_loaded(&cat, &spec, &opts(&b, 2, None)).unwrap();
-    run_loaded(&cat, &spec, &opts(&c, 3, Some(7))).unwrap();
+    let t = run_catalog(&cat, &spec, &opts(&a, 1, Some(1))).unwrap();
+    run_catalog(&cat, &spec, &opts(&b, 2, None)).unwrap();
+    run_catalog(&cat, &spec, &opts(&c, 3, Some(7))).unwrap();
     assert_eq!(t.parts(), 6);
     assert_eq!(t.invalid, 2, "{t:?}");
     assert!(t.ok >= 3, "{t:?}");
@@ -48,7 +52,7 @@ fn invalid_parts_carry_their_message() {
     let dir = tempfile::tempdir().unwrap();
     let (cat, spec) = catalog();
     let out = dir.path().join("r.mcap");
-    run_loaded(&cat, &spec, &opts(&out, 2, None)).unwrap();
+    run_catalog(&cat, &spec, &opts(&out, 2, None)).unwrap();
     let f = ResultsFile::open(&out).unwrap();
     let mut recs = Vec::new();
     f.for_each_part(|_, m| {

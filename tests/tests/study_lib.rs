@@ -4,9 +4,10 @@
 //! part is the one `prepare` gives; the statistics' percentiles.
 
 use fixplan_catalog::load_catalog;
-use fixplan_coordinator::refine::with_grid_step;
+use fixplan_coordinator::job::search::with_grid_step;
+use fixplan_coordinator::job::solve::derive as graft;
 use fixplan_coordinator::run::default_catalog;
-use fixplan_coordinator::study::{graft, median, nearest_rank, study_kits};
+use fixplan_coordinator::study::{median, nearest_rank, study_kits};
 use fixplan_core::prepare;
 
 #[test]

@@ -106,13 +106,6 @@ struct Agent {
     summary: WorkerSummary,
 }
 
-fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
-    p.downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| p.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown panic".into())
-}
-
 /// One shard of an assignment, enumerated (on the calling rayon pool).
 fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, String>) -> Outcome {
     let failed = |message: String| {
@@ -146,7 +139,7 @@ fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, St
         }
         Err(p) => failed(format!(
             "internal error in the enumeration: {}",
-            panic_text(p)
+            crate::panic_text(p)
         )),
     }
 }

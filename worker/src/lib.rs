@@ -21,13 +21,6 @@ pub mod zenoh_link;
 use fixplan_core::{PartialResult, PreparedPart};
 use std::ops::Range;
 
-/// One unit of work: a range of one part's segment combinations.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub struct Shard {
-    pub part: String,
-    pub range: Range<u64>,
-}
-
 /// Enumerates a shard on the current rayon pool.
 pub fn run_shard(prep: &PreparedPart, range: Range<u64>) -> PartialResult {
     prep.enumerate_range(range)
@@ -46,4 +39,13 @@ pub fn run_shard_until(
         Some(g) => prep.enumerate_until(range, g),
         None => (prep.enumerate_range(range), None),
     }
+}
+
+/// The message of a caught panic, for the part's `invalid` result: a bug
+/// in one part's enumeration must not end the run, but must be reported.
+pub fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".into())
 }

@@ -1,11 +1,11 @@
-//! The coordinator's moving parts around [`Core`]: the zenoh session with
+//! The coordinator's moving parts around [`Scheduler`]: the zenoh session with
 //! its queryables (`P/join`, `P/work`), the liveliness subscriber
 //! (`P/alive/*`) and token (`P/coordinator`), the lease timer, the iceoryx2
 //! server thread, and the local workers. Stopping it tells the workers the
 //! run is over, then removes the run's shared memory.
 
 use super::local::{LocalSpec, LocalWorkers};
-use super::state::Core;
+use super::scheduler::Scheduler;
 use fixplan_worker::iox;
 use fixplan_worker::protocol::DataPath;
 use fixplan_worker::warn;
@@ -17,10 +17,10 @@ use std::time::{Duration, Instant};
 use zenoh::sample::SampleKind;
 use zenoh::Wait;
 
-use super::ClusterError;
+use super::options::ClusterError;
 
 pub struct Runtime {
-    pub core: Arc<Core>,
+    pub core: Arc<Scheduler>,
     ctl: Arc<iox::ServeControl>,
     threads: Vec<JoinHandle<()>>,
     session: zenoh::Session,
@@ -40,7 +40,7 @@ pub fn connect_for(listen: &str) -> String {
 
 impl Runtime {
     pub fn start(
-        core: Arc<Core>,
+        core: Arc<Scheduler>,
         part_index: Arc<Vec<usize>>,
         zopts: &ZenohOptions,
         key_prefix: &str,

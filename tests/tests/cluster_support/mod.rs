@@ -3,7 +3,8 @@
 //! embedded reference.
 #![allow(dead_code)]
 
-use fixplan_coordinator::cluster::{ClusterOptions, PartInput, TransportChoice};
+use fixplan_coordinator::cluster::{ClusterOptions, Distributed, PartInput, TransportChoice};
+use fixplan_coordinator::run::backend::Backend;
 use fixplan_coordinator::run::RunOptions;
 use fixplan_core::PartialResult;
 use fixplan_worker::zenoh_link::ZenohOptions;
@@ -174,17 +175,37 @@ pub fn bytes(p: &PartialResult) -> Vec<u8> {
     postcard::to_allocvec(p).unwrap()
 }
 
-pub fn run_opts(out: &Path, top_k: usize) -> RunOptions {
+/// Options of a quiet run of the in-memory catalogue into `out`, on one
+/// embedded thread or on `cluster`.
+pub fn run_opts(out: &Path, top_k: usize, cluster: Option<ClusterOptions>) -> RunOptions {
     RunOptions {
         catalog: PathBuf::from("mem"),
         kit: "case-kit".into(),
         top_k: Some(top_k),
-        threads: Some(1),
         output: out.to_path_buf(),
         resume: false,
         shard_size: None,
         quiet: true,
+        search: Default::default(),
+        backend: match cluster {
+            Some(c) => Backend::Cluster(c),
+            None => Backend::Embedded { threads: Some(1) },
+        },
     }
+}
+
+/// Every part's merged result (bytes) or error, in input order, whatever
+/// order the workers finished them in.
+pub fn in_order(d: &mut Distributed) -> Vec<Result<Vec<u8>, String>> {
+    let mut got = Vec::new();
+    while let Some((i, r)) = d.next_merged() {
+        got.push((i, r.map(|m| bytes(&m))));
+    }
+    got.sort_by_key(|(i, _)| *i);
+    for (n, (i, _)) in got.iter().enumerate() {
+        assert_eq!(n, *i, "every part exactly once");
+    }
+    got.into_iter().map(|(_, r)| r).collect()
 }
 
 /// iceoryx2 files left by runs of this test process.

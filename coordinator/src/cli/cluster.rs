@@ -1,9 +1,12 @@
 //! Command-line arguments of `fixplan coordinator`, `fixplan worker` and
-//! the `--workers` option of `fixplan run`, and their entry points.
+//! the `--workers` option of `fixplan run` and `fixplan study`, and the
+//! coordinator's and worker's entry points.
 
-use super::{ClusterOptions, TransportChoice, VerifyPolicy};
-use crate::progress::Totals;
-use crate::run::{run_loaded_with, RunOptions};
+use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
+use crate::job::SearchOptions;
+use crate::run::backend::Backend;
+use crate::run::progress::Totals;
+use crate::run::{run_catalog, RunOptions};
 use anyhow::{Context, Result};
 use clap::Args;
 use fixplan_catalog::{load_catalog, load_kit};
@@ -160,17 +163,6 @@ impl RunClusterArgs {
     }
 }
 
-/// `fixplan run`, with `--workers N` through the cluster.
-pub fn run_main(opts: &RunOptions, cluster: &RunClusterArgs) -> Result<Totals> {
-    let catalog = load_catalog(&opts.catalog)?;
-    let spec = load_kit(&opts.kit, catalog.units)?;
-    let mut copts = cluster.options(opts.threads, opts.quiet);
-    if let Some(c) = copts.as_mut() {
-        c.shard_size = opts.shard_size;
-    }
-    run_loaded_with(&catalog, &spec, opts, copts.as_ref())
-}
-
 /// `fixplan coordinator`.
 pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result<Totals> {
     fixplan_worker::log::set_quiet(a.quiet);
@@ -178,21 +170,10 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
     if zenoh.listen.is_empty() && zenoh.connect.is_empty() && zenoh.config_file.is_none() {
         zenoh.listen = vec!["tcp/0.0.0.0:7447".into()];
     }
-    let opts = RunOptions {
-        catalog: a.catalog.clone().unwrap_or(default_catalog),
-        kit: a.kit.clone(),
-        top_k: a.top_k,
-        threads: None,
-        output: a.output.clone(),
-        resume: a.resume,
-        shard_size: a.shard_size,
-        quiet: a.quiet,
-    };
-    let catalog = load_catalog(&opts.catalog)?;
-    let spec = load_kit(&opts.kit, catalog.units)?;
-    let cores = std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(1);
+    let catalog_path = a.catalog.clone().unwrap_or(default_catalog);
+    let catalog = load_catalog(&catalog_path)?;
+    let spec = load_kit(&a.kit, catalog.units)?;
+    let cores = fixplan_worker::host::cores();
     let copts = ClusterOptions {
         zenoh,
         key_prefix: a.net.key_prefix.clone(),
@@ -206,7 +187,18 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         verify: a.verify,
         ..ClusterOptions::default()
     };
-    run_loaded_with(&catalog, &spec, &opts, Some(&copts)).context("coordinator")
+    let opts = RunOptions {
+        catalog: catalog_path,
+        kit: a.kit.clone(),
+        top_k: a.top_k,
+        output: a.output.clone(),
+        resume: a.resume,
+        shard_size: a.shard_size,
+        quiet: a.quiet,
+        search: SearchOptions::default(),
+        backend: Backend::Cluster(copts),
+    };
+    run_catalog(&catalog, &spec, &opts).context("coordinator")
 }
 
 /// `fixplan worker`: exit code 3 when refused.

@@ -1,7 +1,7 @@
 //! `fixplan show` and `fixplan export`: a results file as terminal tables
 //! or as JSON lines.
 
-use crate::results::{for_each_record, PartRecord, ResultsFile};
+use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
 use anyhow::Result;
 use fixplan_core::Status;
 use std::io::Write;
@@ -47,7 +47,7 @@ pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) ->
 }
 
 fn print_part(
-    run: &crate::messages::RunMsg,
+    run: &crate::output::messages::RunMsg,
     rec: &PartRecord,
     top: usize,
     out: &mut dyn Write,
@@ -120,7 +120,7 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
     let mut err = None;
     let contents = file.for_each_part(|_, m| {
         if let Some(p) = part {
-            match serde_json::from_slice::<crate::messages::FixturesMsg>(&m.fixtures) {
+            match serde_json::from_slice::<crate::output::messages::FixturesMsg>(&m.fixtures) {
                 Ok(f) if f.part != p => return true,
                 Ok(_) => {}
                 Err(e) => {

@@ -11,7 +11,7 @@
 //! deterministic whatever the threads), and a hit ends the part: finer steps
 //! are not run.
 
-use crate::part_job::solve_prepared;
+use super::enumerate::solve_prepared;
 use fixplan_core::{report, Counts, FixtureReport, PartialResult, PreparedPart, SolveResult};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -203,23 +203,6 @@ pub fn solve_search(
         info.steps = Some(summaries);
     }
     (last, info)
-}
-
-/// The terminal line of a part searched with `--grid-steps` or
-/// `--good-enough`: what each step found, where the part stopped.
-pub fn progress_line(o: &crate::part_job::PartOutcome) -> Option<String> {
-    let mut parts = Vec::new();
-    for s in o.steps.iter().flatten() {
-        let best = s.best_score.map_or("-".into(), |b| format!("{b:.4}"));
-        parts.push(format!(
-            "step {}: +{} fixtures, best {best}",
-            s.grid_step, s.added
-        ));
-    }
-    if let Some(h) = o.stopped_at {
-        parts.push(format!("good enough at combination {h}"));
-    }
-    (!parts.is_empty()).then(|| format!("{}: {}", o.id, parts.join(" | ")))
 }
 
 #[cfg(test)]

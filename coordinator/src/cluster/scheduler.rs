@@ -1,6 +1,6 @@
 //! The coordinator's bookkeeping: the shard queue, leases, workers, and the
 //! partial results of each part. Transport-free: every request arrives as
-//! bytes through [`Core::handle`] (zenoh queryables and the iceoryx2 server
+//! bytes through [`Scheduler::handle`] (zenoh queryables and the iceoryx2 server
 //! call it alike) and the answer goes back as bytes.
 
 use super::verify::{self, VerifyPolicy};
@@ -79,7 +79,7 @@ enum ShardStatus {
 struct ShardSlot {
     part: usize,
     range: Range<u64>,
-    /// [`super::plan::cost`] of the shard, for batching.
+    /// [`crate::job::shards::cost`] of the shard, for batching.
     cost: u64,
     status: ShardStatus,
     /// The worker whose result was taken.
@@ -144,7 +144,7 @@ pub struct Settings {
     pub verify: VerifyPolicy,
     /// `--good-enough` threshold of every part.
     pub good_enough: Option<f64>,
-    /// Cost of work ([`super::plan::cost`]) handed out in one assignment at
+    /// Cost of work ([`crate::job::shards::cost`]) handed out in one assignment at
     /// most: small shards travel together up to it.
     pub batch_cost: u64,
 }
@@ -165,7 +165,7 @@ pub(crate) struct State {
     pub stats: Stats,
 }
 
-pub struct Core {
+pub struct Scheduler {
     pub settings: Settings,
     st: Mutex<State>,
     /// Finished parts go to the consumer in one message per request (a
@@ -175,14 +175,14 @@ pub struct Core {
 
 const ROLE: &str = "coordinator";
 
-impl Core {
+impl Scheduler {
     /// `parts`: `(index, prepared part, wire input, shard ranges)` of the
     /// parts to distribute.
     pub(crate) fn new(
         settings: Settings,
         parts: Vec<(usize, PartSlot, Vec<Range<u64>>, usize)>,
         tx: Sender<Vec<PartDone>>,
-    ) -> (Core, Vec<usize>) {
+    ) -> (Scheduler, Vec<usize>) {
         let mut st = State {
             parts: Vec::new(),
             shards: Vec::new(),
@@ -206,7 +206,7 @@ impl Core {
                 } else {
                     r.end - r.start
                 };
-                let cost = super::plan::cost(combinations, segments);
+                let cost = crate::job::shards::cost(combinations, segments);
                 st.queue.push_back(st.shards.len() as u64);
                 st.queued_cost += cost;
                 st.shards.push(ShardSlot {
@@ -223,7 +223,7 @@ impl Core {
         }
         st.stats.shards = st.shards.len() as u64;
         (
-            Core {
+            Scheduler {
                 settings,
                 st: Mutex::new(st),
                 tx: Mutex::new(tx),
@@ -448,7 +448,7 @@ impl Core {
             (st.queued_cost / (2 * threads.max(1))).clamp(1, self.settings.batch_cost.max(1));
         let mut batch = Vec::new();
         let mut cost = 0;
-        while cost < limit && batch.len() < super::plan::MAX_BATCH_SHARDS {
+        while cost < limit && batch.len() < crate::job::shards::MAX_BATCH_SHARDS {
             let Some(id) = st.queue.pop_front() else {
                 break;
             };
@@ -791,7 +791,7 @@ mod tests {
     use fixplan_core::{Params, Part};
     use std::sync::mpsc::channel;
 
-    fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> (Core, Vec<usize>) {
+    fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> (Scheduler, Vec<usize>) {
         let (c, index, rx) = core_rx(parts, shard, verify);
         // Keep the channel open for parts that do close.
         std::mem::forget(rx);
@@ -802,7 +802,11 @@ mod tests {
         parts: usize,
         shard: u64,
         verify: VerifyPolicy,
-    ) -> (Core, Vec<usize>, std::sync::mpsc::Receiver<Vec<PartDone>>) {
+    ) -> (
+        Scheduler,
+        Vec<usize>,
+        std::sync::mpsc::Receiver<Vec<PartDone>>,
+    ) {
         let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
         let slots = (0..parts)
             .map(|i| {
@@ -818,7 +822,7 @@ mod tests {
                     units,
                 };
                 let prep = source.prepare().expect("prepare");
-                let ranges = super::super::plan::ranges(prep.combination_count(), shard);
+                let ranges = crate::job::shards::ranges(prep.combination_count(), shard);
                 let segments = prep.segments.len();
                 let slot = PartSlot {
                     prep: Some(Arc::new(prep)),
@@ -847,12 +851,12 @@ mod tests {
             batch_cost: 1,
         };
         let (tx, rx) = channel();
-        let (c, index) = Core::new(settings, slots, tx);
+        let (c, index) = Scheduler::new(settings, slots, tx);
         (c, index, rx)
     }
 
     /// The honest outcome of each shard of `batch` (part 0).
-    fn honest(c: &Core, batch: &[Assign]) -> Vec<Outcome> {
+    fn honest(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
         let prep = c.lock().parts[0].prep.clone().expect("prepared");
         batch
             .iter()
@@ -868,7 +872,7 @@ mod tests {
             .collect()
     }
 
-    fn report(c: &Core, index: &[usize], worker: &str, outcomes: Vec<Outcome>) -> Frame {
+    fn report(c: &Scheduler, index: &[usize], worker: &str, outcomes: Vec<Outcome>) -> Frame {
         let msg = Msg::Report {
             worker: worker.into(),
             outcomes,
@@ -930,7 +934,7 @@ mod tests {
         assert_eq!(f.merged, prep.enumerate_all());
     }
 
-    fn join(c: &Core, name: &str) {
+    fn join(c: &Scheduler, name: &str) {
         let j = Join {
             worker: name.into(),
             host_id: "other".into(),

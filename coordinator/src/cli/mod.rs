@@ -1,12 +1,18 @@
-//! The `fixplan` command line. A library function, so that the binary of
+//! The `fixplan` command line: arguments, help texts and dispatch to the
+//! folders that do the work. A library function, so that the binary of
 //! this crate and the one the workspace integration tests build (`tests/`)
-//! are the same program.
+//! are the same program. Uses every other folder; nothing uses it.
 
-use crate::run::{default_catalog, run, RunOptions};
-use crate::solve_cmd::solve_file;
+pub mod cluster;
+pub mod solve;
+pub mod study;
+
+use crate::run::backend::Backend;
+use crate::run::{default_catalog, load_and_run, RunOptions};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use fixplan_core::Status;
+use solve::solve_file;
 use std::path::PathBuf;
 
 /// Design modular fixtures for planar parts: every fixture of three round
@@ -82,13 +88,13 @@ enum Cmd {
         #[arg(short, long)]
         quiet: bool,
         #[command(flatten)]
-        cluster: crate::cluster::cli::RunClusterArgs,
+        cluster: cluster::RunClusterArgs,
         #[command(flatten)]
-        search: crate::study_cli::SearchArgs,
+        search: study::SearchArgs,
     },
     /// Compare kits on a catalogue: which kit to buy, which clamp to add.
-    #[command(long_about = crate::study_cli::STUDY_HELP)]
-    Study(crate::study_cli::StudyArgs),
+    #[command(long_about = study::STUDY_HELP)]
+    Study(study::StudyArgs),
     /// Coordinate a distributed run: shard every part of a catalogue over
     /// the workers that join (`fixplan worker`), verify and merge their
     /// results, and write the same results file as `fixplan run`.
@@ -96,12 +102,12 @@ enum Cmd {
     /// Workers pull shards over zenoh (iceoryx2 shared memory for workers
     /// on this host), may join or leave at any time, and a lost worker's
     /// shards are handed out again. See deploy/README.md.
-    Coordinator(crate::cluster::cli::CoordinatorArgs),
+    Coordinator(cluster::CoordinatorArgs),
     /// Work for a coordinator: `fixplan worker --connect tcp/HOST:7447`.
     ///
     /// Exits when the run is over (or stays with --stay); exit code 3 when
     /// the coordinator refuses it (e.g. another protocol version).
-    Worker(crate::cluster::cli::WorkerArgs),
+    Worker(cluster::WorkerArgs),
     /// Measure the cluster: catalogue throughput with 1 and 2 local workers,
     /// coordinator time and bytes per shard, zenoh vs iceoryx2 round trip.
     ///
@@ -110,7 +116,7 @@ enum Cmd {
     /// part out), and the coordinator process's CPU time as a share of the
     /// wall time. Run it on an otherwise idle machine; `--repeat 100` for
     /// figures where the start and stop of the run weigh little.
-    BenchCluster(crate::cluster::bench::BenchArgs),
+    BenchCluster(crate::bench::cluster::BenchArgs),
     /// Measure the enumeration per part on one thread: wall time, where it
     /// goes (setup enumeration, clamp placement, admissibility checks,
     /// metric), pose solutions computed per setup kept (what the pruning
@@ -231,39 +237,40 @@ fn real_main() -> Result<()> {
             cluster,
             search,
         } => {
-            let opts = RunOptions {
+            let backend = match cluster.options(threads, quiet) {
+                Some(mut c) => {
+                    c.shard_size = shard_size;
+                    Backend::Cluster(c)
+                }
+                None => Backend::Embedded { threads },
+            };
+            load_and_run(&RunOptions {
                 catalog: catalog.unwrap_or_else(default_catalog),
                 kit,
                 top_k,
-                threads,
                 output,
                 resume,
                 shard_size,
                 quiet,
-            };
-            if !search.is_plain() {
-                crate::study_cli::run_search_main(&opts, &cluster, &search)?;
-            } else if cluster.workers.is_some() {
-                crate::cluster::cli::run_main(&opts, &cluster)?;
-            } else {
-                run(&opts)?;
-            }
+                search: search.options(),
+                backend,
+            })?;
         }
         Cmd::Study(a) => {
-            crate::study_cli::study_cli_main(&a, default_catalog())?;
+            study::study_cli_main(&a, default_catalog())?;
         }
         Cmd::Coordinator(a) => {
-            crate::cluster::cli::coordinator_main(&a, default_catalog())?;
+            cluster::coordinator_main(&a, default_catalog())?;
         }
-        Cmd::Worker(a) => crate::cluster::cli::worker_main(&a)?,
-        Cmd::BenchCluster(a) => crate::cluster::bench::bench_main(&a)?,
+        Cmd::Worker(a) => cluster::worker_main(&a)?,
+        Cmd::BenchCluster(a) => crate::bench::cluster::bench_main(&a)?,
         Cmd::Bench {
             cases,
             catalog,
             kit,
             repeat,
         } => {
-            use crate::bench_cmd;
+            use crate::bench::parts as bench_cmd;
             let parts = match catalog {
                 Some(c) => {
                     let cat = fixplan_catalog::load_catalog(&c)?;
@@ -280,7 +287,7 @@ fn real_main() -> Result<()> {
         }
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
-            crate::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
+            crate::view::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
         }
         Cmd::Export {
             results,
@@ -288,7 +295,7 @@ fn real_main() -> Result<()> {
             part,
         } => {
             let stdout = std::io::stdout();
-            crate::show::export_json(&results, part.as_deref(), &mut stdout.lock())?;
+            crate::view::show::export_json(&results, part.as_deref(), &mut stdout.lock())?;
         }
         Cmd::Render {
             results,
@@ -296,7 +303,7 @@ fn real_main() -> Result<()> {
             part,
             top,
         } => {
-            let n = crate::render::render(&results, &out, part.as_deref(), top)?;
+            let n = crate::view::render::render(&results, &out, part.as_deref(), top)?;
             eprintln!("{n} pictures and index.html in {}", out.display());
         }
     }

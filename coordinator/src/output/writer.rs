@@ -3,7 +3,8 @@
 //! flushed, so a run killed at any moment leaves a file whose complete
 //! chunks hold whole parts; `--resume` reads them back.
 
-use crate::messages::*;
+use super::messages::*;
+use super::schemas::{fixtures_schema, part_schema, run_schema, scene_schema};
 use mcap::records::MessageHeader;
 use mcap::{Compression, WriteOptions, Writer};
 use std::collections::BTreeMap;

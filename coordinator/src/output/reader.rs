@@ -1,8 +1,8 @@
 //! Reading a results file back, complete or cut short by a kill: the run
 //! message, then each part's messages grouped in catalogue order.
 
-use crate::mcap_out::PartMessages;
-use crate::messages::*;
+use super::messages::*;
+use super::writer::PartMessages;
 use mcap::read::Options;
 use mcap::MessageStream;
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! Progress of a run: a bar on a terminal (parts done/total, fixtures found,
 //! elapsed, ETA), one plain line per part otherwise; and the final summary.
 
-use crate::part_job::PartOutcome;
+use super::outcome::PartOutcome;
 use fixplan_core::Status;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
@@ -125,6 +125,23 @@ impl Progress {
     pub fn elapsed(&self) -> Duration {
         self.start.elapsed()
     }
+}
+
+/// The terminal line of a part searched with `--grid-steps` or
+/// `--good-enough`: what each step found, where the part stopped.
+pub fn progress_line(o: &PartOutcome) -> Option<String> {
+    let mut parts = Vec::new();
+    for s in o.steps.iter().flatten() {
+        let best = s.best_score.map_or("-".into(), |b| format!("{b:.4}"));
+        parts.push(format!(
+            "step {}: +{} fixtures, best {best}",
+            s.grid_step, s.added
+        ));
+    }
+    if let Some(h) = o.stopped_at {
+        parts.push(format!("good enough at combination {h}"));
+    }
+    (!parts.is_empty()).then(|| format!("{}: {}", o.id, parts.join(" | ")))
 }
 
 /// The summary table printed at the end of a run.

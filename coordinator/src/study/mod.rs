@@ -3,7 +3,7 @@
 //! to buy or which clamp to add.
 //!
 //! Every (kit, part) goes through the per-part path of `fixplan run`
-//! ([`crate::part_job::solve_part`] in this process, or the workers of
+//! ([`crate::run::solve::solve_in_order`] in this process, or the workers of
 //! [`crate::cluster::run_distributed`] with `--workers N`), so a study scales out
 //! like a run. Work is shared only where that is provably exact:
 //!
@@ -30,17 +30,20 @@
 //! one that passes every test, the plate test included, so a fixture may
 //! take another mount on a smaller plate, and the top-k may differ.
 
-use crate::cluster::{run_distributed, ClusterOptions, PartInput};
-use crate::messages::CatalogInfo;
-use crate::part_job::{part_params, solve_part, JobContext};
-use crate::refine::SearchOptions;
-use crate::run::catalog_info;
-use crate::sweep::{apply, point_label, Sweep};
+pub mod sweep;
+
+use crate::cluster::ClusterOptions;
+use crate::job::solve::Preparation;
+use crate::job::{part_params, JobContext, SearchOptions};
+use crate::output::messages::CatalogInfo;
+use crate::run::backend::{Backend, PartJob};
+use crate::run::solve::solve_in_order;
+use sweep::{apply, point_label, Sweep};
+
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
 use fixplan_core::{
-    prepare, report, Counts, Kit, Params, Part, PrepareError, PreparedPart, SolveResult, Status,
-    Units,
+    prepare, Counts, Kit, Params, PrepareError, PreparedPart, SolveResult, Status, Units,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -208,33 +211,6 @@ fn geometry_key(part: usize, kit: &Kit, params: &Params, units: Units) -> String
     .to_string()
 }
 
-/// `prepare(part, kit, params)` from a part prepared with the same
-/// geometry key: the kit- and parameter-only fields come from a `prepare`
-/// of a unit triangle with this kit and these parameters.
-pub fn graft(
-    base: &PreparedPart,
-    kit: &Kit,
-    params: &Params,
-    units: Units,
-) -> Result<PreparedPart, PrepareError> {
-    let l = kit.spacing;
-    let tri = Part {
-        outline: vec![[0.0, 0.0], [l, 0.0], [0.0, l]],
-        access: Vec::new(),
-    };
-    let d = prepare(&tri, kit, params, units)?;
-    let mut p = base.clone();
-    p.pattern = d.pattern;
-    p.cols = d.cols;
-    p.rows = d.rows;
-    p.clamp = d.clamp;
-    p.cos_max_angle = d.cos_max_angle;
-    p.min_clearance = d.min_clearance;
-    p.grid_step = d.grid_step;
-    p.top_k = d.top_k;
-    Ok(p)
-}
-
 /// Percentiles as documented on [`StudyKitMsg`].
 pub fn median(sorted: &[f64]) -> Option<f64> {
     let n = sorted.len();
@@ -278,149 +254,101 @@ struct Engine<'a> {
     catalog: &'a Catalog,
     kits: &'a [StudyKit],
     params: Vec<Params>,
-    cluster: Option<&'a ClusterOptions>,
-    pool: rayon::ThreadPool,
+    backend: Backend,
     prepares: usize,
 }
 
 impl Engine<'_> {
-    fn ctx<'b>(&'b self, k: usize, search: &'b SearchOptions) -> JobContext<'b> {
-        JobContext {
-            kit: &self.kits[k].spec.kit,
-            params: &self.params[k],
-            units: self.catalog.units,
-            shard_size: None,
-            search,
-        }
-    }
-
-    /// Solves the jobs: rows in job order.
+    /// Solves the jobs through the run path: rows in job order.
     fn solve(&mut self, jobs: &[Job]) -> Result<Vec<StudyPartRow>> {
-        match self.cluster {
-            Some(c) => self.solve_distributed(jobs, c),
-            None => Ok(self.solve_embedded(jobs)),
-        }
-    }
-
-    fn solve_embedded(&mut self, jobs: &[Job]) -> Vec<StudyPartRow> {
         let units = self.catalog.units;
         let parts = &self.catalog.parts;
         let search = SearchOptions::default();
-        // One prepare per geometry key.
-        let mut keys: BTreeMap<String, (usize, usize)> = BTreeMap::new();
-        let job_keys: Vec<Option<String>> = jobs
-            .iter()
-            .map(|j| {
-                let cp = &parts[j.part];
-                cp.part.as_ref().ok()?;
-                let params = part_params(&self.ctx(j.kit, &search), cp);
-                let key = geometry_key(j.part, &self.kits[j.kit].spec.kit, &params, units);
-                keys.entry(key.clone()).or_insert((j.kit, j.part));
-                Some(key)
+        let ctxs: Vec<JobContext> = (0..self.kits.len())
+            .map(|k| JobContext {
+                kit: &self.kits[k].spec.kit,
+                params: &self.params[k],
+                units,
+                shard_size: None,
+                search: &search,
             })
             .collect();
-        self.prepares += keys.len();
-        let this = &*self;
-        let bases: HashMap<String, Result<PreparedPart, PrepareError>> = this.pool.install(|| {
+        let bases = match self.backend {
+            Backend::Embedded { threads } => {
+                let bases = self.prepare_bases(jobs, &ctxs, threads)?;
+                self.prepares += bases.len();
+                bases
+            }
+            Backend::Cluster(_) => HashMap::new(),
+        };
+        let part_jobs: Vec<PartJob> = jobs
+            .iter()
+            .map(|j| {
+                let (cp, ctx) = (&parts[j.part], &ctxs[j.kit]);
+                let key = geometry_key(j.part, ctx.kit, &part_params(ctx, cp), units);
+                PartJob {
+                    part: cp,
+                    ctx,
+                    // A part that cannot be prepared is prepared with each
+                    // kit, for that kit's exact message.
+                    preparation: match bases.get(&key) {
+                        Some(Ok(base)) => Preparation::Derived(base),
+                        _ => Preparation::Fresh,
+                    },
+                }
+            })
+            .collect();
+        let mut rows = Vec::with_capacity(jobs.len());
+        solve_in_order(
+            &part_jobs,
+            &self.backend,
+            |i, solved| {
+                let cp = part_jobs[i].part;
+                let ms = solved.timing.prepare_ms + solved.timing.enumerate_ms;
+                row_of(&cp.id, cp.quantity, &solved.result, ms)
+            },
+            |_, row| {
+                rows.push(row);
+                Ok(())
+            },
+        )?;
+        Ok(rows)
+    }
+
+    /// One `prepare` per geometry key (part, spacing, locator radius, edge
+    /// trim, wrenches), in parallel; every job of that key derives its
+    /// prepared part from it.
+    fn prepare_bases(
+        &self,
+        jobs: &[Job],
+        ctxs: &[JobContext],
+        threads: Option<usize>,
+    ) -> Result<HashMap<String, Result<PreparedPart, PrepareError>>> {
+        let units = self.catalog.units;
+        let parts = &self.catalog.parts;
+        let mut keys: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+        for j in jobs {
+            let cp = &parts[j.part];
+            if cp.part.is_ok() {
+                let params = part_params(&ctxs[j.kit], cp);
+                let key = geometry_key(j.part, ctxs[j.kit].kit, &params, units);
+                keys.entry(key).or_insert((j.kit, j.part));
+            }
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.unwrap_or_else(fixplan_worker::host::cores))
+            .build()
+            .context("cannot start the thread pool")?;
+        Ok(pool.install(|| {
             keys.into_par_iter()
                 .filter_map(|(key, (k, i))| {
                     let cp = &parts[i];
                     let part = cp.part.as_ref().ok()?;
-                    let params = part_params(&this.ctx(k, &search), cp);
-                    Some((key, prepare(part, &this.kits[k].spec.kit, &params, units)))
+                    let params = part_params(&ctxs[k], cp);
+                    Some((key, prepare(part, ctxs[k].kit, &params, units)))
                 })
                 .collect()
-        });
-        this.pool.install(|| {
-            jobs.par_iter()
-                .zip(job_keys.par_iter())
-                .map(|(j, key)| {
-                    let cp = &parts[j.part];
-                    let ctx = this.ctx(j.kit, &search);
-                    let t0 = Instant::now();
-                    let prepared = match (key.as_ref().and_then(|k| bases.get(k)), &cp.part) {
-                        (Some(Ok(base)), _) => {
-                            Some(graft(base, ctx.kit, &part_params(&ctx, cp), units))
-                        }
-                        // A part that cannot be prepared: prepare it with
-                        // this kit, for this kit's exact message.
-                        (Some(Err(_)), Ok(part)) => {
-                            Some(prepare(part, ctx.kit, &part_params(&ctx, cp), units))
-                        }
-                        _ => None,
-                    };
-                    let graft_ms = t0.elapsed().as_secs_f64() * 1e3;
-                    let (res, timing, _) = solve_part(&ctx, cp, prepared);
-                    row_of(
-                        &cp.id,
-                        cp.quantity,
-                        &res,
-                        graft_ms + timing.prepare_ms + timing.enumerate_ms,
-                    )
-                })
-                .collect()
-        })
-    }
-
-    fn solve_distributed(&mut self, jobs: &[Job], c: &ClusterOptions) -> Result<Vec<StudyPartRow>> {
-        let units = self.catalog.units;
-        let parts = &self.catalog.parts;
-        let search = SearchOptions::default();
-        let mut rows: Vec<Option<StudyPartRow>> = vec![None; jobs.len()];
-        let mut inputs = Vec::new();
-        let mut map = Vec::new();
-        for (n, j) in jobs.iter().enumerate() {
-            let cp = &parts[j.part];
-            let ctx = self.ctx(j.kit, &search);
-            match &cp.part {
-                Ok(part) => {
-                    inputs.push(PartInput {
-                        part: part.clone(),
-                        kit: ctx.kit.clone(),
-                        params: part_params(&ctx, cp),
-                        units,
-                    });
-                    map.push(n);
-                }
-                Err(_) => {
-                    let (res, t, _) = solve_part(&ctx, cp, None);
-                    rows[n] = Some(row_of(&cp.id, cp.quantity, &res, t.prepare_ms));
-                }
-            }
-        }
-        if !inputs.is_empty() {
-            let mut dist = run_distributed(inputs, c.clone())?;
-            let mut t = Instant::now();
-            for (m, r) in dist.by_ref() {
-                let n = map[m];
-                let cp = &parts[jobs[n].part];
-                let res = match r {
-                    Ok((prep, merged)) => report(&prep, &merged),
-                    Err(msg) => SolveResult::invalid(format!("{}: {msg}", cp.id)),
-                };
-                let now = Instant::now();
-                rows[n] = Some(row_of(
-                    &cp.id,
-                    cp.quantity,
-                    &res,
-                    (now - t).as_secs_f64() * 1e3,
-                ));
-                t = now;
-            }
-            dist.finish();
-        }
-        rows.into_iter()
-            .enumerate()
-            .map(|(n, r)| {
-                r.ok_or_else(|| {
-                    anyhow::anyhow!(
-                        "the cluster ended before part {} of kit {} was solved",
-                        parts[jobs[n].part].id,
-                        self.kits[jobs[n].kit].spec.name
-                    )
-                })
-            })
-            .collect()
+        }))
     }
 }
 
@@ -433,11 +361,6 @@ pub fn run_study(
     cluster: Option<&ClusterOptions>,
 ) -> Result<StudyReport> {
     let t0 = Instant::now();
-    let threads = opts.threads.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
     let params: Vec<Params> = kits
         .iter()
         .map(|k| {
@@ -450,11 +373,12 @@ pub fn run_study(
         catalog,
         kits,
         params: params.clone(),
-        cluster,
-        pool: rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .context("cannot start the thread pool")?,
+        backend: match cluster {
+            Some(c) => Backend::Cluster(c.clone()),
+            None => Backend::Embedded {
+                threads: opts.threads,
+            },
+        },
         prepares: 0,
     };
     let nk = kits.len();
@@ -606,7 +530,7 @@ pub fn run_study(
     let summary = StudySummaryMsg {
         tool: "fixplan".into(),
         version: env!("CARGO_PKG_VERSION").into(),
-        catalog: catalog_info(catalog, &opts.catalog),
+        catalog: CatalogInfo::of(catalog, &opts.catalog),
         kits: kits.iter().map(|k| k.spec.name.clone()).collect(),
         unheld,
         part_runs: nk * np,
@@ -771,13 +695,6 @@ pub fn csv(rep: &StudyReport) -> String {
     s
 }
 
-fn xml(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 /// A hand-written SVG: per kit, the share of parts held (by count and by
 /// quantity) and the best score over the parts held (median, with a
 /// whisker to the 90th percentile).
@@ -817,7 +734,7 @@ pub fn chart_svg(rep: &StudyReport) -> String {
     ));
     s.push_str(&format!(
         "<text x=\"20\" y=\"26\" font-size=\"16\" font-weight=\"bold\">fixplan study: {} ({} parts), {} kits</text>\n",
-        xml(&rep.summary.catalog.name),
+        crate::view::svg::escape(&rep.summary.catalog.name),
         rep.summary.catalog.parts,
         rep.kits.len()
     ));
@@ -862,7 +779,7 @@ pub fn chart_svg(rep: &StudyReport) -> String {
             "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"end\">{}</text>\n",
             cov_x - 10.0,
             y + 19.0,
-            xml(&k.name)
+            crate::view::svg::escape(&k.name)
         ));
         let wc = cov_w * k.held_pct / 100.0;
         let wq = cov_w * k.held_quantity_pct / 100.0;
@@ -903,7 +820,7 @@ pub fn chart_svg(rep: &StudyReport) -> String {
     s.push_str(&format!(
         "<text x=\"20\" y=\"{:.0}\" font-size=\"11\" fill=\"#444\">{}</text>\n</svg>\n",
         bottom + 42.0,
-        xml(&foot)
+        crate::view::svg::escape(&foot)
     ));
     s
 }
@@ -960,7 +877,7 @@ fn summary_schema() -> serde_json::Value {
 pub fn write_mcap(path: &Path, rep: &StudyReport) -> Result<()> {
     let file = std::fs::File::create(path)
         .with_context(|| format!("{}: cannot create", path.display()))?;
-    let mut w = crate::mcap_out::write_options().create(std::io::BufWriter::new(file))?;
+    let mut w = crate::output::writer::write_options().create(std::io::BufWriter::new(file))?;
     let none = BTreeMap::new();
     let s1 = w.add_schema(
         SCHEMA_STUDY,
@@ -974,7 +891,7 @@ pub fn write_mcap(path: &Path, rep: &StudyReport) -> Result<()> {
         &serde_json::to_vec_pretty(&summary_schema())?,
     )?;
     let c2 = w.add_channel(s2, TOPIC_STUDY_SUMMARY, "json", &none)?;
-    let ns = crate::messages::NS_PER_PART;
+    let ns = crate::output::messages::NS_PER_PART;
     for k in &rep.kits {
         let t = k.index as u64 * ns;
         w.write_to_known_channel(

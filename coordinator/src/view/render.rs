@@ -3,10 +3,11 @@
 //! contact points and normals, score in the caption) and an `index.html`
 //! gallery of all parts.
 
-use crate::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
-use crate::messages::RunMsg;
-use crate::results::{for_each_record, PartRecord};
-use crate::show::status_word;
+use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
+use super::show::status_word;
+use super::svg::escape;
+use crate::output::messages::RunMsg;
+use crate::output::reader::{for_each_record, PartRecord};
 use anyhow::{Context, Result};
 use fixplan_core::{FixtureReport, Point, Status};
 use std::fmt::Write as _;
@@ -71,13 +72,6 @@ impl View {
     }
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 fn header(v: &View) -> String {
     let h = v.h + CAPTION;
     format!(
@@ -99,7 +93,7 @@ fn caption(out: &mut String, v: &View, lines: &[String]) {
             r##"<text x="{PAD}" y="{:.1}" font-size="{}" fill="#222">{}</text>"##,
             v.h + 18.0 + 20.0 * i as f64,
             if i == 0 { 15 } else { 12 },
-            esc(l)
+            escape(l)
         );
     }
 }
@@ -317,11 +311,11 @@ pub fn render(path: &Path, out_dir: &Path, part: Option<&str>, top: usize) -> Re
          .no_fixture{{color:#8a6d00}} .ok{{color:#138a36}} code{{background:#f3f3f3}}</style></head><body>\n\
          <h1>fixplan results: {name}</h1>\n<p>{parts} parts, kit <code>{kit}</code>, catalogue digest \
          <code>{digest}</code>, fixplan {ver}.{incomplete}</p>\n{html}</body></html>\n",
-        name = esc(&run.catalog.name),
+        name = escape(&run.catalog.name),
         parts = contents.parts.len(),
-        kit = esc(&run.kit_name),
-        digest = esc(&run.catalog.digest),
-        ver = esc(&run.version),
+        kit = escape(&run.kit_name),
+        digest = escape(&run.catalog.digest),
+        ver = escape(&run.version),
         incomplete = if contents.complete { "" } else { " <b>Incomplete file (interrupted run).</b>" },
     );
     let index = out_dir.join("index.html");
@@ -342,7 +336,7 @@ fn render_part(
     let _ = writeln!(
         html,
         "<div class=\"part\"><h2>{} <span class=\"{status}\">{status}</span></h2>",
-        esc(&p.id)
+        escape(&p.id)
     );
     if let Some(c) = p.counts {
         let _ = writeln!(
@@ -352,7 +346,7 @@ fn render_part(
         );
     }
     if let Some(e) = &p.error {
-        let _ = writeln!(html, "<p class=\"invalid\">{}</p>", esc(e));
+        let _ = writeln!(html, "<p class=\"invalid\">{}</p>", escape(e));
     }
     let _ = write!(html, "<div class=\"fx\">");
     let fx = &rec.fixtures.result.fixtures;
@@ -365,7 +359,7 @@ fn render_part(
         let _ = write!(
             html,
             "<a href=\"{name}\"><img src=\"{name}\" alt=\"{}\"></a>",
-            esc(&p.id)
+            escape(&p.id)
         );
         n += 1;
     }
@@ -382,7 +376,7 @@ fn render_part(
         let _ = write!(
             html,
             "<a href=\"{name}\"><img src=\"{name}\" alt=\"{} rank {}\" title=\"rank {} score {:.4}\"></a>",
-            esc(&p.id),
+            escape(&p.id),
             f.rank,
             f.rank,
             f.score

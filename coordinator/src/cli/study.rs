@@ -1,14 +1,11 @@
 //! Command-line arguments of `fixplan study` and of `--grid-steps` /
 //! `--good-enough` on `fixplan run`.
 
-use crate::cluster::cli::RunClusterArgs;
-use crate::progress::Totals;
-use crate::refine::{parse_grid_steps, SearchOptions};
-use crate::run::{run_loaded_search, RunOptions};
+use super::cluster::RunClusterArgs;
+use crate::job::search::{parse_grid_steps, SearchError, SearchOptions};
 use crate::study::{study_main, StudyOptions, StudyReport};
 use anyhow::Result;
 use clap::Args;
-use fixplan_catalog::{load_catalog, load_kit};
 use std::path::PathBuf;
 
 /// `fixplan study --help`.
@@ -99,7 +96,7 @@ pub struct StudyArgs {
 #[derive(Debug, Clone, PartialEq)]
 pub struct GridSteps(pub Vec<u32>);
 
-fn parse_steps(s: &str) -> Result<GridSteps, crate::refine::SearchError> {
+fn parse_steps(s: &str) -> Result<GridSteps, SearchError> {
     parse_grid_steps(s).map(GridSteps)
 }
 
@@ -126,32 +123,12 @@ pub struct SearchArgs {
 }
 
 impl SearchArgs {
-    pub fn is_plain(&self) -> bool {
-        self.options().is_plain()
-    }
-
     pub fn options(&self) -> SearchOptions {
         SearchOptions {
             grid_steps: self.grid_steps.as_ref().map(|g| g.0.clone()),
             good_enough: self.good_enough,
         }
     }
-}
-
-/// `fixplan run --grid-steps ... / --good-enough ...` (with or without
-/// `--workers`).
-pub fn run_search_main(
-    opts: &RunOptions,
-    cluster: &RunClusterArgs,
-    search: &SearchArgs,
-) -> Result<Totals> {
-    let catalog = load_catalog(&opts.catalog)?;
-    let spec = load_kit(&opts.kit, catalog.units)?;
-    let mut copts = cluster.options(opts.threads, opts.quiet);
-    if let Some(c) = copts.as_mut() {
-        c.shard_size = opts.shard_size;
-    }
-    run_loaded_search(&catalog, &spec, opts, copts.as_ref(), &search.options())
 }
 
 /// `fixplan study`.

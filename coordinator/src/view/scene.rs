@@ -8,8 +8,8 @@
 //! (~400 us a part). Fields are declared in alphabetical order, which is
 //! the order a `Value` map wrote them in, so the bytes did not change.
 
-use crate::draw::{bounds, fixture_drawing, plate_holes, plate_outline, Circle};
-use crate::messages::NS_PER_PART;
+use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, Circle};
+use crate::output::messages::NS_PER_PART;
 use fixplan_core::{FixtureReport, Kit, Point, Units};
 use serde::Serialize;
 

@@ -1,4 +1,5 @@
-//! Shard sizes from a cost estimate.
+//! How a part's combination range is cut into shards: one cost model and
+//! one cutter for the embedded run and the cluster.
 //!
 //! The work of a combination grows with the part's segment count (each
 //! locator setup tries every segment for the clamp), so a part costs about
@@ -60,6 +61,14 @@ pub fn batch_cost(parts: &[(u64, usize)], slots: usize) -> u64 {
     total
         .div_ceil((slots.max(1) as u64) * BATCHES_PER_SLOT)
         .max(1)
+}
+
+/// Combinations per shard in an embedded run when not given: a few shards
+/// per thread for a big part, one for a small part (a shard's fixed cost
+/// would dominate below 256 combinations).
+pub fn embedded_shard_size(combinations: u64, threads: usize) -> u64 {
+    let target_shards = (threads.max(1) * 4) as u64;
+    combinations.div_ceil(target_shards).max(256)
 }
 
 /// The shards of `0..count`: `size` combinations each, the last shorter.

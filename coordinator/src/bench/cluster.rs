@@ -3,8 +3,8 @@
 //! shard-sized message over zenoh and over iceoryx2. A measurement, not a
 //! test: run it on an otherwise idle machine, in release mode.
 
-use super::{run_distributed, ClusterOptions, PartInput, TransportChoice, VerifyPolicy};
-use crate::part_job::{part_params, JobContext};
+use crate::cluster::{run_distributed, ClusterOptions, PartInput, TransportChoice, VerifyPolicy};
+use crate::job::{part_params, JobContext, SearchOptions};
 use anyhow::{Context, Result};
 use fixplan_catalog::{load_catalog, load_kit};
 use fixplan_worker::iox::{self, IoxClient};
@@ -45,7 +45,7 @@ impl BenchArgs {
             VerifyPolicy::All => "all".into(),
             VerifyPolicy::Sample { one_in } => format!(
                 "sample (each worker's results in full until {} fixtures checked out, then 1 result in {one_in})",
-                super::verify::FULL_CHECKS
+                crate::cluster::verify::FULL_CHECKS
             ),
         }
     }
@@ -63,7 +63,7 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
         params: &spec.params,
         units: cat.units,
         shard_size: None,
-        search: &crate::refine::SearchOptions::default(),
+        search: &SearchOptions::default(),
     };
     let one: Vec<PartInput> = cat
         .parts
@@ -90,7 +90,7 @@ struct Run {
     steady: f64,
     /// CPU time of the coordinator process over the run.
     coordinator_cpu: f64,
-    stats: super::state::Stats,
+    stats: crate::cluster::scheduler::Stats,
 }
 
 fn throughput(
@@ -113,7 +113,7 @@ fn throughput(
         ..ClusterOptions::default()
     };
     let parts_in = parts.to_vec();
-    let cpu0 = super::cpu_time::process_micros();
+    let cpu0 = crate::cluster::cpu_time::process_micros();
     let t0 = Instant::now();
     let mut d = run_distributed(parts_in, opts)?;
     let mut first = None;
@@ -132,7 +132,8 @@ fn throughput(
     Ok(Run {
         wall: t0.elapsed().as_secs_f64(),
         steady: last - first.unwrap_or(0.0),
-        coordinator_cpu: super::cpu_time::process_micros().saturating_sub(cpu0) as f64 * 1e-6,
+        coordinator_cpu: crate::cluster::cpu_time::process_micros().saturating_sub(cpu0) as f64
+            * 1e-6,
         stats,
     })
 }

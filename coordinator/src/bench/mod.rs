@@ -1,0 +1,7 @@
+//! Measurements, not tests: `fixplan bench` (where one part's enumeration
+//! spends its time, on one thread) and `fixplan bench-cluster` (catalogue
+//! throughput and the coordinator's share with local workers).
+//! Uses `job`, `cluster` and `run`.
+
+pub mod cluster;
+pub mod parts;

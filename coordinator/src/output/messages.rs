@@ -1,0 +1,149 @@
+//! The JSON messages of a results file, one type per MCAP channel. Their
+//! JSON Schemas are in [`super::schemas`]; the layout is documented in the
+//! README ("MCAP layout").
+
+pub use crate::job::Timing;
+use fixplan_catalog::Catalog;
+use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::path::Path;
+
+pub const TOPIC_RUN: &str = "/fixplan/run";
+pub const TOPIC_PART: &str = "/fixplan/part";
+pub const TOPIC_FIXTURES: &str = "/fixplan/fixtures";
+pub const TOPIC_SCENE: &str = "/fixplan/scene";
+
+pub const SCHEMA_RUN: &str = "fixplan.Run";
+pub const SCHEMA_PART: &str = "fixplan.Part";
+pub const SCHEMA_FIXTURES: &str = "fixplan.Fixtures";
+/// Foxglove recognises the scene only under this exact name.
+pub const SCHEMA_SCENE: &str = "foxglove.SceneUpdate";
+
+/// Nanoseconds of log time per part: part `i` is logged at `i` seconds, so
+/// Foxglove's timeline steps through the catalogue one part per second.
+pub const NS_PER_PART: u64 = 1_000_000_000;
+
+/// `/fixplan/run`: what was run, once at the start of the file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunMsg {
+    pub tool: String,
+    pub version: String,
+    pub catalog: CatalogInfo,
+    pub kit_name: String,
+    pub kit: Kit,
+    /// Parameters of the run (the kit's, with `--top-k` applied); a part's
+    /// own `top_k` / `wrenches` in the catalogue override them.
+    pub params: Params,
+    /// `--grid-steps` (coarse to fine; `params.grid_step` is the finest).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_steps: Option<Vec<u32>>,
+    /// `--good-enough` threshold.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub good_enough: Option<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CatalogInfo {
+    pub name: String,
+    /// Where it was read from, as given on the command line.
+    pub source: String,
+    pub units: Units,
+    pub parts: usize,
+    /// `sha256:` of the catalogue content (ids, outlines, access, overrides).
+    pub digest: String,
+}
+
+impl CatalogInfo {
+    /// What the run and study channels say of `catalog`, read from `source`.
+    pub fn of(catalog: &Catalog, source: &Path) -> CatalogInfo {
+        CatalogInfo {
+            name: catalog.name.clone(),
+            source: source.display().to_string(),
+            units: catalog.units,
+            parts: catalog.parts.len(),
+            digest: catalog_digest(catalog),
+        }
+    }
+}
+
+/// `sha256:` of the catalogue's content, independent of where it lives:
+/// what tells `--resume` that a file was written from the same parts.
+pub fn catalog_digest(c: &Catalog) -> String {
+    let mut h = Sha256::new();
+    h.update(format!("units={:?}\n", c.units));
+    for p in &c.parts {
+        let part = match &p.part {
+            Ok(part) => serde_json::json!({"ok": part}),
+            Err(e) => serde_json::json!({"err": e}),
+        };
+        let entry = serde_json::json!({"id": p.id, "part": part, "quantity": p.quantity,
+            "top_k": p.top_k, "wrenches": p.wrenches});
+        h.update(entry.to_string());
+        h.update(b"\n");
+    }
+    let d = h.finalize();
+    let hex: String = d.iter().map(|b| format!("{b:02x}")).collect();
+    format!("sha256:{hex}")
+}
+
+impl RunMsg {
+    /// Whether a file written by `other` can be continued by this run:
+    /// everything equal except where the catalogue was read from.
+    pub fn same_run(&self, other: &RunMsg) -> bool {
+        let mut a = other.clone();
+        a.catalog.source = self.catalog.source.clone();
+        &a == self
+    }
+}
+
+/// `/fixplan/part`: one per part, in catalogue order.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PartMsg {
+    pub index: usize,
+    pub id: String,
+    #[serde(default)]
+    pub file: Option<String>,
+    pub status: Status,
+    #[serde(default)]
+    pub error: Option<String>,
+    #[serde(default)]
+    pub warnings: Vec<String>,
+    pub units: Units,
+    pub quantity: f64,
+    /// Part frame, catalogue units, as given (empty if it could not be read).
+    pub outline: Vec<Point>,
+    #[serde(default)]
+    pub access: Vec<Vec<Point>>,
+    #[serde(default)]
+    pub counts: Option<Counts>,
+    /// Fixtures kept in the ranking (top-k).
+    pub fixtures: usize,
+    #[serde(default)]
+    pub best_score: Option<f64>,
+    pub timing: Timing,
+    /// `--grid-steps`: one summary per grid step, coarse to fine (counts,
+    /// best fixture, what the step added). Absent in plain runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refine: Option<Vec<crate::job::StepSummary>>,
+    /// `"good_enough"` when `--good-enough` stopped the part early.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<String>,
+    /// The combination index where it stopped (combinations `0..=index`
+    /// were enumerated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped_at: Option<u64>,
+}
+
+/// `PartMsg::stopped` of a part stopped by `--good-enough`.
+pub const STOPPED_GOOD_ENOUGH: &str = "good_enough";
+
+/// `/fixplan/fixtures`: `{"part": ID, ...}` plus the result format of SPEC
+/// Appendix A (with contacts and plate placement per fixture). Exactly one
+/// line of `fixplan export --json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FixturesMsg {
+    pub part: String,
+    #[serde(flatten)]
+    pub result: SolveResult,
+}

@@ -1,0 +1,11 @@
+//! The results file: one message type per MCAP channel, their JSON
+//! Schemas, the writer (chunk per part, resumable) and the reader.
+//! Uses `job` (the types a part's messages carry) and the core crate.
+
+pub mod messages;
+pub mod reader;
+pub mod schemas;
+pub mod writer;
+
+pub use reader::{PartRecord, ReadError, ResultsFile};
+pub use writer::{PartMessages, ResultsWriter};

@@ -1,0 +1,47 @@
+//! What a run solves and where: the jobs (a catalogue part with the kit
+//! and parameters it is solved with) and the backend that solves them.
+
+use crate::cluster::ClusterOptions;
+use crate::job::solve::Preparation;
+use crate::job::JobContext;
+use fixplan_catalog::CatalogPart;
+
+/// Where the enumeration runs.
+#[derive(Debug, Clone)]
+pub enum Backend {
+    /// Threads of this process (default: all cores).
+    Embedded {
+        /// Threads of the pool.
+        threads: Option<usize>,
+    },
+    /// The workers of a cluster (`--workers N`, `fixplan coordinator`).
+    Cluster(ClusterOptions),
+}
+
+impl Default for Backend {
+    fn default() -> Self {
+        Backend::Embedded { threads: None }
+    }
+}
+
+impl Backend {
+    /// Threads of the embedded pool, or of the whole cluster's local
+    /// workers; what progress lines report.
+    pub fn threads(&self) -> usize {
+        match self {
+            Backend::Embedded { threads } => threads.unwrap_or_else(fixplan_worker::host::cores),
+            Backend::Cluster(c) => c.worker_threads.unwrap_or(1) * c.local_workers.max(1),
+        }
+    }
+}
+
+/// One part to solve: the catalogue entry, the run inputs it is solved
+/// with, and how to prepare it.
+pub struct PartJob<'a> {
+    /// The catalogue entry.
+    pub part: &'a CatalogPart,
+    /// Kit, parameters, unit, shard size and search of this job.
+    pub ctx: &'a JobContext<'a>,
+    /// Prepare here, or derive from a part prepared for another kit.
+    pub preparation: Preparation<'a>,
+}

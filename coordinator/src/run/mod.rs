@@ -1,0 +1,160 @@
+//! Catalogue runs: every part of a catalogue solved (in this process or by
+//! a cluster, [`backend::Backend`]) and streamed in catalogue order into a
+//! resumable MCAP results file, with progress and a summary.
+//! Uses `job`, `cluster`, `output` and `view` (for the scene message).
+//!
+//! The file is written as `OUT.partial` and renamed to `OUT` when complete.
+//! Parts are computed in parallel but written strictly in catalogue order,
+//! one flushed chunk per part; so the bytes do not depend on timing, and the
+//! complete chunks of a killed run's file are exactly a prefix of the
+//! catalogue. `--resume` copies that prefix into a fresh file and carries
+//! on.
+
+pub mod backend;
+pub mod cluster_jobs;
+pub mod ordered;
+pub mod outcome;
+pub mod progress;
+pub mod resume;
+pub mod solve;
+
+use crate::job::solve::Preparation;
+use crate::job::{JobContext, SearchOptions};
+use crate::output::messages::{CatalogInfo, RunMsg};
+use anyhow::{Context, Result};
+use backend::{Backend, PartJob};
+use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
+use outcome::{part_outcome, PartOutcome};
+use progress::{progress_line, summary_table, Progress, Totals};
+use solve::solve_in_order;
+use std::path::{Path, PathBuf};
+
+/// Everything a catalogue run needs besides the catalogue and the kit.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Where the catalogue was read from (recorded in the file).
+    pub catalog: PathBuf,
+    /// The kit's name or file, as given.
+    pub kit: String,
+    /// Fixtures kept per part (default: the kit's parameters).
+    pub top_k: Option<usize>,
+    /// The results file.
+    pub output: PathBuf,
+    /// Continue the interrupted run in `OUT.partial`.
+    pub resume: bool,
+    /// Combinations per shard (default: from a cost estimate).
+    pub shard_size: Option<u64>,
+    /// No progress display and no summary table.
+    pub quiet: bool,
+    /// `--grid-steps` / `--good-enough`.
+    pub search: SearchOptions,
+    /// Threads of this process, or a cluster.
+    pub backend: Backend,
+}
+
+/// The built-in sample catalogue: `examples/catalog/catalog.toml` of the
+/// current directory if there is one, else of the source tree this binary
+/// was built from.
+pub fn default_catalog() -> PathBuf {
+    let rel = Path::new("examples/catalog/catalog.toml");
+    if rel.is_file() {
+        return rel.to_path_buf();
+    }
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(rel)
+}
+
+/// Loads `opts.catalog` and `opts.kit`, then [`run_catalog`].
+pub fn load_and_run(opts: &RunOptions) -> Result<Totals> {
+    let catalog = load_catalog(&opts.catalog)?;
+    let spec = load_kit(&opts.kit, catalog.units)?;
+    run_catalog(&catalog, &spec, opts)
+}
+
+/// The `/fixplan/run` message of a run: the kit's parameters with
+/// `--top-k` applied, and the finest grid step as the run's step, so the
+/// fixtures channel holds the same bytes as a plain run at that step.
+fn run_message(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> RunMsg {
+    let mut params = spec.params.clone();
+    if let Some(k) = opts.top_k {
+        params.top_k = k;
+    }
+    params.grid_step = opts.search.final_step(params.grid_step);
+    RunMsg {
+        tool: "fixplan".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        catalog: CatalogInfo::of(catalog, &opts.catalog),
+        kit_name: spec.name.clone(),
+        kit: spec.kit.clone(),
+        params,
+        grid_steps: opts.search.grid_steps.clone(),
+        good_enough: opts.search.good_enough,
+    }
+}
+
+/// Runs a catalogue with a kit into the results file: the one way into a
+/// run (`fixplan run`, `run --workers`, `fixplan coordinator`). Returns the
+/// totals, also printed as a table unless quiet.
+pub fn run_catalog(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> Result<Totals> {
+    fixplan_core::prepare::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
+    opts.search.validate()?;
+    let run_msg = run_message(catalog, spec, opts);
+    let n = catalog.parts.len();
+    let mut progress = Progress::new(n, opts.quiet);
+    progress.log(&format!(
+        "fixplan run: {} parts of {} ({}) with kit {} on {} threads",
+        n,
+        catalog.name,
+        opts.catalog.display(),
+        spec.name,
+        opts.backend.threads()
+    ));
+    let (mut writer, start) =
+        resume::open_output(&opts.output, opts.resume, &run_msg, &mut progress)?;
+    let ctx = JobContext {
+        kit: &spec.kit,
+        params: &run_msg.params,
+        units: catalog.units,
+        shard_size: opts.shard_size,
+        search: &opts.search,
+    };
+    let jobs: Vec<PartJob> = catalog.parts[start..]
+        .iter()
+        .map(|part| PartJob {
+            part,
+            ctx: &ctx,
+            preparation: Preparation::Fresh,
+        })
+        .collect();
+    let partial = resume::partial_path(&opts.output);
+    let solved = solve_in_order(
+        &jobs,
+        &opts.backend,
+        |i, solved| part_outcome(&ctx, start + i, jobs[i].part, solved),
+        |_, out: Result<PartOutcome, serde_json::Error>| {
+            let o = out.with_context(|| format!("writing {}", partial.display()))?;
+            writer
+                .write_part(&o.messages)
+                .with_context(|| format!("writing {}", partial.display()))?;
+            if let Some(line) = progress_line(&o) {
+                progress.log(&line);
+            }
+            progress.part_done(&o);
+            Ok(())
+        },
+    );
+    progress.finish();
+    solved?;
+    resume::close_output(writer, &opts.output)?;
+    let totals = progress.totals.clone();
+    if !opts.quiet {
+        // `?`, not `print!`: a closed stdout (`| head`) is an error the
+        // command line ends quietly on, not a panic.
+        let table = summary_table(
+            &totals,
+            progress.elapsed(),
+            &opts.output.display().to_string(),
+        );
+        std::io::Write::write_all(&mut std::io::stdout(), table.as_bytes())?;
+    }
+    Ok(totals)
+}

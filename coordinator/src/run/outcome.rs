@@ -1,0 +1,95 @@
+//! What a solved part becomes in the results file: its three messages
+//! (part, fixtures, scene) and the summary the progress display shows.
+
+use crate::job::{JobContext, Solved};
+use crate::output::messages::{FixturesMsg, PartMsg, STOPPED_GOOD_ENOUGH};
+use crate::output::PartMessages;
+use crate::view::scene::scene_update;
+use fixplan_catalog::CatalogPart;
+use fixplan_core::Status;
+
+/// A part ready to be written: its serialised messages and what the
+/// progress display and summary count.
+#[derive(Debug, Clone)]
+pub struct PartOutcome {
+    /// The part's messages, serialised once, written as they are.
+    pub messages: PartMessages,
+    /// Catalogue id.
+    pub id: String,
+    /// `ok`, `no_fixture` or `invalid`.
+    pub status: Status,
+    /// Why the part is invalid.
+    pub error: Option<String>,
+    /// Admissible fixtures found.
+    pub admissible: u64,
+    /// Fixtures kept in the ranking.
+    pub kept: usize,
+    /// `--grid-steps`: what each step found.
+    pub steps: Option<Vec<crate::job::StepSummary>>,
+    /// `--good-enough`: the combination index where the part stopped.
+    pub stopped_at: Option<u64>,
+}
+
+/// The messages and summary of part `index`, solved in this process or by
+/// the workers of a cluster alike.
+pub fn part_outcome(
+    ctx: &JobContext,
+    index: usize,
+    cp: &CatalogPart,
+    solved: Solved,
+) -> Result<PartOutcome, serde_json::Error> {
+    let Solved {
+        result,
+        timing,
+        search,
+    } = solved;
+    let (outline, access) = match &cp.part {
+        Ok(p) => (p.outline.clone(), p.access.clone()),
+        Err(_) => (Vec::new(), Vec::new()),
+    };
+    let best = result.fixtures.first();
+    let part_msg = PartMsg {
+        index,
+        id: cp.id.clone(),
+        file: cp.file.as_ref().map(|f| f.display().to_string()),
+        status: result.status,
+        error: result.error.clone(),
+        warnings: cp.warnings.clone(),
+        units: ctx.units,
+        quantity: cp.quantity,
+        outline: outline.clone(),
+        access: access.clone(),
+        counts: result.counts,
+        fixtures: result.fixtures.len(),
+        best_score: best.map(|f| f.score),
+        timing,
+        refine: search.steps.clone(),
+        stopped: search.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
+        stopped_at: search.stopped_at,
+    };
+    let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &outline, &access, best);
+    let part = serde_json::to_vec(&part_msg)?;
+    let scene = serde_json::to_vec(&scene)?;
+    let (status, error) = (result.status, result.error.clone());
+    let admissible = result.counts.map_or(0, |c| c.admissible);
+    let kept = result.fixtures.len();
+    let fixtures = serde_json::to_vec(&FixturesMsg {
+        part: cp.id.clone(),
+        result,
+    })?;
+    Ok(PartOutcome {
+        messages: PartMessages {
+            index,
+            part,
+            fixtures,
+            scene,
+        },
+        id: cp.id.clone(),
+        status,
+        error,
+        admissible,
+        kept,
+        steps: search.steps,
+        stopped_at: search.stopped_at,
+    })
+}

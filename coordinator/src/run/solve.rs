@@ -1,0 +1,143 @@
+//! The one way parts get solved: a list of jobs, a backend (threads of this
+//! process, or the workers of a cluster), and each part's result handed
+//! over in job order, whatever order the parts finish in. `fixplan run`,
+//! `fixplan coordinator` and `fixplan study` all go through
+//! [`solve_in_order`].
+
+use super::backend::{Backend, PartJob};
+use super::ordered::Reorder;
+use crate::job::{solve_part, Solved};
+use anyhow::{Context, Result};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{mpsc, Condvar, Mutex};
+
+/// Solves `jobs` on `backend`. `finish(i, solved)` turns job `i`'s result
+/// into what the caller keeps (messages, a study row); it runs on the
+/// solving threads. `deliver(i, kept)` receives them strictly in job
+/// order, on the calling thread; an error from it stops the run and is
+/// returned.
+pub fn solve_in_order<T: Send>(
+    jobs: &[PartJob],
+    backend: &Backend,
+    finish: impl Fn(usize, Solved) -> T + Sync,
+    mut deliver: impl FnMut(usize, T) -> Result<()>,
+) -> Result<()> {
+    let (tx, rx) = mpsc::channel::<(usize, T)>();
+    let abort = AtomicBool::new(false);
+    // Parts delivered so far, for the embedded drivers' window.
+    let gate = (Mutex::new(0usize), Condvar::new());
+    let (cluster, drivers) = match backend {
+        Backend::Cluster(c) => (Some(super::cluster_jobs::start(jobs, c)?), None),
+        Backend::Embedded { threads } => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads.unwrap_or_else(fixplan_worker::host::cores))
+                .build()
+                .context("cannot start the thread pool")?;
+            let drivers = Drivers {
+                jobs,
+                pool,
+                next: AtomicUsize::new(0),
+                abort: &abort,
+                gate: &gate,
+            };
+            (None, Some(drivers))
+        }
+    };
+    let finish = &finish;
+    let mut failure = None;
+    std::thread::scope(|s| {
+        if let Some(c) = cluster {
+            let tx = tx.clone();
+            s.spawn(move || c.deliver(jobs, &|i, solved| tx.send((i, finish(i, solved))).is_ok()));
+        }
+        if let Some(d) = &drivers {
+            for _ in 0..d.pool.current_num_threads().max(1) {
+                let tx = tx.clone();
+                s.spawn(move || d.run(&tx, finish));
+            }
+        }
+        drop(tx);
+        // However this loop ends (even by a panic), the drivers must not be
+        // left waiting at the gate, or the scope would never close.
+        let _release = Release(&abort, &gate.1);
+        let mut order = Reorder::new(0);
+        'recv: for (i, out) in rx.iter() {
+            for (i, out) in order.push(i, out) {
+                if let Err(e) = deliver(i, out) {
+                    failure = Some(e);
+                    break 'recv;
+                }
+                *gate.0.lock().unwrap_or_else(|e| e.into_inner()) = i + 1;
+                gate.1.notify_all();
+            }
+        }
+    });
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Sets the abort flag and wakes the drivers when dropped.
+struct Release<'a>(&'a AtomicBool, &'a Condvar);
+
+impl Drop for Release<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::SeqCst);
+        self.1.notify_all();
+    }
+}
+
+/// The embedded backend: threads that each take the next job, solve it on
+/// the shared pool (its shards in parallel) and send it on.
+struct Drivers<'a, 'j> {
+    jobs: &'a [PartJob<'j>],
+    pool: rayon::ThreadPool,
+    next: AtomicUsize,
+    abort: &'a AtomicBool,
+    gate: &'a (Mutex<usize>, Condvar),
+}
+
+impl Drivers<'_, '_> {
+    /// Parts in flight at once: enough to keep the pool busy on small
+    /// parts, few enough that finished parts waiting for a slow one stay
+    /// bounded.
+    fn window(&self) -> usize {
+        2 * self.pool.current_num_threads().max(1) + 2
+    }
+
+    /// Waits until job `i` is within the window of the delivered ones;
+    /// false if the run is aborting.
+    fn wait_for_room(&self, i: usize) -> bool {
+        let mut delivered = self.gate.0.lock().unwrap_or_else(|e| e.into_inner());
+        while i >= *delivered + self.window() && !self.abort.load(Ordering::SeqCst) {
+            delivered = self
+                .gate
+                .1
+                .wait(delivered)
+                .unwrap_or_else(|e| e.into_inner());
+        }
+        !self.abort.load(Ordering::SeqCst)
+    }
+
+    fn run<T: Send>(
+        &self,
+        tx: &mpsc::Sender<(usize, T)>,
+        finish: &(impl Fn(usize, Solved) -> T + Sync),
+    ) {
+        loop {
+            let i = self.next.fetch_add(1, Ordering::SeqCst);
+            if i >= self.jobs.len() || !self.wait_for_room(i) {
+                break;
+            }
+            let job = &self.jobs[i];
+            let out = self.pool.install(|| {
+                let solved = solve_part(job.ctx, job.part, job.preparation.clone());
+                finish(i, solved)
+            });
+            if tx.send((i, out)).is_err() {
+                break;
+            }
+        }
+    }
+}
