@@ -4,6 +4,7 @@
 //! (coordinator plus worker processes on this host over zenoh and iceoryx2,
 //! failures, network namespaces). The tests run `fixplan-it`, this package's
 //! build of the `fixplan` command line.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::{Catalog, CatalogPart, KitSpec};
 use fixplan_core::{Case, Part, Units};
@@ -17,6 +18,7 @@ pub fn case(name: &str) -> Case {
     serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
 }
 
+/// A valid inline catalogue entry with this outline.
 pub fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
     CatalogPart {
         id: id.into(),

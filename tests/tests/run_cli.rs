@@ -2,6 +2,7 @@
 //! the sample catalogue, export against `solve`, resume after a real
 //! SIGKILL, invalid parts, and the MCAP file read back channel by channel
 //! (Rust reader here, Python's `mcap` package when it is installed).
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_coordinator::output::messages::*;
 use fixplan_coordinator::output::ResultsFile;

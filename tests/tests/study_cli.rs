@@ -1,6 +1,7 @@
 //! `fixplan study`, `run --grid-steps` and `run --good-enough` through the
 //! built binary, checked against plain `fixplan run` calls read back with
 //! `fixplan export --json`.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::kit::write_kit_toml;
 use fixplan_coordinator::study::{read_mcap, StudyKitMsg};

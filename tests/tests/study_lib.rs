@@ -2,6 +2,7 @@
 //! prepared part grafted with another kit's plate, clamp and parameters is
 //! the part `prepare` gives for that kit; a grid step set on a prepared
 //! part is the one `prepare` gives; the statistics' percentiles.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::load_catalog;
 use fixplan_coordinator::job::search::with_grid_step;

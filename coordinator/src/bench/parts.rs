@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 
 /// One part to measure.
 pub struct BenchPart {
+    /// Case file stem or catalogue id.
     pub id: String,
+    /// The part prepared, or why it cannot be (reported, not measured).
     pub prep: Result<PreparedPart, String>,
 }
 

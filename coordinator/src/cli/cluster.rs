@@ -55,8 +55,10 @@ impl NetArgs {
     }
 }
 
+/// `fixplan coordinator`.
 #[derive(Args, Debug, Clone)]
 pub struct CoordinatorArgs {
+    /// How to reach the workers.
     #[command(flatten)]
     pub net: NetArgs,
     /// The catalogue (as for `fixplan run`; default: the sample catalogue).
@@ -103,8 +105,10 @@ pub struct CoordinatorArgs {
     pub quiet: bool,
 }
 
+/// `fixplan worker`.
 #[derive(Args, Debug, Clone)]
 pub struct WorkerArgs {
+    /// How to reach the coordinator.
     #[command(flatten)]
     pub net: NetArgs,
     /// Enumeration threads (default: all cores).

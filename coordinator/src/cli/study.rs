@@ -52,6 +52,7 @@ EXAMPLES
       --sweep \"locator_radius=4,6,8 mm; plate=12x12,20x20; travel=50..70,60..92 mm\" \\
       --csv study.csv -o study.mcap --workers 2";
 
+/// `fixplan study`.
 #[derive(Args, Debug, Clone)]
 pub struct StudyArgs {
     /// The catalogue (default: the bundled sample catalogue).
@@ -87,6 +88,7 @@ pub struct StudyArgs {
     /// No table.
     #[arg(short, long)]
     pub quiet: bool,
+    /// `--workers N`: the study through a cluster.
     #[command(flatten)]
     pub cluster: RunClusterArgs,
 }
@@ -123,6 +125,7 @@ pub struct SearchArgs {
 }
 
 impl SearchArgs {
+    /// The search of every part of the run.
     pub fn options(&self) -> SearchOptions {
         SearchOptions {
             grid_steps: self.grid_steps.as_ref().map(|g| g.0.clone()),

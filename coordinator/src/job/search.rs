@@ -26,14 +26,24 @@ pub struct SearchOptions {
     pub good_enough: Option<f64>,
 }
 
+/// Why `--grid-steps` or `--good-enough` cannot be used.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum SearchError {
+    /// No step at all.
     #[error("--grid-steps is empty")]
     NoSteps,
+    /// A step that is not a whole number of at least 1.
     #[error("--grid-steps: {0:?} is not a whole number >= 1")]
     BadStep(String),
+    /// Steps whose fixture sets would not be nested.
     #[error("--grid-steps must go from coarse to fine, each step a multiple of the next (the subset property): {a} then {b} is not")]
-    NotNested { a: u32, b: u32 },
+    NotNested {
+        /// The coarser step.
+        a: u32,
+        /// The next one, not a divisor of `a`.
+        b: u32,
+    },
+    /// A threshold no score can be compared with.
     #[error("--good-enough {0} must be a finite number")]
     BadScore(f64),
 }
@@ -58,10 +68,13 @@ pub fn parse_grid_steps(s: &str) -> Result<Vec<u32>, SearchError> {
 }
 
 impl SearchOptions {
+    /// One full enumeration: neither option given.
     pub fn is_plain(&self) -> bool {
         self.grid_steps.is_none() && self.good_enough.is_none()
     }
 
+    /// Checks the options before any work (a bad option must not end a
+    /// run half-way).
     pub fn validate(&self) -> Result<(), SearchError> {
         if let Some(steps) = &self.grid_steps {
             if steps.is_empty() {
@@ -96,10 +109,13 @@ impl SearchOptions {
 /// One grid step of a part (`/fixplan/part` field `refine`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StepSummary {
+    /// The step: locators 2 and 3 at multiples of it from locator 1.
     pub grid_step: u32,
+    /// SPEC counts at this step.
     pub counts: Counts,
     /// Fixtures kept (top-k) at this step.
     pub fixtures: usize,
+    /// Score of the best fixture at this step.
     pub best_score: Option<f64>,
     /// The best fixture at this step.
     pub best: Option<FixtureReport>,
@@ -111,15 +127,18 @@ pub struct StepSummary {
     /// `--good-enough`: the combination index where this step stopped.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stopped_at: Option<u64>,
+    /// Wall time of this step.
     pub enumerate_ms: f64,
 }
 
 /// Why a part's enumeration ended early.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SearchInfo {
+    /// `--grid-steps`: what each step found, coarse to fine.
     pub steps: Option<Vec<StepSummary>>,
     /// `Some(index)`: stopped by `--good-enough` at that combination index.
     pub stopped_at: Option<u64>,
+    /// Shards enumerated over all steps.
     pub shards: usize,
 }
 

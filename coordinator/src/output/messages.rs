@@ -9,13 +9,20 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::path::Path;
 
+/// Channel of the run message, once at the start of a file.
 pub const TOPIC_RUN: &str = "/fixplan/run";
+/// Channel of the part messages, one per part in catalogue order.
 pub const TOPIC_PART: &str = "/fixplan/part";
+/// Channel of the ranked fixtures, one message per part.
 pub const TOPIC_FIXTURES: &str = "/fixplan/fixtures";
+/// Channel of the Foxglove scene of each part's best fixture.
 pub const TOPIC_SCENE: &str = "/fixplan/scene";
 
+/// Schema name of [`RunMsg`].
 pub const SCHEMA_RUN: &str = "fixplan.Run";
+/// Schema name of [`PartMsg`].
 pub const SCHEMA_PART: &str = "fixplan.Part";
+/// Schema name of [`FixturesMsg`].
 pub const SCHEMA_FIXTURES: &str = "fixplan.Fixtures";
 /// Foxglove recognises the scene only under this exact name.
 pub const SCHEMA_SCENE: &str = "foxglove.SceneUpdate";
@@ -27,10 +34,16 @@ pub const NS_PER_PART: u64 = 1_000_000_000;
 /// `/fixplan/run`: what was run, once at the start of the file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunMsg {
+    /// `fixplan`.
     pub tool: String,
+    /// The fixplan version that wrote the file: a resumed run must be the
+    /// same version.
     pub version: String,
+    /// The catalogue, with a digest of its content.
     pub catalog: CatalogInfo,
+    /// The kit's name (built-in) or file.
     pub kit_name: String,
+    /// The kit, in the catalogue's unit.
     pub kit: Kit,
     /// Parameters of the run (the kit's, with `--top-k` applied); a part's
     /// own `top_k` / `wrenches` in the catalogue override them.
@@ -43,12 +56,16 @@ pub struct RunMsg {
     pub good_enough: Option<f64>,
 }
 
+/// The catalogue a run or study read: enough to tell two runs apart.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CatalogInfo {
+    /// The manifest's name (or the directory's).
     pub name: String,
     /// Where it was read from, as given on the command line.
     pub source: String,
+    /// The catalogue's unit: every length of the file is in it.
     pub units: Units,
+    /// Parts in the catalogue, valid or not.
     pub parts: usize,
     /// `sha256:` of the catalogue content (ids, outlines, access, overrides).
     pub digest: String,
@@ -100,27 +117,39 @@ impl RunMsg {
 /// `/fixplan/part`: one per part, in catalogue order.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PartMsg {
+    /// Position in the catalogue (0-based).
     pub index: usize,
+    /// Catalogue id.
     pub id: String,
+    /// The part's file, if it has one (inline outlines have none).
     #[serde(default)]
     pub file: Option<String>,
+    /// `ok`, `no_fixture` or `invalid`.
     pub status: Status,
+    /// Why the part is invalid, naming the part and the place.
     #[serde(default)]
     pub error: Option<String>,
+    /// Repairs made while reading the part.
     #[serde(default)]
     pub warnings: Vec<String>,
+    /// The catalogue's unit.
     pub units: Units,
+    /// Parts per year, for kit studies.
     pub quantity: f64,
     /// Part frame, catalogue units, as given (empty if it could not be read).
     pub outline: Vec<Point>,
+    /// Access regions (part frame, catalogue units).
     #[serde(default)]
     pub access: Vec<Vec<Point>>,
+    /// SPEC section 4 counts; absent for an invalid part.
     #[serde(default)]
     pub counts: Option<Counts>,
     /// Fixtures kept in the ranking (top-k).
     pub fixtures: usize,
+    /// Score of the best fixture (lower is better).
     #[serde(default)]
     pub best_score: Option<f64>,
+    /// Wall-clock timings (the only fields that differ between runs).
     pub timing: Timing,
     /// `--grid-steps`: one summary per grid step, coarse to fine (counts,
     /// best fixture, what the step added). Absent in plain runs.
@@ -143,7 +172,9 @@ pub const STOPPED_GOOD_ENOUGH: &str = "good_enough";
 /// line of `fixplan export --json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FixturesMsg {
+    /// Catalogue id of the part.
     pub part: String,
+    /// Status, counts and ranked fixtures.
     #[serde(flatten)]
     pub result: SolveResult,
 }

@@ -7,26 +7,38 @@ use mcap::read::Options;
 use mcap::MessageStream;
 use std::path::Path;
 
+/// Why a results file cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
+    /// The file system refused.
     #[error("{path}: cannot read: {source}")]
     Io {
+        /// The file.
         path: String,
+        /// What the system said.
         #[source]
         source: std::io::Error,
     },
+    /// Not MCAP, or not written by fixplan: `--resume` starts afresh.
     #[error("{path}: not a fixplan results file: {message}")]
-    Format { path: String, message: String },
+    Format {
+        /// The file.
+        path: String,
+        /// What is wrong with it.
+        message: String,
+    },
 }
 
 /// A results file read into memory.
 pub struct ResultsFile {
+    /// Where it was read from, for messages.
     pub path: String,
     bytes: Vec<u8>,
 }
 
 /// What a results file holds.
 pub struct Contents {
+    /// The run message (what was run).
     pub run: RunMsg,
     /// Indices of the parts whose three messages are all present, in file
     /// order.
@@ -38,6 +50,7 @@ pub struct Contents {
 }
 
 impl ResultsFile {
+    /// Reads the whole file (results files are small: a few kB a part).
     pub fn open(path: &Path) -> Result<ResultsFile, ReadError> {
         let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
             path: path.display().to_string(),
@@ -134,11 +147,14 @@ impl ResultsFile {
 
 /// The decoded messages of one part.
 pub struct PartRecord {
+    /// The part message.
     pub part: PartMsg,
+    /// Its ranked fixtures.
     pub fixtures: FixturesMsg,
 }
 
 impl PartRecord {
+    /// Decodes the part and fixtures messages (the scene is for viewers).
     pub fn decode(m: &PartMessages) -> Result<PartRecord, serde_json::Error> {
         Ok(PartRecord {
             part: serde_json::from_slice(&m.part)?,
@@ -151,7 +167,7 @@ impl PartRecord {
 /// `part` when given), decoded, in file order; stops at the first error.
 /// Fails when `part` names no part of the file. `show` and `render` share it.
 pub fn for_each_record(
-    path: &std::path::Path,
+    path: &Path,
     part: Option<&str>,
     mut f: impl FnMut(&RunMsg, &PartRecord) -> anyhow::Result<()>,
 ) -> anyhow::Result<Contents> {

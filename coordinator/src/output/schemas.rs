@@ -38,6 +38,7 @@ fn status() -> serde_json::Value {
     serde_json::json!({"enum": ["ok", "no_fixture", "invalid"]})
 }
 
+/// The schema of `/fixplan/run`.
 pub fn run_schema() -> Vec<u8> {
     schema(
         SCHEMA_RUN,
@@ -61,6 +62,7 @@ pub fn run_schema() -> Vec<u8> {
     )
 }
 
+/// The schema of `/fixplan/part`.
 pub fn part_schema() -> Vec<u8> {
     schema(
         SCHEMA_PART,
@@ -97,6 +99,7 @@ pub fn part_schema() -> Vec<u8> {
     )
 }
 
+/// The schema of `/fixplan/fixtures`.
 pub fn fixtures_schema() -> Vec<u8> {
     let fixture = serde_json::json!({"type": "object", "properties": {
         "rank": {"type": "integer"}, "score": {"type": "number"},

@@ -11,10 +11,13 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
 
+/// Why a results file could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum OutError {
+    /// The MCAP writer failed (usually the disk).
     #[error("MCAP: {0}")]
     Mcap(#[from] mcap::McapError),
+    /// A message could not be serialised.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),
 }
@@ -22,12 +25,18 @@ pub enum OutError {
 /// The three messages of one part, already serialised.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartMessages {
+    /// Position of the part in the catalogue: its log time.
     pub index: usize,
+    /// `/fixplan/part` message.
     pub part: Vec<u8>,
+    /// `/fixplan/fixtures` message.
     pub fixtures: Vec<u8>,
+    /// `/fixplan/scene` message.
     pub scene: Vec<u8>,
 }
 
+/// A results file being written, one flushed chunk per part, so a run
+/// killed at any moment leaves whole parts behind.
 pub struct ResultsWriter {
     w: Writer<BufWriter<File>>,
     run: u16,

@@ -7,6 +7,8 @@ use crate::job::JobContext;
 use fixplan_catalog::CatalogPart;
 
 /// Where the enumeration runs.
+// One per run: the size of the cluster variant does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum Backend {
     /// Threads of this process (default: all cores).

@@ -10,8 +10,11 @@ use std::time::{Duration, Instant};
 /// Totals of a run, for the summary table.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Totals {
+    /// Parts with fixtures.
     pub ok: usize,
+    /// Valid parts no fixture of the kit holds.
     pub no_fixture: usize,
+    /// Parts that could not be read or prepared.
     pub invalid: usize,
     /// Admissible fixtures found, over all parts.
     pub admissible: u64,
@@ -22,10 +25,12 @@ pub struct Totals {
 }
 
 impl Totals {
+    /// Parts done, whatever their outcome.
     pub fn parts(&self) -> usize {
         self.ok + self.no_fixture + self.invalid
     }
 
+    /// Counts one part.
     pub fn add(&mut self, status: Status, admissible: u64, kept: usize) {
         match status {
             Status::Ok => self.ok += 1,
@@ -37,10 +42,13 @@ impl Totals {
     }
 }
 
+/// What a person watching a run sees: a bar on a terminal, plain lines in
+/// a log, nothing with `--quiet`.
 pub struct Progress {
     bar: Option<ProgressBar>,
     total: usize,
     start: Instant,
+    /// Parts counted so far.
     pub totals: Totals,
     quiet: bool,
 }
@@ -67,6 +75,7 @@ impl Progress {
         }
     }
 
+    /// A line above the bar (or on its own without one).
     pub fn log(&self, line: &str) {
         if self.quiet {
             return;
@@ -87,6 +96,7 @@ impl Progress {
         }
     }
 
+    /// Counts a written part and shows it.
     pub fn part_done(&mut self, o: &PartOutcome) {
         self.totals.add(o.status, o.admissible, o.kept);
         let done = self.totals.parts();
@@ -116,12 +126,14 @@ impl Progress {
         }
     }
 
+    /// Clears the bar before the summary is printed.
     pub fn finish(&self) {
         if let Some(b) = &self.bar {
             b.finish_and_clear();
         }
     }
 
+    /// Time since the run started.
     pub fn elapsed(&self) -> Duration {
         self.start.elapsed()
     }

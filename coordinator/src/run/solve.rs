@@ -132,7 +132,7 @@ impl Drivers<'_, '_> {
             }
             let job = &self.jobs[i];
             let out = self.pool.install(|| {
-                let solved = solve_part(job.ctx, job.part, job.preparation.clone());
+                let solved = solve_part(job.ctx, job.part, job.preparation);
                 finish(i, solved)
             });
             if tx.send((i, out)).is_err() {

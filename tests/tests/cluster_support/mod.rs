@@ -2,6 +2,7 @@
 //! drop, unique endpoints and key prefixes, a small catalogue, and the
 //! embedded reference.
 #![allow(dead_code)]
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_coordinator::cluster::{ClusterOptions, Distributed, PartInput, TransportChoice};
 use fixplan_coordinator::run::backend::Backend;
