@@ -23,8 +23,8 @@
 //! top_k = 10
 //! ```
 
+use crate::error::CatalogError;
 use crate::units::parse_units;
-use crate::{CatalogError, KitSpec};
 use fixplan_core::prepare::validate_kit;
 use fixplan_core::{Clamp, HoleKind, Kit, MountHole, Params, Pattern, Units};
 use std::path::Path;
@@ -49,8 +49,18 @@ pub const METRIC_25: &str = "metric-25";
 
 const BUILTIN: &[&str] = &[PAPER_INCH, METRIC_25];
 
-pub(crate) fn builtin_names() -> &'static [&'static str] {
+/// Names of the built-in kits.
+pub fn builtin_kit_names() -> &'static [&'static str] {
     BUILTIN
+}
+
+/// A kit with its enumeration parameters (defaults filled in), all lengths
+/// in the catalogue's units.
+#[derive(Debug, Clone)]
+pub struct KitSpec {
+    pub name: String,
+    pub kit: Kit,
+    pub params: Params,
 }
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
@@ -220,7 +230,8 @@ fn finish(
     Ok(KitSpec { name, kit, params })
 }
 
-pub(crate) fn load_kit(name_or_path: &str, units: Units) -> Result<KitSpec, CatalogError> {
+/// A built-in kit by name, or a kit TOML file; lengths converted to `units`.
+pub fn load_kit(name_or_path: &str, units: Units) -> Result<KitSpec, CatalogError> {
     if let Some((kit, native)) = builtin_kit(name_or_path) {
         let f = native.mm_per_unit() / units.mm_per_unit();
         let (kit, params) = scale_kit(&kit, &Params::default(), f);

@@ -28,9 +28,8 @@
 //! smaller ones inside it are ignored with a warning. `<defs>`, `<use>`,
 //! text and styles are not geometry here.
 
-use crate::dxf_io::pick_outline;
-use crate::geom::{arc_pieces, fmt, MAX_ARC_PIECES, P};
-use crate::part_file::{RawPart, ReadOptions};
+use super::outline::{arc_pieces, fmt, pick_outline, MAX_ARC_PIECES, P};
+use super::raw::{RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use fixplan_core::{Part, Units};
 

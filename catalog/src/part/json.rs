@@ -5,7 +5,7 @@
 //! (`outline` instead of `part`), so a part exported by fixplan reads back.
 //! An optional `units` field says what the numbers are in.
 
-use crate::part_file::{RawPart, ReadOptions};
+use super::raw::{RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use fixplan_core::{Part, Units};
 use serde_json::Value;

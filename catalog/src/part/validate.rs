@@ -7,8 +7,27 @@
 //! [`fixplan_core::polygon::validate_polygon`] to report, so the catalogue
 //! and the solver never disagree about what a valid polygon is.
 
-use crate::geom::{dist, fmt_pt, scale_of, P};
+use super::outline::{dist, fmt_pt, scale_of, P};
+use super::raw::RawPart;
 use fixplan_core::polygon::{validate_polygon, PolygonError};
+use fixplan_core::{Part, Units};
+
+/// Repairs and validates the outline and every access constraint.
+pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), String> {
+    let mut warnings = raw.warnings;
+    let unit = units.label();
+    let outline = clean_and_validate(&raw.outline, "outline", unit, &mut warnings)?;
+    let mut access = Vec::with_capacity(raw.access.len());
+    for (i, a) in raw.access.iter().enumerate() {
+        access.push(clean_and_validate(
+            a,
+            &format!("access constraint {i}"),
+            unit,
+            &mut warnings,
+        )?);
+    }
+    Ok((Part { outline, access }, warnings))
+}
 
 /// Relative size under which two consecutive vertices are the same point.
 const DUP_REL: f64 = 1e-9;

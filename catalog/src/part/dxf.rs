@@ -9,11 +9,11 @@
 //! its outer silhouette only. Paper-space entities (title blocks) and
 //! annotations are skipped.
 
-use crate::geom::{
-    arc_pieces, arc_points, bulge_points, circle_loop, fmt, fmt_pt, join_pieces, point_in_polygon,
-    signed_area, Piece, MAX_ARC_PIECES, P,
+use super::outline::{
+    arc_pieces, arc_points, circle_loop, dist, fmt, fmt_pt, join_pieces, pick_outline, Piece,
+    MAX_ARC_PIECES, P,
 };
-use crate::part_file::{RawPart, ReadOptions};
+use super::raw::{RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use dxf::entities::EntityType;
 use dxf::enums::Units as DxfUnits;
@@ -61,6 +61,32 @@ fn flip_all(pts: &mut [P], flip: bool) {
             p[0] = -p[0];
         }
     }
+}
+
+/// Interior points of a DXF bulge segment from `p` to `q` (bulge = tan of a
+/// quarter of the included angle, positive CCW), endpoints excluded.
+fn bulge_points(p: P, q: P, bulge: f64, tol: f64) -> Vec<P> {
+    if !bulge.is_finite() || bulge.abs() < 1e-12 {
+        return Vec::new();
+    }
+    let chord = [q[0] - p[0], q[1] - p[1]];
+    let c = chord[0].hypot(chord[1]);
+    if c == 0.0 || !c.is_finite() {
+        return Vec::new();
+    }
+    let theta = 4.0 * bulge.atan();
+    // The centre sits on the chord's bisector, (1 - b^2) / (4 b) chord
+    // lengths to the left of p -> q.
+    let k = (1.0 - bulge * bulge) / (4.0 * bulge);
+    let center = [
+        (p[0] + q[0]) / 2.0 - chord[1] * k,
+        (p[1] + q[1]) / 2.0 + chord[0] * k,
+    ];
+    let r = dist(center, p);
+    let a0 = (p[1] - center[1]).atan2(p[0] - center[0]);
+    let mut pts = arc_points(center, r, a0, theta, tol, 1);
+    pts.pop();
+    pts
 }
 
 /// Vertices with bulges to points; `closed` adds the closing segment's arc.
@@ -293,57 +319,6 @@ pub fn read_dxf(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, String> {
     pick_outline(part_loops, access, warnings, unit)
 }
 
-/// The largest loop is the part; smaller loops inside it are features the
-/// planar method does not use; loops outside it mean the file holds more
-/// than one part, which is ambiguous.
-pub(crate) fn pick_outline(
-    loops: Vec<(Vec<P>, String)>,
-    access: Vec<Vec<P>>,
-    mut warnings: Vec<String>,
-    unit: &str,
-) -> Result<RawPart, String> {
-    if loops.is_empty() {
-        return Err(if access.is_empty() {
-            "no closed loop: the file has no closed outline".into()
-        } else {
-            "no closed loop: only access/keepout loops, no part outline".into()
-        });
-    }
-    let area = |p: &[P]| {
-        let a = signed_area(p).abs();
-        if a.is_finite() {
-            a
-        } else {
-            f64::INFINITY
-        }
-    };
-    let outer_i = (0..loops.len())
-        .max_by(|&i, &j| area(&loops[i].0).total_cmp(&area(&loops[j].0)))
-        .unwrap_or(0);
-    let outer = loops[outer_i].0.clone();
-    for (i, (l, label)) in loops.iter().enumerate() {
-        if i == outer_i || l.is_empty() {
-            continue;
-        }
-        if point_in_polygon(l[0], &outer) {
-            warnings.push(format!(
-                "{label} near {} {unit} is a loop inside the outline (a hole or pocket); ignored: fixtures hold the outer outline only",
-                fmt_pt(l[0])
-            ));
-        } else {
-            return Err(format!(
-                "more than one outline: {label} near {} {unit} lies outside the largest loop; put one part per file",
-                fmt_pt(l[0])
-            ));
-        }
-    }
-    Ok(RawPart {
-        outline: outer,
-        access,
-        warnings,
-    })
-}
-
 fn entity_name(e: &EntityType) -> &'static str {
     match e {
         EntityType::Line(_) => "LINE",
@@ -398,4 +373,19 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
     pair(0, "ENDSEC");
     pair(0, "EOF");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bulge_one_is_a_half_circle() {
+        let pts = bulge_points([1.0, 0.0], [-1.0, 0.0], 1.0, 0.01);
+        assert!(!pts.is_empty());
+        for p in &pts {
+            assert!((dist(*p, [0.0, 0.0]) - 1.0).abs() < 1e-12);
+            assert!(p[1] > 0.0, "CCW from (1,0) to (-1,0) passes above");
+        }
+    }
 }

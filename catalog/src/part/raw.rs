@@ -1,12 +1,10 @@
-//! One part file (DXF, SVG or JSON) to a validated [`Part`].
-//!
-//! Readers produce a [`RawPart`] already in the catalogue's units; one
-//! validation step ([`validate_part`]) then applies the same rules to every
-//! format, so a part means the same thing whatever tool drew it.
+//! What every reader produces and takes: a [`RawPart`] in the catalogue's
+//! units, the [`ReadOptions`] it was read with, the [`Format`] of the file.
+//! Kept apart from the readers so that they, validation and the manifest
+//! can all use these types without using each other.
 
-use crate::clean::clean_and_validate;
 use crate::units::LengthUnit;
-use fixplan_core::{Part, Units};
+use fixplan_core::Units;
 use std::path::Path;
 
 /// Default chord error for flattening arcs: 0.05 mm is well inside the
@@ -69,53 +67,4 @@ impl Format {
             _ => None,
         }
     }
-}
-
-/// Reads a part file's bytes without validating the polygons.
-pub fn read_raw(bytes: &[u8], format: Format, opts: &ReadOptions) -> Result<RawPart, String> {
-    if !(opts.chord_tolerance.is_finite() && opts.chord_tolerance > 0.0) {
-        return Err(format!(
-            "chord tolerance {} must be a positive number",
-            opts.chord_tolerance
-        ));
-    }
-    if !(opts.join_tolerance.is_finite() && opts.join_tolerance >= 0.0) {
-        return Err(format!(
-            "join tolerance {} must be a non-negative number",
-            opts.join_tolerance
-        ));
-    }
-    match format {
-        Format::Dxf => crate::dxf_io::read_dxf(bytes, opts),
-        Format::Svg => crate::svg_io::read_svg(bytes, opts),
-        Format::Json => crate::json_io::read_json(bytes, opts),
-    }
-}
-
-/// Reads and validates a part file's bytes: the part and the warnings of
-/// the repairs made, or the first problem found.
-pub fn parse_part(
-    bytes: &[u8],
-    format: Format,
-    opts: &ReadOptions,
-) -> Result<(Part, Vec<String>), String> {
-    let raw = read_raw(bytes, format, opts)?;
-    validate_part(raw, opts.units)
-}
-
-/// Repairs and validates the outline and every access constraint.
-pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), String> {
-    let mut warnings = raw.warnings;
-    let unit = units.label();
-    let outline = clean_and_validate(&raw.outline, "outline", unit, &mut warnings)?;
-    let mut access = Vec::with_capacity(raw.access.len());
-    for (i, a) in raw.access.iter().enumerate() {
-        access.push(clean_and_validate(
-            a,
-            &format!("access constraint {i}"),
-            unit,
-            &mut warnings,
-        )?);
-    }
-    Ok((Part { outline, access }, warnings))
 }
