@@ -179,7 +179,9 @@ pub fn parse_kit_toml(
     };
     let units = match table.remove("units") {
         None => Units::Mm,
-        Some(toml::Value::String(s)) => parse_units(&s).map_err(|e| invalid(path, e))?,
+        Some(toml::Value::String(s)) => {
+            parse_units(&s).map_err(|e| invalid(path, e.to_string()))?
+        }
         Some(v) => return Err(invalid(path, format!("unknown units {v}"))),
     };
     let params: Params = match table.remove("params") {

@@ -36,11 +36,12 @@ mod manifest;
 pub mod part;
 pub mod units;
 
-pub use error::CatalogError;
+pub use error::{CatalogError, EntryProblem, PartError, PartErrorKind};
 pub use kit::{builtin_kit_names, load_kit, KitSpec};
 pub use manifest::{load_catalog, load_catalog_with, Catalog, CatalogPart, LoadOptions, MANIFEST};
 pub use part::{
     parse_part, read_dxf, read_json, read_raw, read_svg, validate_part, write_dxf, write_json,
-    write_svg, Format, RawPart, ReadOptions,
+    write_svg, DxfError, Format, InvalidPolygon, JsonError, ParseError, PolygonProblem,
+    PolygonRole, RawPart, ReadError, ReadOptions, SvgError,
 };
 pub use units::LengthUnit;

@@ -2,38 +2,86 @@
 //! files, each part read and validated on its own (through `crate::part`)
 //! so that one broken part never stops the others.
 
-use crate::error::CatalogError;
+use crate::error::{part_name, CatalogError, EntryProblem, PartError, PartErrorKind};
 use crate::part::{read_raw, validate_part, Format, RawPart, ReadOptions};
 use crate::units::{self, LengthUnit};
 use fixplan_core::{Part, Units};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// A catalogue, its parts in manifest order (directory: sorted by file name).
 #[derive(Debug, Clone)]
 pub struct Catalog {
+    /// The manifest's `name`, else the directory's name: what reports and
+    /// results files call the catalogue.
     pub name: String,
+    /// The units every part (and the kit) is in.
     pub units: Units,
     /// Where it was read from (manifest file or directory).
     pub source: PathBuf,
+    /// Every entry, valid or not, so that results can report each one.
     pub parts: Vec<CatalogPart>,
 }
 
 /// One catalogue entry, read and validated independently of the others.
 #[derive(Debug, Clone)]
 pub struct CatalogPart {
+    /// The id results and reports use (a directory part: its file stem).
     pub id: String,
     /// The file it came from, if any (inline outlines have none).
     pub file: Option<PathBuf>,
     /// The part in the catalogue's units, or why it cannot be used.
-    pub part: Result<Part, String>,
+    pub part: Result<Part, PartError>,
     /// Warnings from repairs that were safe to make (e.g. a repeated vertex
     /// dropped), each naming the part and the place.
     pub warnings: Vec<String>,
     /// Parts per year, for kit studies (default 1).
     pub quantity: f64,
-    /// Per-part overrides.
+    /// Fixtures to keep for this part, overriding the run's `top_k`.
     pub top_k: Option<usize>,
+    /// Expected wrenches for this part's quality metric, overriding the
+    /// kit's.
     pub wrenches: Option<Vec<[f64; 3]>>,
+}
+
+impl CatalogPart {
+    /// The entry with the outcome of reading it; warnings get the part's
+    /// name, as every message about a part does. Quantity and overrides are
+    /// the defaults.
+    fn new(
+        id: String,
+        file: Option<PathBuf>,
+        read: Result<(Part, Vec<String>), PartErrorKind>,
+    ) -> CatalogPart {
+        let (part, warnings) = match read {
+            Ok((part, warnings)) => {
+                let name = part_name(&id, file.as_deref());
+                let warnings = warnings
+                    .into_iter()
+                    .map(|w| format!("{name}: {w}"))
+                    .collect();
+                (Ok(part), warnings)
+            }
+            Err(kind) => {
+                let e = PartError {
+                    id: id.clone(),
+                    file: file.clone(),
+                    kind,
+                };
+                (Err(e), Vec::new())
+            }
+        };
+        CatalogPart {
+            id,
+            file,
+            part,
+            warnings,
+            quantity: 1.0,
+            top_k: None,
+            wrenches: None,
+        }
+    }
 }
 
 /// Choices a caller can make when loading a catalogue.
@@ -126,9 +174,7 @@ fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
                 .file_name()
                 .map(PathBuf::from)
                 .unwrap_or_else(|| f.clone());
-            let mut cp = blank_part(id, Some(name));
-            read_file_part(&mut cp, &f, &ropts, &[]);
-            cp
+            CatalogPart::new(id, Some(name), read_file_part(&f, &ropts, &[]))
         })
         .collect();
     Ok(Catalog {
@@ -139,56 +185,37 @@ fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
     })
 }
 
-fn blank_part(id: String, file: Option<PathBuf>) -> CatalogPart {
-    CatalogPart {
-        id,
-        file,
-        part: Err(String::new()),
-        warnings: Vec::new(),
-        quantity: 1.0,
-        top_k: None,
-        wrenches: None,
-    }
-}
-
-/// The prefix of every message about a part: its id and its file.
-fn who(cp: &CatalogPart) -> String {
-    match &cp.file {
-        Some(f) => format!("{} ({})", cp.id, f.display()),
-        None => cp.id.clone(),
-    }
-}
-
-/// Reads, merges extra access polygons, validates; fills `cp.part` and
-/// `cp.warnings` with messages that name the part.
+/// Reads a part file, adds the entry's own access polygons, validates.
 fn read_file_part(
-    cp: &mut CatalogPart,
     path: &Path,
     ropts: &ReadOptions,
     extra_access: &[Vec<[f64; 2]>],
-) {
-    let prefix = who(cp);
-    let result = (|| {
-        let format = Format::from_path(path)
-            .ok_or_else(|| "unknown file type (expected .dxf, .svg or .json)".to_string())?;
-        let bytes =
-            std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        let mut raw = read_raw(&bytes, format, ropts)?;
-        raw.access.extend(extra_access.iter().cloned());
-        validate_part(raw, ropts.units)
-    })();
-    finish_part(cp, &prefix, result);
+) -> Result<(Part, Vec<String>), PartErrorKind> {
+    let format = Format::from_path(path).ok_or(PartErrorKind::UnknownFileType)?;
+    let bytes = std::fs::read(path).map_err(|e| PartErrorKind::Unreadable {
+        path: path.to_path_buf(),
+        error: Arc::new(e),
+    })?;
+    let mut raw = read_raw(&bytes, format, ropts)?;
+    raw.access.extend(extra_access.iter().cloned());
+    Ok(validate_part(raw, ropts.units)?)
 }
 
-fn finish_part(cp: &mut CatalogPart, prefix: &str, result: Result<(Part, Vec<String>), String>) {
-    match result {
-        Ok((part, warnings)) => {
-            cp.warnings
-                .extend(warnings.into_iter().map(|w| format!("{prefix}: {w}")));
-            cp.part = Ok(part);
-        }
-        Err(e) => cp.part = Err(format!("{prefix}: {e}")),
-    }
+/// Validates an entry's inline outline and access polygons, given in the
+/// entry's units (`ropts.fallback`), else the catalogue's.
+fn inline_part(
+    outline: &[[f64; 2]],
+    access: &[Vec<[f64; 2]>],
+    ropts: &ReadOptions,
+) -> Result<(Part, Vec<String>), PartErrorKind> {
+    let k = ropts.fallback.factor_to(ropts.units);
+    let sc = |p: &[[f64; 2]]| p.iter().map(|q| [q[0] * k, q[1] * k]).collect();
+    let raw = RawPart {
+        outline: sc(outline),
+        access: access.iter().map(|a| sc(a)).collect(),
+        warnings: Vec::new(),
+    };
+    Ok(validate_part(raw, ropts.units)?)
 }
 
 #[derive(serde::Deserialize)]
@@ -213,6 +240,20 @@ struct Entry {
     chord_tolerance: Option<f64>,
 }
 
+/// Where an entry's polygons come from.
+enum Geometry<'a> {
+    File(&'a Path),
+    Outline(&'a [[f64; 2]]),
+}
+
+/// The manifest's top-level fields.
+struct Header {
+    name: String,
+    units: Units,
+    chord_tolerance: Option<f64>,
+    entries: Vec<toml::Value>,
+}
+
 fn load_manifest(path: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogError> {
     let text = std::fs::read_to_string(path).map_err(|source| CatalogError::Io {
         path: path.to_path_buf(),
@@ -222,27 +263,50 @@ fn load_manifest(path: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
         .parse()
         .map_err(|e: toml::de::Error| invalid(path, format!("not a readable manifest: {e}")))?;
     let base = path.parent().unwrap_or(Path::new("."));
+    let header = read_header(&mut table, path, base)?;
+    let ctx = EntryContext {
+        base,
+        ropts: read_options(header.units, opts, header.chord_tolerance),
+        chord_tolerance_given: opts.chord_tolerance.is_some(),
+    };
+    let mut seen = HashMap::new();
+    let parts = header
+        .entries
+        .into_iter()
+        .enumerate()
+        .map(|(i, v)| load_entry(i, v, &ctx, &mut seen))
+        .collect();
+    Ok(Catalog {
+        name: header.name,
+        units: header.units,
+        source: path.to_path_buf(),
+        parts,
+    })
+}
+
+/// Takes the top-level fields out of the manifest; anything left over is
+/// an unknown field.
+fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Header, CatalogError> {
     let name = match table.remove("name") {
         Some(toml::Value::String(s)) => s,
         None => dir_name(base),
         Some(v) => return Err(invalid(path, format!("name {v} is not a string"))),
     };
     let units = match table.remove("units") {
-        Some(toml::Value::String(s)) => units::parse_units(&s).map_err(|e| invalid(path, e))?,
+        Some(toml::Value::String(s)) => {
+            units::parse_units(&s).map_err(|e| invalid(path, e.to_string()))?
+        }
         None => return Err(invalid(path, "no units: say units = \"mm\" or \"in\"")),
         Some(v) => return Err(invalid(path, format!("unknown units {v}"))),
     };
-    let manifest_tol = match table.remove("chord_tolerance") {
+    let chord_tolerance = match table.remove("chord_tolerance") {
         None => None,
-        Some(v) => match v.as_float().or(v.as_integer().map(|i| i as f64)) {
-            Some(t) if t.is_finite() && t > 0.0 => Some(t),
-            _ => {
-                return Err(invalid(
-                    path,
-                    format!("chord_tolerance {v} must be a positive number"),
-                ))
-            }
-        },
+        Some(v) => Some(positive(&v).ok_or_else(|| {
+            invalid(
+                path,
+                format!("chord_tolerance {v} must be a positive number"),
+            )
+        })?),
     };
     let entries = match table.remove("part") {
         None => Vec::new(),
@@ -255,129 +319,125 @@ fn load_manifest(path: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
             format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, part)"),
         ));
     }
-    let ropts = read_options(units, opts, manifest_tol);
-    let mut seen: std::collections::HashMap<String, usize> = Default::default();
-    let mut parts = Vec::with_capacity(entries.len());
-    for (i, v) in entries.into_iter().enumerate() {
-        let fallback_id = v
-            .get("id")
-            .and_then(|x| x.as_str())
-            .map(str::to_string)
-            .unwrap_or_else(|| format!("part #{}", i + 1));
-        let entry: Entry = match v.try_into() {
-            Ok(e) => e,
-            Err(e) => {
-                let mut cp = blank_part(fallback_id, None);
-                cp.part = Err(format!(
-                    "{}: manifest entry {}: {}",
-                    cp.id,
-                    i + 1,
-                    e.message()
-                ));
-                parts.push(cp);
-                continue;
-            }
-        };
-        let mut cp = blank_part(entry.id.clone(), entry.file.clone());
-        cp.top_k = entry.top_k;
-        cp.wrenches = entry.wrenches.clone();
-        let prefix = who(&cp);
-        let problem = entry_problem(&entry, &mut seen, i);
-        if let Some(p) = problem {
-            cp.part = Err(format!("{prefix}: {p}"));
-            parts.push(cp);
-            continue;
-        }
-        cp.quantity = entry.quantity.unwrap_or(1.0);
-        let mut eopts = ropts;
-        if let Some(t) = opts
-            .chord_tolerance
-            .is_none()
-            .then_some(entry.chord_tolerance)
-            .flatten()
-        {
-            eopts.chord_tolerance = t;
-        }
-        if let Some(u) = &entry.units {
-            match LengthUnit::parse(u) {
-                Some(u) => eopts.fallback = u,
-                None => {
-                    cp.part = Err(format!("{prefix}: unknown units \"{u}\""));
-                    parts.push(cp);
-                    continue;
-                }
-            }
-        }
-        match (&entry.file, &entry.outline) {
-            (Some(f), None) => read_file_part(&mut cp, &base.join(f), &eopts, &entry.access),
-            (None, Some(outline)) => {
-                // Inline numbers are in the entry's units, else the
-                // catalogue's.
-                let k = eopts.fallback.factor_to(units);
-                let sc = |p: &Vec<[f64; 2]>| p.iter().map(|q| [q[0] * k, q[1] * k]).collect();
-                let raw = RawPart {
-                    outline: sc(outline),
-                    access: entry.access.iter().map(sc).collect(),
-                    warnings: Vec::new(),
-                };
-                finish_part(&mut cp, &prefix, validate_part(raw, units));
-            }
-            _ => unreachable_entry(&mut cp, &prefix),
-        }
-        parts.push(cp);
-    }
-    Ok(Catalog {
+    Ok(Header {
         name,
         units,
-        source: path.to_path_buf(),
-        parts,
+        chord_tolerance,
+        entries,
     })
 }
 
-/// An entry with both or neither of `file` and `outline` was already
-/// rejected by [`entry_problem`]; kept as an error rather than a panic.
-fn unreachable_entry(cp: &mut CatalogPart, prefix: &str) {
-    cp.part = Err(format!("{prefix}: give either file or outline"));
+/// A positive finite number, integer or float.
+fn positive(v: &toml::Value) -> Option<f64> {
+    v.as_float()
+        .or(v.as_integer().map(|i| i as f64))
+        .filter(|t| t.is_finite() && *t > 0.0)
 }
 
-fn entry_problem(
-    e: &Entry,
-    seen: &mut std::collections::HashMap<String, usize>,
+/// What every entry of a manifest is read with.
+struct EntryContext<'a> {
+    /// The manifest's directory, which entry files are relative to.
+    base: &'a Path,
+    /// The catalogue's read options.
+    ropts: ReadOptions,
+    /// The caller fixed the chord tolerance: entries may not change it.
+    chord_tolerance_given: bool,
+}
+
+/// Entry `i` (from 0) of the manifest as a catalogue part; `seen` holds
+/// the ids of the entries before it.
+fn load_entry(
     i: usize,
-) -> Option<String> {
+    v: toml::Value,
+    ctx: &EntryContext,
+    seen: &mut HashMap<String, usize>,
+) -> CatalogPart {
+    let fallback_id = v
+        .get("id")
+        .and_then(|x| x.as_str())
+        .map(str::to_string)
+        .unwrap_or_else(|| format!("part #{}", i + 1));
+    let entry: Entry = match v.try_into() {
+        Ok(e) => e,
+        Err(e) => {
+            let kind = PartErrorKind::ManifestEntry {
+                entry: i + 1,
+                message: e.message().to_string(),
+            };
+            return CatalogPart::new(fallback_id, None, Err(kind));
+        }
+    };
+    let checked = check_entry(&entry, seen, i);
+    let quantity = match checked {
+        Ok(_) => entry.quantity.unwrap_or(1.0),
+        Err(_) => 1.0,
+    };
+    let read = checked
+        .map_err(PartErrorKind::from)
+        .and_then(|geometry| read_entry(&entry, geometry, ctx));
+    let mut cp = CatalogPart::new(entry.id.clone(), entry.file.clone(), read);
+    cp.quantity = quantity;
+    cp.top_k = entry.top_k;
+    cp.wrenches = entry.wrenches;
+    cp
+}
+
+/// Reads an entry that passed [`check_entry`].
+fn read_entry(
+    entry: &Entry,
+    geometry: Geometry,
+    ctx: &EntryContext,
+) -> Result<(Part, Vec<String>), PartErrorKind> {
+    let mut ropts = ctx.ropts;
+    if let Some(t) = entry.chord_tolerance.filter(|_| !ctx.chord_tolerance_given) {
+        ropts.chord_tolerance = t;
+    }
+    if let Some(u) = &entry.units {
+        ropts.fallback =
+            LengthUnit::parse(u).ok_or_else(|| EntryProblem::UnknownUnits(u.clone()))?;
+    }
+    match geometry {
+        Geometry::File(f) => read_file_part(&ctx.base.join(f), &ropts, &entry.access),
+        Geometry::Outline(outline) => inline_part(outline, &entry.access, &ropts),
+    }
+}
+
+/// The entry's fields on their own and against the ids `seen` before it
+/// (entry `i` from 0); the id is recorded unless it is empty or taken.
+fn check_entry<'e>(
+    e: &'e Entry,
+    seen: &mut HashMap<String, usize>,
+    i: usize,
+) -> Result<Geometry<'e>, EntryProblem> {
     if e.id.trim().is_empty() {
-        return Some("empty id".into());
+        return Err(EntryProblem::EmptyId);
     }
     if let Some(first) = seen.get(&e.id) {
-        return Some(format!(
-            "duplicate id: entry {} has the same id as entry {}",
-            i + 1,
-            first + 1
-        ));
+        return Err(EntryProblem::DuplicateId {
+            entry: i + 1,
+            first: first + 1,
+        });
     }
     seen.insert(e.id.clone(), i);
-    match (&e.file, &e.outline) {
-        (Some(_), Some(_)) => return Some("give either file or outline, not both".into()),
-        (None, None) => return Some("no file and no outline".into()),
-        _ => {}
-    }
-    if let Some(q) = e.quantity {
-        if !(q.is_finite() && q >= 0.0) {
-            return Some(format!("quantity {q} must be a non-negative number"));
-        }
+    let geometry = match (&e.file, &e.outline) {
+        (Some(_), Some(_)) => return Err(EntryProblem::FileAndOutline),
+        (None, None) => return Err(EntryProblem::NoFileNorOutline),
+        (Some(f), None) => Geometry::File(f),
+        (None, Some(o)) => Geometry::Outline(o),
+    };
+    if let Some(q) = e.quantity.filter(|q| !(q.is_finite() && *q >= 0.0)) {
+        return Err(EntryProblem::Quantity(q));
     }
     if let Some(ws) = &e.wrenches {
         if ws.is_empty() {
-            return Some("wrenches is an empty list (leave it out for the default metric)".into());
+            return Err(EntryProblem::EmptyWrenches);
         }
         if let Some(k) = ws.iter().position(|w| w.iter().any(|x| !x.is_finite())) {
-            return Some(format!("wrench {k} has a non-finite component"));
+            return Err(EntryProblem::NonFiniteWrench(k));
         }
     }
-    if let Some(t) = e.chord_tolerance {
-        if !(t.is_finite() && t > 0.0) {
-            return Some(format!("chord_tolerance {t} must be a positive number"));
-        }
+    if let Some(t) = e.chord_tolerance.filter(|t| !(t.is_finite() && *t > 0.0)) {
+        return Err(EntryProblem::ChordTolerance(t));
     }
-    None
+    Ok(geometry)
 }

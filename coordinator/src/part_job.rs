@@ -74,14 +74,6 @@ pub struct PartOutcome {
     pub stopped_at: Option<u64>,
 }
 
-fn name_part(id: &str, msg: &str) -> String {
-    if msg.contains(id) {
-        msg.to_string()
-    } else {
-        format!("{id}: {msg}")
-    }
-}
-
 fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
     if let Some(s) = p.downcast_ref::<&str>() {
         s.to_string()
@@ -114,7 +106,7 @@ pub fn solve_part(
     let mut timing = Timing::default();
     let mut info = SearchInfo::default();
     let result = match &cp.part {
-        Err(msg) => SolveResult::invalid(name_part(&cp.id, msg)),
+        Err(e) => SolveResult::invalid(e.to_string()),
         Ok(part) => {
             let t0 = Instant::now();
             let prepared = prepared.unwrap_or_else(|| {

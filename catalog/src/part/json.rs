@@ -5,58 +5,117 @@
 //! (`outline` instead of `part`), so a part exported by fixplan reads back.
 //! An optional `units` field says what the numbers are in.
 
-use super::raw::{RawPart, ReadOptions};
+use super::raw::{PolygonRole, RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use fixplan_core::{Part, Units};
 use serde_json::Value;
 
-fn point(v: &Value, what: &str, i: usize) -> Result<[f64; 2], String> {
+/// Why a JSON file does not give a part's polygons.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum JsonError {
+    /// Not JSON at all; the parser's message says where.
+    #[error("not a readable JSON file: {0}")]
+    Unreadable(String),
+    /// JSON, but not an object.
+    #[error("not a part: expected an object with a \"part\" field")]
+    NotAnObject,
+    /// A `units` string no reader knows.
+    #[error("unknown units \"{0}\"")]
+    UnknownUnits(String),
+    /// A `units` field that is not a string.
+    #[error("unknown units {0}")]
+    UnitsNotAString(Value),
+    /// Neither `part` nor `outline`.
+    #[error("no \"part\" field (the outline as a list of [x, y] points)")]
+    NoOutline,
+    /// A polygon that is not a list.
+    #[error("{0} is not a list of [x, y] points")]
+    NotAList(PolygonRole),
+    /// A vertex that is not a two-element list.
+    #[error("{polygon}: vertex {vertex} is not an [x, y] pair: {value}")]
+    NotAPair {
+        /// The polygon it belongs to.
+        polygon: PolygonRole,
+        /// Its index, from 0.
+        vertex: usize,
+        /// What was there instead.
+        value: Value,
+    },
+    /// A two-element vertex with something else than numbers in it.
+    #[error("{polygon}: vertex {vertex} is not a pair of numbers: {value}")]
+    NotNumbers {
+        /// The polygon it belongs to.
+        polygon: PolygonRole,
+        /// Its index, from 0.
+        vertex: usize,
+        /// What was there instead.
+        value: Value,
+    },
+    /// An `access` field that is not a list.
+    #[error("\"access\" is not a list of polygons")]
+    AccessNotAList,
+}
+
+fn point(v: &Value, polygon: PolygonRole, vertex: usize) -> Result<[f64; 2], JsonError> {
     match v.as_array().map(|a| a.as_slice()) {
         Some([x, y]) => match (x.as_f64(), y.as_f64()) {
             (Some(x), Some(y)) => Ok([x, y]),
-            _ => Err(format!("{what}: vertex {i} is not a pair of numbers: {v}")),
+            _ => Err(JsonError::NotNumbers {
+                polygon,
+                vertex,
+                value: v.clone(),
+            }),
         },
-        _ => Err(format!("{what}: vertex {i} is not an [x, y] pair: {v}")),
+        _ => Err(JsonError::NotAPair {
+            polygon,
+            vertex,
+            value: v.clone(),
+        }),
     }
 }
 
-fn polygon(v: &Value, what: &str) -> Result<Vec<[f64; 2]>, String> {
-    let arr = v
-        .as_array()
-        .ok_or_else(|| format!("{what} is not a list of [x, y] points"))?;
+fn polygon(v: &Value, role: PolygonRole) -> Result<Vec<[f64; 2]>, JsonError> {
+    let arr = v.as_array().ok_or(JsonError::NotAList(role))?;
     arr.iter()
         .enumerate()
-        .map(|(i, p)| point(p, what, i))
+        .map(|(i, p)| point(p, role, i))
         .collect()
 }
 
-pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, String> {
-    let v: Value =
-        serde_json::from_slice(bytes).map_err(|e| format!("not a readable JSON file: {e}"))?;
-    let obj = v
-        .as_object()
-        .ok_or("not a part: expected an object with a \"part\" field")?;
-    let src = match obj.get("units") {
-        None | Some(Value::Null) => opts.fallback,
+/// The file's units: its `units` field, else the catalogue's fallback.
+fn file_units(
+    obj: &serde_json::Map<String, Value>,
+    opts: &ReadOptions,
+) -> Result<LengthUnit, JsonError> {
+    match obj.get("units") {
+        None | Some(Value::Null) => Ok(opts.fallback),
         Some(Value::String(s)) => {
-            LengthUnit::parse(s).ok_or_else(|| format!("unknown units \"{s}\""))?
+            LengthUnit::parse(s).ok_or_else(|| JsonError::UnknownUnits(s.clone()))
         }
-        Some(other) => return Err(format!("unknown units {other}")),
-    };
+        Some(other) => Err(JsonError::UnitsNotAString(other.clone())),
+    }
+}
+
+/// Reads a JSON part into `opts.units`, unvalidated.
+pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError> {
+    let v: Value =
+        serde_json::from_slice(bytes).map_err(|e| JsonError::Unreadable(e.to_string()))?;
+    let obj = v.as_object().ok_or(JsonError::NotAnObject)?;
+    let src = file_units(obj, opts)?;
     let outline = obj
         .get("part")
         .or_else(|| obj.get("outline"))
-        .ok_or("no \"part\" field (the outline as a list of [x, y] points)")?;
-    let mut outline = polygon(outline, "outline")?;
+        .ok_or(JsonError::NoOutline)?;
+    let mut outline = polygon(outline, PolygonRole::Outline)?;
     let mut access = Vec::new();
     match obj.get("access") {
         None | Some(Value::Null) => {}
         Some(Value::Array(list)) => {
             for (i, a) in list.iter().enumerate() {
-                access.push(polygon(a, &format!("access constraint {i}"))?);
+                access.push(polygon(a, PolygonRole::Access(i))?);
             }
         }
-        Some(_) => return Err("\"access\" is not a list of polygons".into()),
+        Some(_) => return Err(JsonError::AccessNotAList),
     }
     let f = src.factor_to(opts.units);
     if f != 1.0 {

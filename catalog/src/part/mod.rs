@@ -9,35 +9,64 @@ mod raw;
 mod svg;
 mod validate;
 
-pub use dxf::{read_dxf, write_dxf};
-pub use json::{read_json, write_json};
+pub use dxf::{read_dxf, write_dxf, DxfError};
+pub use json::{read_json, write_json, JsonError};
+pub use outline::OutlineError;
 pub use raw::{
-    Format, RawPart, ReadOptions, DEFAULT_CHORD_TOLERANCE_MM, DEFAULT_JOIN_TOLERANCE_MM,
+    Format, PolygonRole, RawPart, ReadOptions, DEFAULT_CHORD_TOLERANCE_MM,
+    DEFAULT_JOIN_TOLERANCE_MM,
 };
-pub use svg::{read_svg, write_svg};
-pub use validate::validate_part;
+pub use svg::{read_svg, write_svg, ElementProblem, PathError, SvgError, TransformError};
+pub use validate::{validate_part, InvalidPolygon, PolygonProblem};
 
 use fixplan_core::Part;
 
+/// Why a part file's bytes do not give a [`RawPart`]: the options, or the
+/// format's own reader.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ReadError {
+    /// [`ReadOptions::chord_tolerance`] is not a positive number.
+    #[error("chord tolerance {0} must be a positive number")]
+    ChordTolerance(f64),
+    /// [`ReadOptions::join_tolerance`] is negative or not a number.
+    #[error("join tolerance {0} must be a non-negative number")]
+    JoinTolerance(f64),
+    /// The DXF reader's finding.
+    #[error(transparent)]
+    Dxf(#[from] DxfError),
+    /// The SVG reader's finding.
+    #[error(transparent)]
+    Svg(#[from] SvgError),
+    /// The JSON reader's finding.
+    #[error(transparent)]
+    Json(#[from] JsonError),
+}
+
+/// Why a part file's bytes do not give a valid part: unreadable, or read
+/// but not a polygon SPEC accepts.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ParseError {
+    /// The file could not be read as its format.
+    #[error(transparent)]
+    Read(#[from] ReadError),
+    /// The file was read; a polygon in it is invalid.
+    #[error(transparent)]
+    Invalid(#[from] InvalidPolygon),
+}
+
 /// Reads a part file's bytes without validating the polygons.
-pub fn read_raw(bytes: &[u8], format: Format, opts: &ReadOptions) -> Result<RawPart, String> {
+pub fn read_raw(bytes: &[u8], format: Format, opts: &ReadOptions) -> Result<RawPart, ReadError> {
     if !(opts.chord_tolerance.is_finite() && opts.chord_tolerance > 0.0) {
-        return Err(format!(
-            "chord tolerance {} must be a positive number",
-            opts.chord_tolerance
-        ));
+        return Err(ReadError::ChordTolerance(opts.chord_tolerance));
     }
     if !(opts.join_tolerance.is_finite() && opts.join_tolerance >= 0.0) {
-        return Err(format!(
-            "join tolerance {} must be a non-negative number",
-            opts.join_tolerance
-        ));
+        return Err(ReadError::JoinTolerance(opts.join_tolerance));
     }
-    match format {
-        Format::Dxf => read_dxf(bytes, opts),
-        Format::Svg => read_svg(bytes, opts),
-        Format::Json => read_json(bytes, opts),
-    }
+    Ok(match format {
+        Format::Dxf => read_dxf(bytes, opts)?,
+        Format::Svg => read_svg(bytes, opts)?,
+        Format::Json => read_json(bytes, opts)?,
+    })
 }
 
 /// Reads and validates a part file's bytes: the part and the warnings of
@@ -46,7 +75,7 @@ pub fn parse_part(
     bytes: &[u8],
     format: Format,
     opts: &ReadOptions,
-) -> Result<(Part, Vec<String>), String> {
+) -> Result<(Part, Vec<String>), ParseError> {
     let raw = read_raw(bytes, format, opts)?;
-    validate_part(raw, opts.units)
+    Ok(validate_part(raw, opts.units)?)
 }

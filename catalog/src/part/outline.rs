@@ -6,6 +6,7 @@
 
 use super::raw::RawPart;
 use fixplan_core::geometry::{point_in_polygon, signed_area, v2, V2};
+use fixplan_core::Units;
 
 pub(crate) type P = [f64; 2];
 
@@ -192,6 +193,28 @@ fn inside(q: P, poly: &[V2]) -> bool {
     !poly.is_empty() && point_in_polygon(v2(q[0], q[1]), poly)
 }
 
+/// Why the loops of a drawing do not make one part.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OutlineError {
+    /// No closed loop at all, or only access loops: nothing to hold.
+    #[error("no closed loop: {}", if *.only_access { "only access/keepout loops, no part outline" } else { "the file has no closed outline" })]
+    NoClosedLoop {
+        /// The drawing has access/keepout loops, just no outline.
+        only_access: bool,
+    },
+    /// A loop outside the largest one: two parts in one file, and which one
+    /// is meant cannot be guessed.
+    #[error("more than one outline: {label} near {} {} lies outside the largest loop; put one part per file", fmt_pt(*.near), .units.label())]
+    MoreThanOne {
+        /// The other loop, as the reader names it.
+        label: String,
+        /// Its first point, catalogue units.
+        near: [f64; 2],
+        /// The catalogue's units.
+        units: Units,
+    },
+}
+
 /// The largest loop is the part; smaller loops inside it are features the
 /// planar method does not use; loops outside it mean the file holds more
 /// than one part, which is ambiguous.
@@ -199,15 +222,14 @@ pub(crate) fn pick_outline(
     mut loops: Vec<(Vec<P>, String)>,
     access: Vec<Vec<P>>,
     mut warnings: Vec<String>,
-    unit: &str,
-) -> Result<RawPart, String> {
+    units: Units,
+) -> Result<RawPart, OutlineError> {
     if loops.is_empty() {
-        return Err(if access.is_empty() {
-            "no closed loop: the file has no closed outline".into()
-        } else {
-            "no closed loop: only access/keepout loops, no part outline".into()
+        return Err(OutlineError::NoClosedLoop {
+            only_access: !access.is_empty(),
         });
     }
+    let unit = units.label();
     let areas: Vec<f64> = loops.iter().map(|(l, _)| loop_area(l)).collect();
     let outer_i = (0..loops.len())
         .max_by(|&i, &j| areas[i].total_cmp(&areas[j]))
@@ -223,10 +245,11 @@ pub(crate) fn pick_outline(
                 fmt_pt(l[0])
             ));
         } else {
-            return Err(format!(
-                "more than one outline: {label} near {} {unit} lies outside the largest loop; put one part per file",
-                fmt_pt(l[0])
-            ));
+            return Err(OutlineError::MoreThanOne {
+                label: label.clone(),
+                near: l[0],
+                units,
+            });
         }
     }
     let outer = loops.swap_remove(outer_i).0;

@@ -5,6 +5,7 @@
 
 use crate::units::LengthUnit;
 use fixplan_core::Units;
+use std::fmt;
 use std::path::Path;
 
 /// Default chord error for flattening arcs: 0.05 mm is well inside the
@@ -41,23 +42,33 @@ impl ReadOptions {
     }
 }
 
-/// A part as read from a file, in catalogue units, not yet validated.
+/// A part as read from a file, in catalogue units, not yet validated: what
+/// every reader hands to the one validation, so formats cannot disagree
+/// about what a valid part is.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RawPart {
+    /// The part's outer outline, in file order.
     pub outline: Vec<[f64; 2]>,
+    /// Regions that must stay free of fixture elements.
     pub access: Vec<Vec<[f64; 2]>>,
+    /// What the reader ignored or assumed, for the user to check.
     pub warnings: Vec<String>,
 }
 
 /// A part file format, known by its extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
+    /// AutoCAD DXF, ASCII (R12 to current).
     Dxf,
+    /// SVG 1.1 geometry.
     Svg,
+    /// The `part` / `access` fields of SPEC Appendix A.
     Json,
 }
 
 impl Format {
+    /// The format a file name says, so a directory can hold notes and
+    /// images next to its parts; `None` for anything else.
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
@@ -65,6 +76,25 @@ impl Format {
             "svg" => Some(Format::Svg),
             "json" => Some(Format::Json),
             _ => None,
+        }
+    }
+}
+
+/// Which polygon of a part a message is about; part of every reader's and
+/// the validation's messages so the user knows where to look.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PolygonRole {
+    /// The part's outline.
+    Outline,
+    /// Access constraint number `.0` (from 0, in file order).
+    Access(usize),
+}
+
+impl fmt::Display for PolygonRole {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PolygonRole::Outline => f.write_str("outline"),
+            PolygonRole::Access(i) => write!(f, "access constraint {i}"),
         }
     }
 }
