@@ -49,17 +49,23 @@ pub const METRIC_25: &str = "metric-25";
 
 const BUILTIN: &[&str] = &[PAPER_INCH, METRIC_25];
 
-/// Names of the built-in kits.
+/// Names of the built-in kits, for help texts and for the error of an
+/// unknown kit name.
 pub fn builtin_kit_names() -> &'static [&'static str] {
     BUILTIN
 }
 
 /// A kit with its enumeration parameters (defaults filled in), all lengths
-/// in the catalogue's units.
+/// in the catalogue's units, so that it can be used with any part of the
+/// catalogue as it is.
 #[derive(Debug, Clone)]
 pub struct KitSpec {
+    /// The kit file's `name`, else its file stem, or the built-in name:
+    /// what results and study tables call the kit.
     pub name: String,
+    /// Plate, locators and clamp.
     pub kit: Kit,
+    /// Enumeration parameters, SPEC defaults filled in for the units.
     pub params: Params,
 }
 
@@ -67,7 +73,8 @@ fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
 }
 
-/// A built-in kit in its native units.
+/// A built-in kit in its native units, the ones its figures were chosen
+/// in, so it can be written out or scaled without rounding twice.
 pub fn builtin_kit(name: &str) -> Option<(Kit, Units)> {
     match name {
         PAPER_INCH => Some((
@@ -232,7 +239,9 @@ fn finish(
     Ok(KitSpec { name, kit, params })
 }
 
-/// A built-in kit by name, or a kit TOML file; lengths converted to `units`.
+/// A built-in kit by name, or a kit TOML file; lengths converted to `units`
+/// (the catalogue's), and checked with core's rules so that a kit that
+/// loads is one the solver accepts.
 pub fn load_kit(name_or_path: &str, units: Units) -> Result<KitSpec, CatalogError> {
     if let Some((kit, native)) = builtin_kit(name_or_path) {
         let f = native.mm_per_unit() / units.mm_per_unit();

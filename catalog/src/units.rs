@@ -43,7 +43,8 @@ impl LengthUnit {
         }
     }
 
-    /// Factor that converts a length in `self` to `to`.
+    /// Factor that converts a length in `self` to `to`: what readers
+    /// multiply file coordinates by.
     pub fn factor_to(self, to: Units) -> f64 {
         self.mm() / to.mm_per_unit()
     }

@@ -26,30 +26,8 @@ const DXF_MILES: &str = "  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1015\n
 const DXF_TWO: &str = "  0\nSECTION\n  2\nENTITIES\n  0\nCIRCLE\n  8\n0\n 10\n0\n 20\n0\n 40\n10\n  0\nCIRCLE\n  8\n0\n 10\n50\n 20\n0\n 40\n5\n  0\nENDSEC\n  0\nEOF\n";
 const DXF_NAN: &str = "  0\nSECTION\n  2\nENTITIES\n  0\nLWPOLYLINE\n  8\n0\n 90\n3\n 70\n1\n 10\n0\n 20\n0\n 10\nnan\n 20\n0\n 10\n5\n 20\n5\n  0\nENDSEC\n  0\nEOF\n";
 
-fn manifest_dir() -> std::path::PathBuf {
-    let d = temp_dir("errors");
-    write(&d, "parts/open.dxf", DXF_OPEN);
-    write(&d, "parts/empty.dxf", DXF_EMPTY);
-    write(&d, "parts/miles.dxf", DXF_MILES);
-    write(&d, "parts/two.dxf", DXF_TWO);
-    write(&d, "parts/nan.dxf", DXF_NAN);
-    write(&d, "parts/garbage.svg", "<svg><path d='M 0 0 L'/>");
-    write(
-        &d,
-        "parts/open.svg",
-        "<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L 10 0 L 10 10'/></svg>",
-    );
-    write(&d, "parts/bad.json", "{\"part\": [[0, 0], [1]]}");
-    write(
-        &d,
-        "parts/good.json",
-        "{\"part\": [[0, 0], [40, 0], [40, 30]]}",
-    );
-    write(&d, "parts/notes.txt", "not a part");
-    write(
-        &d,
-        "catalog.toml",
-        r#"
+/// One entry per error case, in the order the test checks them.
+const ERRORS_MANIFEST: &str = r#"
 name = "errors"
 units = "mm"
 
@@ -149,8 +127,29 @@ fil = "parts/good.json"
 id = "good-inch"
 outline = [[0, 0], [1, 0], [1, 1]]
 units = "in"
-"#,
+"#;
+
+fn manifest_dir() -> std::path::PathBuf {
+    let d = temp_dir("errors");
+    write(&d, "parts/open.dxf", DXF_OPEN);
+    write(&d, "parts/empty.dxf", DXF_EMPTY);
+    write(&d, "parts/miles.dxf", DXF_MILES);
+    write(&d, "parts/two.dxf", DXF_TWO);
+    write(&d, "parts/nan.dxf", DXF_NAN);
+    write(&d, "parts/garbage.svg", "<svg><path d='M 0 0 L'/>");
+    write(
+        &d,
+        "parts/open.svg",
+        "<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L 10 0 L 10 10'/></svg>",
     );
+    write(&d, "parts/bad.json", "{\"part\": [[0, 0], [1]]}");
+    write(
+        &d,
+        "parts/good.json",
+        "{\"part\": [[0, 0], [40, 0], [40, 30]]}",
+    );
+    write(&d, "parts/notes.txt", "not a part");
+    write(&d, "catalog.toml", ERRORS_MANIFEST);
     d
 }
 

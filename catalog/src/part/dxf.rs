@@ -374,7 +374,9 @@ fn close_layer(
         .collect())
 }
 
-/// Reads a DXF drawing into a part in `opts.units`, unvalidated.
+/// Reads a DXF drawing into a part in `opts.units`, unvalidated: the
+/// reader finds the loops, [`validate_part`](super::validate_part) judges
+/// them the same way for every format.
 pub fn read_dxf(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, DxfError> {
     let drawing = load_drawing(bytes)?;
     let file = drawing_units(drawing.header.default_drawing_units)?.unwrap_or(opts.fallback);

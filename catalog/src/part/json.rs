@@ -96,7 +96,9 @@ fn file_units(
     }
 }
 
-/// Reads a JSON part into `opts.units`, unvalidated.
+/// Reads a JSON part into `opts.units`, unvalidated, so that
+/// [`validate_part`](super::validate_part) judges it the same way as a
+/// drawing.
 pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError> {
     let v: Value =
         serde_json::from_slice(bytes).map_err(|e| JsonError::Unreadable(e.to_string()))?;

@@ -54,7 +54,9 @@ pub enum ParseError {
     Invalid(#[from] InvalidPolygon),
 }
 
-/// Reads a part file's bytes without validating the polygons.
+/// Reads a part file's bytes without validating the polygons, for callers
+/// that add polygons of their own (a manifest entry's `access`) before
+/// [`validate_part`].
 pub fn read_raw(bytes: &[u8], format: Format, opts: &ReadOptions) -> Result<RawPart, ReadError> {
     if !(opts.chord_tolerance.is_finite() && opts.chord_tolerance > 0.0) {
         return Err(ReadError::ChordTolerance(opts.chord_tolerance));

@@ -363,7 +363,9 @@ fn user_unit(root: roxmltree::Node, opts: &ReadOptions) -> Result<f64, SvgError>
     }
 }
 
-/// Reads an SVG drawing into a part in `opts.units`, unvalidated.
+/// Reads an SVG drawing into a part in `opts.units`, unvalidated: the
+/// reader finds the shapes, [`validate_part`](super::validate_part) judges
+/// them the same way for every format.
 pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
     let text = std::str::from_utf8(bytes).map_err(SvgError::NotUtf8)?;
     let doc = roxmltree::Document::parse(text).map_err(SvgError::NotXml)?;
