@@ -23,8 +23,8 @@
 //! top_k = 10
 //! ```
 
+use crate::error::CatalogError;
 use crate::units::parse_units;
-use crate::{CatalogError, KitSpec};
 use fixplan_core::prepare::validate_kit;
 use fixplan_core::{Clamp, HoleKind, Kit, MountHole, Params, Pattern, Units};
 use std::path::Path;
@@ -49,15 +49,32 @@ pub const METRIC_25: &str = "metric-25";
 
 const BUILTIN: &[&str] = &[PAPER_INCH, METRIC_25];
 
-pub(crate) fn builtin_names() -> &'static [&'static str] {
+/// Names of the built-in kits, for help texts and for the error of an
+/// unknown kit name.
+pub fn builtin_kit_names() -> &'static [&'static str] {
     BUILTIN
+}
+
+/// A kit with its enumeration parameters (defaults filled in), all lengths
+/// in the catalogue's units, so that it can be used with any part of the
+/// catalogue as it is.
+#[derive(Debug, Clone)]
+pub struct KitSpec {
+    /// The kit file's `name`, else its file stem, or the built-in name:
+    /// what results and study tables call the kit.
+    pub name: String,
+    /// Plate, locators and clamp.
+    pub kit: Kit,
+    /// Enumeration parameters, SPEC defaults filled in for the units.
+    pub params: Params,
 }
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
 }
 
-/// A built-in kit in its native units.
+/// A built-in kit in its native units, the ones its figures were chosen
+/// in, so it can be written out or scaled without rounding twice.
 pub fn builtin_kit(name: &str) -> Option<(Kit, Units)> {
     match name {
         PAPER_INCH => Some((
@@ -169,7 +186,9 @@ pub fn parse_kit_toml(
     };
     let units = match table.remove("units") {
         None => Units::Mm,
-        Some(toml::Value::String(s)) => parse_units(&s).map_err(|e| invalid(path, e))?,
+        Some(toml::Value::String(s)) => {
+            parse_units(&s).map_err(|e| invalid(path, e.to_string()))?
+        }
         Some(v) => return Err(invalid(path, format!("unknown units {v}"))),
     };
     let params: Params = match table.remove("params") {
@@ -220,7 +239,10 @@ fn finish(
     Ok(KitSpec { name, kit, params })
 }
 
-pub(crate) fn load_kit(name_or_path: &str, units: Units) -> Result<KitSpec, CatalogError> {
+/// A built-in kit by name, or a kit TOML file; lengths converted to `units`
+/// (the catalogue's), and checked with core's rules so that a kit that
+/// loads is one the solver accepts.
+pub fn load_kit(name_or_path: &str, units: Units) -> Result<KitSpec, CatalogError> {
     if let Some((kit, native)) = builtin_kit(name_or_path) {
         let f = native.mm_per_unit() / units.mm_per_unit();
         let (kit, params) = scale_kit(&kit, &Params::default(), f);

@@ -7,14 +7,21 @@ use fixplan_core::Units;
 /// A unit a part file may be drawn in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LengthUnit {
+    /// Millimetres.
     Mm,
+    /// Centimetres.
     Cm,
+    /// Metres.
     M,
+    /// Inches.
     In,
+    /// Feet.
     Ft,
 }
 
 impl LengthUnit {
+    /// Millimetres per unit: conversions go through mm, so each unit needs
+    /// one number.
     pub fn mm(self) -> f64 {
         match self {
             LengthUnit::Mm => 1.0,
@@ -25,6 +32,7 @@ impl LengthUnit {
         }
     }
 
+    /// The short name messages use after numbers.
     pub fn label(self) -> &'static str {
         match self {
             LengthUnit::Mm => "mm",
@@ -35,7 +43,8 @@ impl LengthUnit {
         }
     }
 
-    /// Factor that converts a length in `self` to `to`.
+    /// Factor that converts a length in `self` to `to`: what readers
+    /// multiply file coordinates by.
     pub fn factor_to(self, to: Units) -> f64 {
         self.mm() / to.mm_per_unit()
     }
@@ -63,13 +72,18 @@ impl From<Units> for LengthUnit {
     }
 }
 
-/// A catalogue or kit unit: only the two SPEC knows.
-pub fn parse_units(s: &str) -> Result<Units, String> {
+/// A catalogue or kit `units` other than the two SPEC knows (the text as
+/// written).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown units \"{0}\": a catalogue or kit is in \"mm\" or \"in\"")]
+pub struct UnknownUnits(pub String);
+
+/// A catalogue or kit unit: only the two SPEC knows, because the solver
+/// works in those.
+pub fn parse_units(s: &str) -> Result<Units, UnknownUnits> {
     match LengthUnit::parse(s) {
         Some(LengthUnit::Mm) => Ok(Units::Mm),
         Some(LengthUnit::In) => Ok(Units::In),
-        _ => Err(format!(
-            "unknown units \"{s}\": a catalogue or kit is in \"mm\" or \"in\""
-        )),
+        _ => Err(UnknownUnits(s.to_string())),
     }
 }

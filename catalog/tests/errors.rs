@@ -4,7 +4,8 @@
 mod common;
 use common::*;
 use fixplan_catalog::{
-    load_catalog, load_catalog_with, parse_part, Format, LoadOptions, ReadOptions,
+    load_catalog, load_catalog_with, parse_part, EntryProblem, Format, LoadOptions, ParseError,
+    PartErrorKind, ReadError, ReadOptions,
 };
 use fixplan_core::Units;
 
@@ -14,8 +15,9 @@ fn part_err(cat: &fixplan_catalog::Catalog, id: &str) -> String {
         .find(|p| p.id == id)
         .unwrap_or_else(|| panic!("no part {id}"))
         .part
-        .clone()
+        .as_ref()
         .expect_err(id)
+        .to_string()
 }
 
 const DXF_OPEN: &str = "  0\nSECTION\n  2\nENTITIES\n  0\nLINE\n  8\n0\n 10\n0\n 20\n0\n 11\n10\n 21\n0\n  0\nLINE\n  8\n0\n 10\n10\n 20\n0\n 11\n10\n 21\n10\n  0\nENDSEC\n  0\nEOF\n";
@@ -24,30 +26,8 @@ const DXF_MILES: &str = "  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1015\n
 const DXF_TWO: &str = "  0\nSECTION\n  2\nENTITIES\n  0\nCIRCLE\n  8\n0\n 10\n0\n 20\n0\n 40\n10\n  0\nCIRCLE\n  8\n0\n 10\n50\n 20\n0\n 40\n5\n  0\nENDSEC\n  0\nEOF\n";
 const DXF_NAN: &str = "  0\nSECTION\n  2\nENTITIES\n  0\nLWPOLYLINE\n  8\n0\n 90\n3\n 70\n1\n 10\n0\n 20\n0\n 10\nnan\n 20\n0\n 10\n5\n 20\n5\n  0\nENDSEC\n  0\nEOF\n";
 
-fn manifest_dir() -> std::path::PathBuf {
-    let d = temp_dir("errors");
-    write(&d, "parts/open.dxf", DXF_OPEN);
-    write(&d, "parts/empty.dxf", DXF_EMPTY);
-    write(&d, "parts/miles.dxf", DXF_MILES);
-    write(&d, "parts/two.dxf", DXF_TWO);
-    write(&d, "parts/nan.dxf", DXF_NAN);
-    write(&d, "parts/garbage.svg", "<svg><path d='M 0 0 L'/>");
-    write(
-        &d,
-        "parts/open.svg",
-        "<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L 10 0 L 10 10'/></svg>",
-    );
-    write(&d, "parts/bad.json", "{\"part\": [[0, 0], [1]]}");
-    write(
-        &d,
-        "parts/good.json",
-        "{\"part\": [[0, 0], [40, 0], [40, 30]]}",
-    );
-    write(&d, "parts/notes.txt", "not a part");
-    write(
-        &d,
-        "catalog.toml",
-        r#"
+/// One entry per error case, in the order the test checks them.
+const ERRORS_MANIFEST: &str = r#"
 name = "errors"
 units = "mm"
 
@@ -147,8 +127,29 @@ fil = "parts/good.json"
 id = "good-inch"
 outline = [[0, 0], [1, 0], [1, 1]]
 units = "in"
-"#,
+"#;
+
+fn manifest_dir() -> std::path::PathBuf {
+    let d = temp_dir("errors");
+    write(&d, "parts/open.dxf", DXF_OPEN);
+    write(&d, "parts/empty.dxf", DXF_EMPTY);
+    write(&d, "parts/miles.dxf", DXF_MILES);
+    write(&d, "parts/two.dxf", DXF_TWO);
+    write(&d, "parts/nan.dxf", DXF_NAN);
+    write(&d, "parts/garbage.svg", "<svg><path d='M 0 0 L'/>");
+    write(
+        &d,
+        "parts/open.svg",
+        "<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L 10 0 L 10 10'/></svg>",
     );
+    write(&d, "parts/bad.json", "{\"part\": [[0, 0], [1]]}");
+    write(
+        &d,
+        "parts/good.json",
+        "{\"part\": [[0, 0], [40, 0], [40, 30]]}",
+    );
+    write(&d, "parts/notes.txt", "not a part");
+    write(&d, "catalog.toml", ERRORS_MANIFEST);
     d
 }
 
@@ -207,7 +208,15 @@ fn each_error_names_part_file_and_place() {
     let goods: Vec<_> = cat.parts.iter().filter(|p| p.id == "good").collect();
     assert!(goods[0].part.is_ok());
     assert_eq!(goods[0].quantity, 12.0);
-    assert!(goods[1].part.as_ref().unwrap_err().contains("duplicate id"));
+    let dup = goods[1].part.as_ref().unwrap_err();
+    assert!(dup.to_string().contains("duplicate id"));
+    assert!(matches!(
+        dup.kind,
+        PartErrorKind::Entry(EntryProblem::DuplicateId {
+            entry: 20,
+            first: 19
+        })
+    ));
     // Repairs are warnings, and the part is usable.
     let dups = cat.parts.iter().find(|p| p.id == "dups").unwrap();
     assert_eq!(dups.part.as_ref().unwrap().outline.len(), 4);
@@ -276,7 +285,7 @@ fn plain_directory_sorted_by_name_with_units_option() {
 fn bad_read_options_are_errors_not_panics() {
     let mut o = ReadOptions::new(Units::Mm);
     o.chord_tolerance = 0.0;
-    assert!(parse_part(b"{}", Format::Json, &o)
-        .unwrap_err()
-        .contains("chord tolerance"));
+    let e = parse_part(b"{}", Format::Json, &o).unwrap_err();
+    assert!(e.to_string().contains("chord tolerance"));
+    assert_eq!(e, ParseError::Read(ReadError::ChordTolerance(0.0)));
 }

@@ -6,7 +6,11 @@
 //! build of the `fixplan` command line.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
-use fixplan_catalog::{Catalog, CatalogPart, KitSpec};
+use fixplan_catalog::{
+    Catalog, CatalogPart, InvalidPolygon, KitSpec, PartError, PartErrorKind, PolygonProblem,
+    PolygonRole,
+};
+use fixplan_core::polygon::PolygonError;
 use fixplan_core::{Case, Part, Units};
 use std::path::{Path, PathBuf};
 
@@ -34,8 +38,8 @@ pub fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
     }
 }
 
-/// Small parts of very different sizes, one broken file, one invalid
-/// polygon, one too small to hold.
+/// Small parts of very different sizes, one the catalogue found broken,
+/// one invalid polygon, one too small to hold.
 pub fn catalog() -> (Catalog, KitSpec) {
     let c = case("rectangle-mm.json");
     let mut rect = part("rect", c.part.clone());
@@ -58,7 +62,22 @@ pub fn catalog() -> (Catalog, KitSpec) {
             vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
         ),
         CatalogPart {
-            part: Err("bad.json: edge 0 crosses edge 2".into()),
+            part: Err(PartError {
+                id: "broken".into(),
+                file: None,
+                kind: PartErrorKind::Invalid(InvalidPolygon {
+                    polygon: PolygonRole::Outline,
+                    problem: PolygonProblem::Core {
+                        error: PolygonError::SelfIntersection {
+                            first: 0,
+                            second: 2,
+                            x: 25.0,
+                            y: 25.0,
+                        },
+                        units: Units::Mm,
+                    },
+                }),
+            }),
             ..part("broken", vec![])
         },
         part("tiny", vec![[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]),

@@ -70,7 +70,7 @@ fn invalid_parts_carry_their_message() {
     assert!(msg.contains("cross"), "{msg}");
     assert_eq!(
         recs[3].fixtures.result.error.as_deref(),
-        Some("broken: bad.json: edge 0 crosses edge 2")
+        Some("broken: outline: edge 0 crosses edge 2 at (25, 25) mm")
     );
     assert_eq!(recs[4].part.status, Status::NoFixture);
     assert_eq!(recs[0].part.status, Status::Ok);

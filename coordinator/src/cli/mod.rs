@@ -275,7 +275,11 @@ fn real_main() -> Result<()> {
                 Some(c) => {
                     let cat = fixplan_catalog::load_catalog(&c)?;
                     let spec = fixplan_catalog::load_kit(&kit, cat.units)?;
-                    let parts = cat.parts.into_iter().map(|p| (p.id, p.part)).collect();
+                    let parts = cat
+                        .parts
+                        .into_iter()
+                        .map(|p| (p.id, p.part.map_err(|e| e.to_string())))
+                        .collect();
                     bench_cmd::parts_from_catalog(parts, &spec.kit, &spec.params, cat.units)
                 }
                 None if cases.is_empty() => {

@@ -61,15 +61,6 @@ pub fn part_params(ctx: &JobContext, cp: &CatalogPart) -> Params {
     params
 }
 
-/// `invalid` with the part's name in front, unless the message has it.
-pub fn invalid(id: &str, msg: &str) -> SolveResult {
-    if msg.contains(id) {
-        SolveResult::invalid(msg)
-    } else {
-        SolveResult::invalid(format!("{id}: {msg}"))
-    }
-}
-
 /// How a job gets its prepared part.
 #[derive(Debug, Clone, Copy, Default)]
 pub enum Preparation<'a> {
@@ -127,9 +118,9 @@ pub fn derive(
 pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) -> Solved {
     let mut timing = Timing::default();
     let part = match &cp.part {
-        Err(msg) => {
+        Err(e) => {
             return Solved {
-                result: invalid(&cp.id, msg),
+                result: SolveResult::invalid(e.to_string()),
                 timing,
                 search: SearchInfo::default(),
             }

@@ -92,7 +92,7 @@ pub fn catalog_digest(c: &Catalog) -> String {
     for p in &c.parts {
         let part = match &p.part {
             Ok(part) => serde_json::json!({"ok": part}),
-            Err(e) => serde_json::json!({"err": e}),
+            Err(e) => serde_json::json!({"err": e.to_string()}),
         };
         let entry = serde_json::json!({"id": p.id, "part": part, "quantity": p.quantity,
             "top_k": p.top_k, "wrenches": p.wrenches});

@@ -1,6 +1,12 @@
-//! Curve flattening, loop joining and the small polygon helpers the readers
-//! share. Everything here works on plain `[f64; 2]` points because that is
-//! what files hold and what [`fixplan_core::Part`] stores.
+//! What the drawing readers share: curve flattening, joining pieces into
+//! loops, choosing the outline among the loops, and numbers for messages.
+//! Everything here works on plain `[f64; 2]` points because that is what
+//! files hold and what [`fixplan_core::Part`] stores; areas and
+//! point-in-polygon come from `fixplan_core::geometry`.
+
+use super::raw::RawPart;
+use fixplan_core::geometry::{point_in_polygon, signed_area, v2, V2};
+use fixplan_core::Units;
 
 pub(crate) type P = [f64; 2];
 
@@ -26,37 +32,6 @@ pub(crate) fn fmt_pt(p: P) -> String {
 
 pub(crate) fn dist(a: P, b: P) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-/// Shoelace area, positive for counter-clockwise.
-pub(crate) fn signed_area(p: &[P]) -> f64 {
-    let n = p.len();
-    let mut s = 0.0;
-    for i in 0..n {
-        let a = p[i];
-        let b = p[(i + 1) % n];
-        s += a[0] * b[1] - a[1] * b[0];
-    }
-    s / 2.0
-}
-
-/// Even-odd point-in-polygon test; good enough to tell a hole from a second
-/// outline, which is all it is used for.
-pub(crate) fn point_in_polygon(q: P, poly: &[P]) -> bool {
-    let n = poly.len();
-    let mut inside = false;
-    let mut j = n.wrapping_sub(1);
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[j]);
-        if (a[1] > q[1]) != (b[1] > q[1]) {
-            let x = a[0] + (q[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-            if q[0] < x {
-                inside = !inside;
-            }
-        }
-        j = i;
-    }
-    inside
 }
 
 /// Largest absolute coordinate, the scale for relative tolerances.
@@ -109,32 +84,6 @@ pub(crate) fn circle_loop(c: P, r: f64, tol: f64) -> Vec<P> {
     let mut pts = arc_points(c, r, 0.0, std::f64::consts::TAU, tol, 3);
     pts.pop();
     pts.insert(0, [c[0] + r, c[1]]);
-    pts
-}
-
-/// Interior points of a DXF bulge segment from `p` to `q` (bulge = tan of a
-/// quarter of the included angle, positive CCW), endpoints excluded.
-pub(crate) fn bulge_points(p: P, q: P, bulge: f64, tol: f64) -> Vec<P> {
-    if !bulge.is_finite() || bulge.abs() < 1e-12 {
-        return Vec::new();
-    }
-    let chord = [q[0] - p[0], q[1] - p[1]];
-    let c = chord[0].hypot(chord[1]);
-    if c == 0.0 || !c.is_finite() {
-        return Vec::new();
-    }
-    let theta = 4.0 * bulge.atan();
-    // The centre sits on the chord's bisector, (1 - b^2) / (4 b) chord
-    // lengths to the left of p -> q.
-    let k = (1.0 - bulge * bulge) / (4.0 * bulge);
-    let center = [
-        (p[0] + q[0]) / 2.0 - chord[1] * k,
-        (p[1] + q[1]) / 2.0 + chord[0] * k,
-    ];
-    let r = dist(center, p);
-    let a0 = (p[1] - center[1]).atan2(p[0] - center[0]);
-    let mut pts = arc_points(center, r, a0, theta, tol, 1);
-    pts.pop();
     pts
 }
 
@@ -223,19 +172,97 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<Ope
     (loops, open)
 }
 
+fn to_v2(p: &[P]) -> Vec<V2> {
+    p.iter().map(|q| v2(q[0], q[1])).collect()
+}
+
+/// Unsigned area for choosing the largest loop; an overflowing loop counts
+/// as the largest rather than as NaN, so the choice stays total.
+fn loop_area(p: &[P]) -> f64 {
+    let a = signed_area(&to_v2(p)).abs();
+    if a.is_finite() {
+        a
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Even-odd test of `q` against `poly`, enough to tell a hole from a second
+/// outline; an empty polygon contains nothing (core's test needs a vertex).
+fn inside(q: P, poly: &[V2]) -> bool {
+    !poly.is_empty() && point_in_polygon(v2(q[0], q[1]), poly)
+}
+
+/// Why the loops of a drawing do not make one part.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OutlineError {
+    /// No closed loop at all, or only access loops: nothing to hold.
+    #[error("no closed loop: {}", if *.only_access { "only access/keepout loops, no part outline" } else { "the file has no closed outline" })]
+    NoClosedLoop {
+        /// The drawing has access/keepout loops, just no outline.
+        only_access: bool,
+    },
+    /// A loop outside the largest one: two parts in one file, and which one
+    /// is meant cannot be guessed.
+    #[error("more than one outline: {label} near {} {} lies outside the largest loop; put one part per file", fmt_pt(*.near), .units.label())]
+    MoreThanOne {
+        /// The other loop, as the reader names it.
+        label: String,
+        /// Its first point, catalogue units.
+        near: [f64; 2],
+        /// The catalogue's units.
+        units: Units,
+    },
+}
+
+/// The largest loop is the part; smaller loops inside it are features the
+/// planar method does not use; loops outside it mean the file holds more
+/// than one part, which is ambiguous.
+pub(crate) fn pick_outline(
+    mut loops: Vec<(Vec<P>, String)>,
+    access: Vec<Vec<P>>,
+    mut warnings: Vec<String>,
+    units: Units,
+) -> Result<RawPart, OutlineError> {
+    if loops.is_empty() {
+        return Err(OutlineError::NoClosedLoop {
+            only_access: !access.is_empty(),
+        });
+    }
+    let unit = units.label();
+    let areas: Vec<f64> = loops.iter().map(|(l, _)| loop_area(l)).collect();
+    let outer_i = (0..loops.len())
+        .max_by(|&i, &j| areas[i].total_cmp(&areas[j]))
+        .unwrap_or(0);
+    let outer = to_v2(&loops[outer_i].0);
+    for (i, (l, label)) in loops.iter().enumerate() {
+        if i == outer_i || l.is_empty() {
+            continue;
+        }
+        if inside(l[0], &outer) {
+            warnings.push(format!(
+                "{label} near {} {unit} is a loop inside the outline (a hole or pocket); ignored: fixtures hold the outer outline only",
+                fmt_pt(l[0])
+            ));
+        } else {
+            return Err(OutlineError::MoreThanOne {
+                label: label.clone(),
+                near: l[0],
+                units,
+            });
+        }
+    }
+    let outer = loops.swap_remove(outer_i).0;
+    Ok(RawPart {
+        outline: outer,
+        access,
+        warnings,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn bulge_one_is_a_half_circle() {
-        let pts = bulge_points([1.0, 0.0], [-1.0, 0.0], 1.0, 0.01);
-        assert!(!pts.is_empty());
-        for p in &pts {
-            assert!((dist(*p, [0.0, 0.0]) - 1.0).abs() < 1e-12);
-            assert!(p[1] > 0.0, "CCW from (1,0) to (-1,0) passes above");
-        }
-    }
 
     #[test]
     fn chord_error_is_respected() {
@@ -267,6 +294,6 @@ mod tests {
         assert!(open.is_empty());
         assert_eq!(loops.len(), 1);
         assert_eq!(loops[0].len(), 4);
-        assert!((signed_area(&loops[0]).abs() - 1.0).abs() < 1e-12);
+        assert!((loop_area(&loops[0]) - 1.0).abs() < 1e-12);
     }
 }
