@@ -5,7 +5,7 @@
 
 use super::verify::{self, VerifyPolicy};
 use fixplan_core::{merge, Fixture, PartialResult, PreparedPart};
-use fixplan_worker::part_input::{short_hex, PartInput};
+use fixplan_worker::part_input::PartInput;
 use fixplan_worker::protocol::{
     decode, encode, encode_refused, refusal_for, Assign, DataPath, Digest, Frame, Join, Msg, Next,
     Outcome, ShardDone, ShardFailed, TransportChoice, Welcome,
@@ -524,11 +524,10 @@ impl Scheduler {
         );
         let part = &mut st.parts[p];
         let check = if r.digest != part.digest {
-            Err(format!(
-                "result for part {}, shard is of part {}",
-                short_hex(&r.digest),
-                short_hex(&part.digest)
-            ))
+            Err(verify::CheckError::OtherPart {
+                got: r.digest,
+                want: part.digest,
+            })
         } else if let Err(e) =
             verify::check_stop(self.settings.good_enough, &shard_range, r.hit, &r.result)
         {
@@ -536,7 +535,7 @@ impl Scheduler {
         } else if deep {
             match part.prepared() {
                 Ok(prep) => verify::check(&prep, &range, &r.result, &part.top, true),
-                Err(e) => Err(format!("the coordinator cannot prepare the part: {e}")),
+                Err(e) => Err(verify::CheckError::CannotPrepare(e)),
             }
         } else {
             match &part.prep {
