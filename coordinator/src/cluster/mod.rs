@@ -20,8 +20,9 @@ pub mod runtime;
 pub mod scheduler;
 pub mod verify;
 
-pub use distributed::{run_distributed, Distributed};
+pub use distributed::{run_distributed, Distributed, MergedPart};
 pub use fixplan_worker::part_input::PartInput;
 pub use fixplan_worker::protocol::TransportChoice;
 pub use options::{ClusterError, ClusterOptions};
+pub use scheduler::PartError;
 pub use verify::VerifyPolicy;
