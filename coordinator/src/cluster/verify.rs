@@ -175,7 +175,11 @@ pub enum VerifyPolicy {
     /// differently shows up there), then of one result in `one_in`, picked
     /// by a hash of the shard id (the same shards whichever worker runs
     /// them).
-    Sample { one_in: u64 },
+    Sample {
+        /// One result in this many is checked in full, once a worker has
+        /// earned trust.
+        one_in: u64,
+    },
 }
 
 /// Fixtures of each worker re-derived before [`VerifyPolicy::Sample`]
