@@ -58,8 +58,8 @@ impl Scheduler {
         }
     }
 
-    /// The state, even after a panic elsewhere: every change to it is
-    /// complete before anything that could panic.
+    /// The state. A thread that panicked holding the lock does not stop
+    /// the others: the run goes on with the state as that thread left it.
     fn lock(&self) -> MutexGuard<'_, State> {
         self.st.lock().unwrap_or_else(|e| e.into_inner())
     }
