@@ -15,6 +15,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 use zenoh::Wait;
 
+/// `fixplan bench-cluster` options.
 #[derive(clap::Args, Debug, Clone)]
 pub struct BenchArgs {
     /// The catalogue (default: the sample catalogue).
@@ -138,9 +139,13 @@ fn throughput(
     })
 }
 
+/// The `p` quantile of `v` (NaN for no sample: `--round-trips 0`).
 fn percentile(v: &mut [f64], p: f64) -> f64 {
     v.sort_by(f64::total_cmp);
-    v[((v.len() - 1) as f64 * p) as usize]
+    let last = v.len().saturating_sub(1);
+    v.get((last as f64 * p) as usize)
+        .copied()
+        .unwrap_or(f64::NAN)
 }
 
 /// A result message the size of a real one (best fixtures of a part).
@@ -239,6 +244,8 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
     Ok(v.split_off(50))
 }
 
+/// Runs the measurements and prints them: throughput with 1 and 2 local
+/// workers, what the coordinator spent per shard, and round trips.
 pub fn bench_main(a: &BenchArgs) -> Result<()> {
     fixplan_worker::log::set_quiet(true);
     let parts = inputs(a)?;
@@ -259,42 +266,8 @@ pub fn bench_main(a: &BenchArgs) -> Result<()> {
             throughput(&parts, workers, transport, a.shard_size, a.verify)?,
         ));
     }
-    let (base_wall, base_steady) = (out[0].1.wall, out[0].1.steady);
-    println!(
-        "{:22} {:>8} {:>9} {:>8} {:>9} {:>10} {:>12}",
-        "", "wall s", "parts/s", "speed-up", "steady s", "speed-up", "coordinator"
-    );
-    for (name, r) in &out {
-        println!(
-            "{name:22} {:8.3} {:9.1} {:7.2}x {:9.3} {:9.2}x {:10.2}% cpu",
-            r.wall,
-            parts.len() as f64 / r.wall,
-            base_wall / r.wall,
-            r.steady,
-            base_steady / r.steady.max(1e-9),
-            100.0 * r.coordinator_cpu / r.wall,
-        );
-    }
-    println!(
-        "(wall: from starting the workers to their exit; steady: first part out to last part out; \
-         coordinator: CPU time of the coordinator process over the wall time)"
-    );
-    for (name, r) in &out {
-        let s = &r.stats;
-        let n = s.shards.max(1) as f64;
-        println!(
-            "{}: {} shards in {} requests, coordinator {:.1} us/shard handling requests, \
-             {:.0} B/shard results + {:.0} B/shard assignments, {} results checked in full ({} fixtures re-derived)",
-            name.trim_end(),
-            s.shards,
-            s.requests,
-            s.handle_micros as f64 / n,
-            s.result_bytes as f64 / n,
-            s.assign_bytes as f64 / n,
-            s.results_rederived,
-            s.fixtures_rederived
-        );
-    }
+    print_throughput(&out, parts.len());
+    print_coordinator(&out);
     let msg = sample_result(&parts)?;
     let mut z = round_trips_zenoh(&msg, a.round_trips)?;
     let mut i = round_trips_iox(&msg, a.round_trips)?;
@@ -315,4 +288,52 @@ pub fn bench_main(a: &BenchArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Wall and steady times of each run, against the first (one worker).
+fn print_throughput(out: &[(&str, Run)], parts: usize) {
+    let Some((_, base)) = out.first() else {
+        return;
+    };
+    let (base_wall, base_steady) = (base.wall, base.steady);
+    println!(
+        "{:22} {:>8} {:>9} {:>8} {:>9} {:>10} {:>12}",
+        "", "wall s", "parts/s", "speed-up", "steady s", "speed-up", "coordinator"
+    );
+    for (name, r) in out {
+        println!(
+            "{name:22} {:8.3} {:9.1} {:7.2}x {:9.3} {:9.2}x {:10.2}% cpu",
+            r.wall,
+            parts as f64 / r.wall,
+            base_wall / r.wall,
+            r.steady,
+            base_steady / r.steady.max(1e-9),
+            100.0 * r.coordinator_cpu / r.wall,
+        );
+    }
+    println!(
+        "(wall: from starting the workers to their exit; steady: first part out to last part out; \
+         coordinator: CPU time of the coordinator process over the wall time)"
+    );
+}
+
+/// What the coordinator spent per shard in each run: time handling
+/// requests, bytes in and out, checks.
+fn print_coordinator(out: &[(&str, Run)]) {
+    for (name, r) in out {
+        let s = &r.stats;
+        let n = s.shards.max(1) as f64;
+        println!(
+            "{}: {} shards in {} requests, coordinator {:.1} us/shard handling requests, \
+             {:.0} B/shard results + {:.0} B/shard assignments, {} results checked in full ({} fixtures re-derived)",
+            name.trim_end(),
+            s.shards,
+            s.requests,
+            s.handle_micros as f64 / n,
+            s.result_bytes as f64 / n,
+            s.assign_bytes as f64 / n,
+            s.results_rederived,
+            s.fixtures_rederived
+        );
+    }
 }

@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 
 /// One part to measure.
 pub struct BenchPart {
-    /// Case file stem or catalogue id.
+    /// The name its row of the table goes under.
     pub id: String,
-    /// The part prepared, or why it cannot be (reported, not measured).
+    /// The part prepared, or why it cannot be (its row says so).
     pub prep: Result<PreparedPart, String>,
 }
 

@@ -4,32 +4,55 @@
 use super::local;
 use super::options::{ClusterError, ClusterOptions};
 use super::runtime::{self, Runtime};
-use super::scheduler::{Finished, PartDone, PartSlot, Scheduler, Settings, Stats, WHOLE};
+use super::scheduler::{
+    Delivery, MergedShards, PartError, PlannedPart, Scheduler, Settings, Stats, WHOLE,
+};
 use crate::job::shards;
 use fixplan_core::{PartialResult, PreparedPart};
-use fixplan_worker::part_input::{digest, PartInput};
-use fixplan_worker::protocol::TransportChoice;
+use fixplan_worker::part_input::PartInput;
+use fixplan_worker::protocol::{DataPath, TransportChoice};
+use fixplan_worker::zenoh_link::ZenohOptions;
 use fixplan_worker::{info, iox};
 use rayon::prelude::*;
 use std::collections::VecDeque;
-use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::sync::Arc;
 use std::time::Duration;
 
-/// A part's merged result with its prepared form (for the report: plate
-/// placement needs it) and, with `--good-enough`, where it stopped.
-pub struct Solved {
+/// A part the workers finished: its merged result, byte for byte the
+/// embedded run's, with the part prepared (a report's plate placement
+/// needs it) and, with `--good-enough`, where it stopped.
+pub struct MergedPart {
+    /// The part as the enumeration saw it.
     pub prep: PreparedPart,
+    /// The merged result of its shards.
     pub merged: PartialResult,
+    /// `--good-enough`: the combination where the part stopped.
     pub stopped_at: Option<u64>,
+}
+
+impl MergedPart {
+    /// Takes the coordinator's prepared part if it has one, else prepares
+    /// it here (parts sent whole are prepared only when asked for).
+    fn prepared(m: MergedShards) -> Result<MergedPart, PartError> {
+        let prep = match m.prep {
+            Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
+            None => m.input.prepare()?,
+        };
+        Ok(MergedPart {
+            prep,
+            merged: m.merged,
+            stopped_at: m.stopped_at,
+        })
+    }
 }
 
 /// Merged per-part results as the workers deliver them (in any order: the
 /// caller puts them back in its own order).
 pub struct Distributed {
-    rx: Receiver<Vec<PartDone>>,
+    rx: Receiver<Vec<Delivery>>,
     /// Delivered by the scheduler, not yet handed out.
-    ready: VecDeque<PartDone>,
+    ready: VecDeque<Delivery>,
     delivered: usize,
     total: usize,
     runtime: Option<Runtime>,
@@ -41,7 +64,7 @@ impl Distributed {
     pub fn stats(&self) -> Stats {
         self.runtime
             .as_ref()
-            .map(|r| r.core.stats())
+            .map(|r| r.scheduler.stats())
             .unwrap_or_else(|| self.final_stats.clone())
     }
 
@@ -49,35 +72,25 @@ impl Distributed {
     pub fn finish(&mut self) -> Stats {
         if let Some(mut r) = self.runtime.take() {
             r.shutdown(Duration::from_secs(3));
-            self.final_stats = r.core.stats();
+            self.final_stats = r.scheduler.stats();
         }
         self.final_stats.clone()
     }
 
     /// The next part's merged result, without preparing the part on the
     /// coordinator (what a caller needs that only counts or ranks).
-    pub fn next_merged(&mut self) -> Option<(usize, Result<PartialResult, String>)> {
-        self.next_finished().map(|(i, r)| (i, r.map(|f| f.merged)))
+    pub fn next_merged(&mut self) -> Option<(usize, Result<PartialResult, PartError>)> {
+        self.next_delivery().map(|(i, r)| (i, r.map(|m| m.merged)))
     }
 
     /// The next part, prepared here if the run did not need to.
-    pub fn next_part(&mut self) -> Option<(usize, Result<Solved, String>)> {
-        let (i, r) = self.next_finished()?;
-        let r = r.and_then(|f| {
-            let prep = match f.prep {
-                Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
-                None => f.input.prepare().map_err(|e| e.to_string())?,
-            };
-            Ok(Solved {
-                prep,
-                merged: f.merged,
-                stopped_at: f.stopped_at,
-            })
-        });
-        Some((i, r))
+    pub fn next_part(&mut self) -> Option<(usize, Result<MergedPart, PartError>)> {
+        let (i, r) = self.next_delivery()?;
+        Some((i, r.and_then(MergedPart::prepared)))
     }
 
-    fn next_finished(&mut self) -> Option<(usize, Result<Finished, String>)> {
+    /// The next finished part; `None` once all are (the run is ended then).
+    fn next_delivery(&mut self) -> Option<Delivery> {
         if self.delivered >= self.total {
             self.finish();
             return None;
@@ -102,10 +115,10 @@ impl Distributed {
 }
 
 /// Distributes `parts` over workers. Returns at once; [`Distributed`]
-/// yields `(index, Ok(part))` or `(index, Err(message))` as parts finish,
+/// yields `(index, Ok(part))` or `(index, Err(error))` as parts finish,
 /// each equal byte for byte to the embedded run's.
-/// Error messages are those of the embedded path without the part name:
-/// the `prepare` error, or `internal error in the enumeration: ...`.
+/// Errors read as the embedded path's without the part name: the
+/// `prepare` error, or `internal error in the enumeration: ...`.
 pub fn run_distributed(
     parts: Vec<PartInput>,
     opts: ClusterOptions,
@@ -113,7 +126,7 @@ pub fn run_distributed(
     fixplan_worker::log::init();
     iox::quiet_logs();
     let total = parts.len();
-    let (tx, rx) = channel::<Vec<PartDone>>();
+    let (tx, rx) = channel::<Vec<Delivery>>();
     let threads = opts
         .worker_threads
         .unwrap_or_else(|| (fixplan_worker::host::cores() / opts.local_workers.max(1)).max(1));
@@ -122,13 +135,40 @@ pub fn run_distributed(
     } else {
         fixplan_worker::host::cores()
     });
-    // Plan from estimates: a part that would be one shard anyway goes out
-    // whole and unprepared (preparing every part here cost the coordinator
-    // more than all else it does); only parts to be cut are prepared, for
-    // their exact combination count.
+    let (planned, batch_cost) = plan(parts, &opts, slots, &tx)?;
+    let mut dist = Distributed {
+        rx,
+        ready: VecDeque::new(),
+        delivered: 0,
+        total,
+        runtime: None,
+        final_stats: Stats::default(),
+    };
+    if planned.is_empty() {
+        return Ok(dist);
+    }
+    let scheduler = Scheduler::new(settings(&opts, batch_cost), planned, tx);
+    let zopts = zenoh_options(&opts);
+    let mut rt = Runtime::start(Arc::new(scheduler), &zopts, &opts.key_prefix)?;
+    start_local_workers(&mut rt, &opts, &zopts, threads)?;
+    dist.runtime = Some(rt);
+    Ok(dist)
+}
+
+/// Cuts the parts into shards for `slots` worker threads, and the cost of
+/// one assignment at most. Plans from estimates: a part that would be one
+/// shard anyway goes out whole and unprepared (preparing every part here
+/// cost the coordinator more than all else it does); only parts to be cut
+/// are prepared, for their exact combination count. Parts that need no
+/// worker (unpreparable, or without combinations) go to `tx` at once.
+fn plan(
+    parts: Vec<PartInput>,
+    opts: &ClusterOptions,
+    slots: usize,
+    tx: &Sender<Vec<Delivery>>,
+) -> Result<(Vec<PlannedPart>, u64), ClusterError> {
     let est: Vec<(u64, usize)> = parts.iter().map(shards::estimate).collect();
     let target = shards::target_cost(&est, slots);
-    let batch_cost = shards::batch_cost(&est, slots);
     let whole: Vec<bool> = est
         .iter()
         .map(|&(c, n)| opts.shard_size.is_none() && shards::cost(c, n) <= target)
@@ -136,33 +176,22 @@ pub fn run_distributed(
     let encoded: Vec<_> = parts
         .par_iter()
         .zip(whole.par_iter())
-        .map(|(p, &whole)| {
-            let prep = (!whole).then(|| p.prepare().map_err(|e| e.to_string()));
-            (prep, p.encode().map_err(|e| e.to_string()))
-        })
+        .map(|(p, &whole)| ((!whole).then(|| p.prepare()), p.encode()))
         .collect();
-    let mut slots_in = Vec::new();
-    for (i, (source, (prep, bytes))) in parts.into_iter().zip(encoded).enumerate() {
-        let bytes = bytes.map_err(|e| ClusterError::Input(i, e))?;
+    let mut planned = Vec::new();
+    for (i, (source, (prep, input))) in parts.into_iter().zip(encoded).enumerate() {
+        let input = input.map_err(|e| ClusterError::Input(i, e))?;
         let source = Arc::new(source);
         let (prep, ranges, segments) = match prep {
             None => (None, vec![WHOLE], est[i].1),
             Some(Err(e)) => {
-                let _ = tx.send(vec![(i, Err(e))]);
+                let _ = tx.send(vec![(i, Err(e.into()))]);
                 continue;
             }
             Some(Ok(prep)) => {
                 let (count, n) = (prep.combination_count(), prep.segments.len());
                 if count == 0 {
-                    let r = fixplan_worker::run_shard(&prep, 0..0);
-                    let merged = fixplan_core::merge(prep.top_k, vec![r]);
-                    let done = Finished {
-                        prep: Some(Arc::new(prep)),
-                        input: source,
-                        merged,
-                        stopped_at: None,
-                    };
-                    let _ = tx.send(vec![(i, Ok(done))]);
+                    let _ = tx.send(vec![(i, Ok(without_combinations(prep, source)))]);
                     continue;
                 }
                 let size = opts
@@ -172,62 +201,73 @@ pub fn run_distributed(
                 (Some(Arc::new(prep)), shards::ranges(count, size), n)
             }
         };
-        let slot = PartSlot {
-            digest: digest(&bytes),
+        planned.push(PlannedPart {
+            index: i,
             prep,
             source,
-            input: Arc::new(bytes),
-            shard_ids: 0..0,
-            stop: None,
-            partials: Vec::new(),
-            top: Vec::new(),
-            closed: false,
-        };
-        slots_in.push((i, slot, ranges, segments));
-    }
-    if slots_in.is_empty() {
-        return Ok(Distributed {
-            rx,
-            ready: VecDeque::new(),
-            delivered: 0,
-            total,
-            runtime: None,
-            final_stats: Stats::default(),
+            input,
+            ranges,
+            segments,
         });
     }
-    let iox = if opts.transport == TransportChoice::Zenoh {
-        None
-    } else {
-        let stale = iox::remove_stale();
-        if !stale.is_empty() {
-            info!(
-                "coordinator",
-                "removed the iceoryx2 resources of {} dead runs",
-                stale.len()
-            );
-        }
-        Some(fixplan_worker::protocol::DataPath::Iceoryx2 {
-            prefix: iox::new_prefix(),
-            service: format!(
-                "fixplan/{}",
-                fixplan_worker::host::sanitize(&opts.key_prefix)
-            ),
-        })
-    };
-    let settings = Settings {
+    Ok((planned, shards::batch_cost(&est, slots)))
+}
+
+/// A part without combinations needs no worker: its result, as the
+/// embedded run makes it.
+fn without_combinations(prep: PreparedPart, source: Arc<PartInput>) -> MergedShards {
+    let r = fixplan_worker::run_shard(&prep, 0..0);
+    let merged = fixplan_core::merge(prep.top_k, vec![r]);
+    MergedShards {
+        prep: Some(Arc::new(prep)),
+        input: source,
+        merged,
+        stopped_at: None,
+    }
+}
+
+/// How the scheduler serves this run's workers.
+fn settings(opts: &ClusterOptions, batch_cost: u64) -> Settings {
+    Settings {
         run_id: fixplan_worker::host::unique_name("run"),
         host_id: fixplan_worker::host::host_id(),
         transport: opts.transport,
-        iox,
+        iox: iox_data_path(opts),
         iox_clients: opts.local_workers.max(iox::DEFAULT_CLIENTS),
         lease: opts.lease,
         min_workers: opts.min_workers,
         verify: opts.verify,
         good_enough: opts.good_enough,
         batch_cost,
-    };
-    let (core, index) = Scheduler::new(settings, slots_in, tx);
-    let core = Arc::new(core);
+    }
+}
+
+/// The iceoryx2 data path of the run, unless it is zenoh only; what dead
+/// runs left in shared memory is removed first.
+fn iox_data_path(opts: &ClusterOptions) -> Option<DataPath> {
+    if opts.transport == TransportChoice::Zenoh {
+        return None;
+    }
+    let stale = iox::remove_stale();
+    if !stale.is_empty() {
+        info!(
+            "coordinator",
+            "removed the iceoryx2 resources of {} dead runs",
+            stale.len()
+        );
+    }
+    Some(DataPath::Iceoryx2 {
+        prefix: iox::new_prefix(),
+        service: format!(
+            "fixplan/{}",
+            fixplan_worker::host::sanitize(&opts.key_prefix)
+        ),
+    })
+}
+
+/// The zenoh options of the run: with no endpoint at all, a private unix
+/// socket (local workers connect to it).
+fn zenoh_options(opts: &ClusterOptions) -> ZenohOptions {
     let mut zopts = opts.zenoh.clone();
     if zopts.listen.is_empty() && zopts.connect.is_empty() && zopts.config_file.is_none() {
         let sock = std::env::temp_dir().join(format!(
@@ -236,34 +276,37 @@ pub fn run_distributed(
         ));
         zopts.listen = vec![format!("unixsock-stream/{}", sock.display())];
     }
-    let mut rt = Runtime::start(core, Arc::new(index), &zopts, &opts.key_prefix)?;
-    if opts.local_workers > 0 {
-        let exe = match &opts.worker_exe {
-            Some(e) => e.clone(),
-            None => std::env::current_exe().map_err(|e| ClusterError::Spawn(e.to_string()))?,
-        };
-        let connect = zopts
-            .listen
-            .first()
-            .or(zopts.connect.first())
-            .map(|e| runtime::connect_for(e))
-            .ok_or_else(|| ClusterError::Spawn("no endpoint for the local workers".into()))?;
-        let spec = local::LocalSpec {
-            exe: &exe,
-            connect: &connect,
-            key_prefix: &opts.key_prefix,
-            transport: &opts.transport.to_string(),
-            threads,
-            quiet: opts.quiet,
-        };
-        rt.spawn_local(&spec, opts.local_workers)?;
+    zopts
+}
+
+/// Starts `--workers N` worker processes with `threads` threads each,
+/// connected to the run's first endpoint.
+fn start_local_workers(
+    rt: &mut Runtime,
+    opts: &ClusterOptions,
+    zopts: &ZenohOptions,
+    threads: usize,
+) -> Result<(), ClusterError> {
+    if opts.local_workers == 0 {
+        return Ok(());
     }
-    Ok(Distributed {
-        rx,
-        ready: VecDeque::new(),
-        delivered: 0,
-        total,
-        runtime: Some(rt),
-        final_stats: Stats::default(),
-    })
+    let exe = match &opts.worker_exe {
+        Some(e) => e.clone(),
+        None => std::env::current_exe().map_err(ClusterError::Spawn)?,
+    };
+    let connect = zopts
+        .listen
+        .first()
+        .or(zopts.connect.first())
+        .map(|e| runtime::connect_for(e))
+        .ok_or(ClusterError::NoEndpoint)?;
+    let spec = local::LocalSpec {
+        exe: &exe,
+        connect: &connect,
+        key_prefix: &opts.key_prefix,
+        transport: &opts.transport.to_string(),
+        threads,
+        quiet: opts.quiet,
+    };
+    rt.spawn_local(&spec, opts.local_workers)
 }

@@ -6,21 +6,30 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+/// The worker processes of a run, killed on drop if still there.
 pub struct LocalWorkers {
     children: Vec<Child>,
 }
 
 /// What a local worker is started with.
 pub struct LocalSpec<'a> {
+    /// The `fixplan` executable (this one, unless told otherwise).
     pub exe: &'a Path,
+    /// The coordinator's endpoint, as a worker connects to it.
     pub connect: &'a str,
+    /// The run's key-expression prefix.
     pub key_prefix: &'a str,
+    /// `--transport` of the workers, the coordinator's own.
     pub transport: &'a str,
+    /// Enumeration threads of each worker.
     pub threads: usize,
+    /// `--quiet`: the run's logging, for the workers too.
     pub quiet: bool,
 }
 
 impl LocalWorkers {
+    /// Starts `n` workers; they leave when the coordinator says the run
+    /// is over.
     pub fn spawn(spec: &LocalSpec, n: usize) -> std::io::Result<LocalWorkers> {
         let mut w = LocalWorkers {
             children: Vec::new(),

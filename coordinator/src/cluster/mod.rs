@@ -5,7 +5,8 @@
 //! Uses `job` and the core and worker crates; knows nothing of catalogues
 //! or results files.
 //!
-//! - [`distributed`]: parts in, merged results out ([`run_distributed`]);
+//! - [`distributed`]: parts in, merged results out ([`run_distributed`]:
+//!   a [`MergedPart`] or a [`PartError`] for each);
 //! - [`scheduler`]: queue, leases, workers, merging (transport-free);
 //! - [`verify`]: the checks of a shard result and how many are re-derived;
 //! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
@@ -20,8 +21,9 @@ pub mod runtime;
 pub mod scheduler;
 pub mod verify;
 
-pub use distributed::{run_distributed, Distributed};
+pub use distributed::{run_distributed, Distributed, MergedPart};
 pub use fixplan_worker::part_input::PartInput;
 pub use fixplan_worker::protocol::TransportChoice;
 pub use options::{ClusterError, ClusterOptions};
+pub use scheduler::PartError;
 pub use verify::VerifyPolicy;

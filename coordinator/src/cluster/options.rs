@@ -1,24 +1,38 @@
 //! How a cluster run is set up, and why it can fail to start.
 
 use super::verify::VerifyPolicy;
+use fixplan_worker::part_input::InputError;
 use fixplan_worker::protocol::TransportChoice;
-use fixplan_worker::zenoh_link::ZenohOptions;
+use fixplan_worker::zenoh_link::{LinkError, ZenohOptions};
 use std::path::PathBuf;
 use std::time::Duration;
 use thiserror::Error;
 
+/// Why a cluster run could not start.
 #[derive(Debug, Error)]
 pub enum ClusterError {
+    /// The coordinator's queryables, liveliness subscriber or token.
     #[error("zenoh: {0}")]
-    Zenoh(String),
+    Zenoh(#[source] zenoh::Error),
+    /// The iceoryx2 server stopped before it was up.
     #[error("iceoryx2: {0}")]
-    Iceoryx2(String),
+    Iceoryx2(#[source] LinkError),
+    /// The iceoryx2 server did not say it was up in time.
+    #[error("iceoryx2: the server did not start")]
+    Iceoryx2Timeout,
+    /// `--workers N`: a worker process would not start.
     #[error("cannot start a local worker: {0}")]
-    Spawn(String),
+    Spawn(#[source] std::io::Error),
+    /// `--workers N` with no endpoint the workers could connect to.
+    #[error("cannot start a local worker: no endpoint for the local workers")]
+    NoEndpoint,
+    /// The zenoh session would not open (configuration, endpoints).
     #[error("{0}")]
-    Link(#[from] fixplan_worker::zenoh_link::LinkError),
+    Link(#[from] LinkError),
+    /// A part that cannot be encoded for the workers: no worker could
+    /// run it, so the run does not start.
     #[error("part {0}: {1}")]
-    Input(usize, String),
+    Input(usize, #[source] InputError),
 }
 
 /// How to run the coordinator.
@@ -29,6 +43,8 @@ pub struct ClusterOptions {
     pub zenoh: ZenohOptions,
     /// Key-expression prefix of the run (several runs can share a network).
     pub key_prefix: String,
+    /// `auto` (iceoryx2 shared memory for workers on this host, zenoh for
+    /// the others), or one of them forced.
     pub transport: TransportChoice,
     /// Workers to wait for before handing out the first shard.
     pub min_workers: usize,

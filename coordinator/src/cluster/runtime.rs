@@ -5,11 +5,13 @@
 //! run is over, then removes the run's shared memory.
 
 use super::local::{LocalSpec, LocalWorkers};
+use super::options::ClusterError;
 use super::scheduler::Scheduler;
 use fixplan_worker::iox;
 use fixplan_worker::protocol::DataPath;
 use fixplan_worker::warn;
 use fixplan_worker::zenoh_link::{open, Keys, ZenohOptions};
+use std::any::Any;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::thread::JoinHandle;
@@ -17,16 +19,21 @@ use std::time::{Duration, Instant};
 use zenoh::sample::SampleKind;
 use zenoh::Wait;
 
-use super::options::ClusterError;
+/// A zenoh declaration, alive as long as it is kept.
+type Declared = Box<dyn Any + Send>;
 
+/// A running coordinator: the scheduler served over zenoh (and iceoryx2),
+/// until [`Runtime::shutdown`] or drop.
 pub struct Runtime {
-    pub core: Arc<Scheduler>,
+    /// What the transports serve; its figures outlive the run.
+    pub scheduler: Arc<Scheduler>,
     ctl: Arc<iox::ServeControl>,
     threads: Vec<JoinHandle<()>>,
     session: zenoh::Session,
     iox_prefix: Option<String>,
+    /// `--workers N`: the processes it started, stopped with the run.
     pub local: Option<LocalWorkers>,
-    _keep: Vec<Box<dyn std::any::Any + Send>>,
+    _keep: Vec<Declared>,
 }
 
 const ROLE: &str = "coordinator";
@@ -39,9 +46,11 @@ pub fn connect_for(listen: &str) -> String {
 }
 
 impl Runtime {
+    /// Serves `scheduler`: the iceoryx2 server first (a worker may be told
+    /// about it as soon as zenoh is up), then the zenoh queryables, the
+    /// liveliness of the workers and of the coordinator, the lease timer.
     pub fn start(
-        core: Arc<Scheduler>,
-        part_index: Arc<Vec<usize>>,
+        scheduler: Arc<Scheduler>,
         zopts: &ZenohOptions,
         key_prefix: &str,
     ) -> Result<Runtime, ClusterError> {
@@ -49,90 +58,22 @@ impl Runtime {
         let ctl = Arc::new(iox::ServeControl::default());
         let mut threads = Vec::new();
         let mut iox_prefix = None;
-        // iceoryx2 first: a worker may be told about it as soon as zenoh is up.
-        if let Some(DataPath::Iceoryx2 { prefix, service }) = core.settings.iox.clone() {
-            let (ready_tx, ready_rx) = std::sync::mpsc::channel::<Result<(), String>>();
-            let (c, ct, pi) = (core.clone(), ctl.clone(), part_index.clone());
-            let p2 = prefix.clone();
-            threads.push(std::thread::spawn(move || {
-                let ready_tx2 = ready_tx.clone();
-                let r = iox::serve(
-                    &p2,
-                    &service,
-                    c.settings.iox_clients,
-                    move || drop(ready_tx2.send(Ok(()))),
-                    &ct,
-                    |b| c.handle(b, &pi),
-                );
-                if let Err(e) = r {
-                    let _ = ready_tx.send(Err(e.to_string()));
-                    warn!(ROLE, "iceoryx2 server stopped: {e}");
-                }
-            }));
-            match ready_rx.recv_timeout(Duration::from_secs(10)) {
-                Ok(Ok(())) => {}
-                Ok(Err(e)) => return Err(ClusterError::Iceoryx2(e)),
-                Err(_) => return Err(ClusterError::Iceoryx2("the server did not start".into())),
-            }
+        if let Some(DataPath::Iceoryx2 { prefix, service }) = scheduler.settings.iox.clone() {
+            threads.push(serve_iox(&scheduler, &ctl, &prefix, service)?);
             iox_prefix = Some(prefix);
         }
         let session = open(zopts)?;
-        let zerr = |e: zenoh::Error| ClusterError::Zenoh(e.to_string());
-        let mut keep: Vec<Box<dyn std::any::Any + Send>> = Vec::new();
-        // Callbacks, not polling threads: a query is answered on zenoh's
-        // own thread as soon as it arrives, and nothing has to notice the
-        // stop flag at the end of the run (undeclaring is enough).
-        for key in [keys.join(), keys.work()] {
-            let (c, pi) = (core.clone(), part_index.clone());
-            let q = session
-                .declare_queryable(&key)
-                .callback(move |query| {
-                    let bytes = query
-                        .payload()
-                        .map(|p| p.to_bytes().into_owned())
-                        .unwrap_or_default();
-                    let reply = c.handle(&bytes, &pi);
-                    if let Err(e) = query.reply(query.key_expr().clone(), reply).wait() {
-                        warn!(ROLE, "cannot reply on {}: {e}", query.key_expr());
-                    }
-                })
-                .wait()
-                .map_err(zerr)?;
-            keep.push(Box::new(q));
-        }
-        let c = core.clone();
-        let ct = ctl.clone();
-        let alive_prefix = format!("{}/alive/", keys.prefix);
-        let sub = session
-            .liveliness()
-            .declare_subscriber(keys.alive_all())
-            .history(true)
-            .callback(move |sample| {
-                if sample.kind() == SampleKind::Delete {
-                    let k = sample.key_expr().as_str();
-                    c.worker_lost(k.strip_prefix(&alive_prefix).unwrap_or(k));
-                    ct.cleanup.store(true, Ordering::SeqCst);
-                }
-            })
-            .wait()
-            .map_err(zerr)?;
-        keep.push(Box::new(sub));
+        let mut keep = serve_zenoh(&session, &keys, &scheduler)?;
+        keep.push(watch_workers(&session, &keys, &scheduler, &ctl)?);
         let token = session
             .liveliness()
             .declare_token(keys.coordinator())
             .wait()
-            .map_err(zerr)?;
+            .map_err(ClusterError::Zenoh)?;
         keep.push(Box::new(token));
-        let (c, ct) = (core.clone(), ctl.clone());
-        threads.push(std::thread::spawn(move || {
-            while !ct.stop.load(Ordering::SeqCst) {
-                c.expire_leases();
-                // Woken early by `shutdown` (unpark), so stopping costs no wait.
-                std::thread::park_timeout(Duration::from_millis(100));
-            }
-        }));
+        threads.push(lease_timer(scheduler.clone(), ctl.clone()));
         Ok(Runtime {
-            core,
+            scheduler,
             ctl,
             threads,
             session,
@@ -142,10 +83,10 @@ impl Runtime {
         })
     }
 
+    /// Starts `n` local worker processes as `spec` says.
     pub fn spawn_local(&mut self, spec: &LocalSpec, n: usize) -> Result<(), ClusterError> {
         if n > 0 {
-            self.local =
-                Some(LocalWorkers::spawn(spec, n).map_err(|e| ClusterError::Spawn(e.to_string()))?);
+            self.local = Some(LocalWorkers::spawn(spec, n).map_err(ClusterError::Spawn)?);
         }
         Ok(())
     }
@@ -157,7 +98,7 @@ impl Runtime {
         }
         self.ctl.closing.store(true, Ordering::SeqCst);
         let until = Instant::now() + grace;
-        while !self.core.all_told() && Instant::now() < until {
+        while !self.scheduler.all_told() && Instant::now() < until {
             std::thread::sleep(Duration::from_millis(2));
         }
         if let Some(l) = &mut self.local {
@@ -186,4 +127,105 @@ impl Drop for Runtime {
     fn drop(&mut self) {
         self.shutdown(Duration::from_millis(500));
     }
+}
+
+/// The iceoryx2 server thread, once it is up.
+fn serve_iox(
+    scheduler: &Arc<Scheduler>,
+    ctl: &Arc<iox::ServeControl>,
+    prefix: &str,
+    service: String,
+) -> Result<JoinHandle<()>, ClusterError> {
+    let (ready_tx, ready_rx) = std::sync::mpsc::channel();
+    let (c, ct) = (scheduler.clone(), ctl.clone());
+    let p2 = prefix.to_string();
+    let thread = std::thread::spawn(move || {
+        let ready_tx2 = ready_tx.clone();
+        let r = iox::serve(
+            &p2,
+            &service,
+            c.settings.iox_clients,
+            move || drop(ready_tx2.send(Ok(()))),
+            &ct,
+            |b| c.handle(b),
+        );
+        if let Err(e) = r {
+            warn!(ROLE, "iceoryx2 server stopped: {e}");
+            let _ = ready_tx.send(Err(e));
+        }
+    });
+    match ready_rx.recv_timeout(Duration::from_secs(10)) {
+        Ok(Ok(())) => Ok(thread),
+        Ok(Err(e)) => Err(ClusterError::Iceoryx2(e)),
+        Err(_) => Err(ClusterError::Iceoryx2Timeout),
+    }
+}
+
+/// The queryables workers join and report on. Callbacks, not polling
+/// threads: a query is answered on zenoh's own thread as soon as it
+/// arrives, and nothing has to notice the stop flag at the end of the run
+/// (undeclaring is enough).
+fn serve_zenoh(
+    session: &zenoh::Session,
+    keys: &Keys,
+    scheduler: &Arc<Scheduler>,
+) -> Result<Vec<Declared>, ClusterError> {
+    let mut keep: Vec<Declared> = Vec::new();
+    for key in [keys.join(), keys.work()] {
+        let c = scheduler.clone();
+        let q = session
+            .declare_queryable(&key)
+            .callback(move |query| {
+                let bytes = query
+                    .payload()
+                    .map(|p| p.to_bytes().into_owned())
+                    .unwrap_or_default();
+                let reply = c.handle(&bytes);
+                if let Err(e) = query.reply(query.key_expr().clone(), reply).wait() {
+                    warn!(ROLE, "cannot reply on {}: {e}", query.key_expr());
+                }
+            })
+            .wait()
+            .map_err(ClusterError::Zenoh)?;
+        keep.push(Box::new(q));
+    }
+    Ok(keep)
+}
+
+/// The workers' liveliness: a worker whose token vanishes is lost (its
+/// shards go back to the queue, its shared memory is cleaned up).
+fn watch_workers(
+    session: &zenoh::Session,
+    keys: &Keys,
+    scheduler: &Arc<Scheduler>,
+    ctl: &Arc<iox::ServeControl>,
+) -> Result<Declared, ClusterError> {
+    let c = scheduler.clone();
+    let ct = ctl.clone();
+    let alive_prefix = format!("{}/alive/", keys.prefix);
+    let sub = session
+        .liveliness()
+        .declare_subscriber(keys.alive_all())
+        .history(true)
+        .callback(move |sample| {
+            if sample.kind() == SampleKind::Delete {
+                let k = sample.key_expr().as_str();
+                c.worker_lost(k.strip_prefix(&alive_prefix).unwrap_or(k));
+                ct.cleanup.store(true, Ordering::SeqCst);
+            }
+        })
+        .wait()
+        .map_err(ClusterError::Zenoh)?;
+    Ok(Box::new(sub))
+}
+
+/// The thread that puts shards whose lease ran out back in the queue.
+fn lease_timer(scheduler: Arc<Scheduler>, ctl: Arc<iox::ServeControl>) -> JoinHandle<()> {
+    std::thread::spawn(move || {
+        while !ctl.stop.load(Ordering::SeqCst) {
+            scheduler.expire_leases();
+            // Woken early by `shutdown` (unpark), so stopping costs no wait.
+            std::thread::park_timeout(Duration::from_millis(100));
+        }
+    })
 }

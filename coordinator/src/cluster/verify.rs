@@ -8,9 +8,160 @@
 use fixplan_core::admissibility::Scratch;
 use fixplan_core::clamp::Accumulator;
 use fixplan_core::combinations::combination_at;
-use fixplan_core::{Fixture, PartialResult, PreparedPart};
+use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
+use fixplan_worker::part_input::short_hex;
+use fixplan_worker::protocol::Digest;
 use std::cmp::Ordering;
 use std::ops::Range;
+use thiserror::Error;
+
+/// Why a shard result is not merged. The text goes back to the worker in
+/// the reply's notes and into the coordinator's log, so it names the
+/// shard's figures as the worker sent them.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum CheckError {
+    /// The result answers another part than the shard's (a worker mixing
+    /// up its inputs).
+    #[error("result for part {}, shard is of part {}", short_hex(.got), short_hex(.want))]
+    OtherPart {
+        /// Digest of the part the result names.
+        got: Digest,
+        /// Digest of the shard's part.
+        want: Digest,
+    },
+    /// A part sent whole could not be prepared here for a deep check.
+    #[error("the coordinator cannot prepare the part: {0}")]
+    CannotPrepare(PrepareError),
+    /// More fixtures than a top-k keeps.
+    #[error("{len} fixtures, top_k is {top_k}")]
+    TooManyFixtures {
+        /// Fixtures in the result.
+        len: usize,
+        /// The part's top-k.
+        top_k: usize,
+    },
+    /// More fixtures than the result says were admissible.
+    #[error("{len} fixtures but {admissible} admissible")]
+    MoreThanAdmissible {
+        /// Fixtures in the result.
+        len: usize,
+        /// Admissible fixtures it counted.
+        admissible: u64,
+    },
+    /// The fixtures are not best first (the merge relies on the order).
+    #[error("fixtures not in rank order")]
+    NotInRankOrder,
+    /// A score that is NaN or infinite would poison the ranking.
+    #[error("fixture {index} has score {score}")]
+    ScoreNotFinite {
+        /// Position of the fixture in the result.
+        index: usize,
+        /// Its score.
+        score: f64,
+    },
+    /// A result of a part sent whole that does not cover what it should.
+    #[error("result for combinations {range:?} ({combinations} of {segments} segments), expected {expected:?}")]
+    WrongCover {
+        /// Combinations the result says it covers.
+        range: Range<u64>,
+        /// Combinations it counted.
+        combinations: u64,
+        /// Segments it counted.
+        segments: u64,
+        /// The combinations it should cover.
+        expected: Range<u64>,
+    },
+    /// A fixture on segments the part does not have.
+    #[error("fixture {index} on segments {segments:?}, not of the part")]
+    NotOfThePart {
+        /// Position of the fixture in the result.
+        index: usize,
+        /// Its segments.
+        segments: [usize; 3],
+    },
+    /// A stop reported for a run without `--good-enough`.
+    #[error("stopped at {at} without --good-enough")]
+    StopWithoutGoodEnough {
+        /// The combination it claims to have stopped at.
+        at: u64,
+    },
+    /// A stop outside the shard it answers.
+    #[error("stopped at {at}, outside the shard {shard:?}")]
+    StopOutsideShard {
+        /// The combination it claims to have stopped at.
+        at: u64,
+        /// The shard's combinations.
+        shard: Range<u64>,
+    },
+    /// A stop with no fixture good enough to justify it.
+    #[error("stopped at {at} but no fixture scores {good_enough} or better")]
+    StopWithoutScore {
+        /// The combination it claims to have stopped at.
+        at: u64,
+        /// The `--good-enough` threshold.
+        good_enough: f64,
+    },
+    /// A fixture good enough to stop at, but no stop reported.
+    #[error("a fixture scores {score} (good enough: {good_enough}) but the shard did not stop")]
+    MissedStop {
+        /// The best fixture's score.
+        score: f64,
+        /// The `--good-enough` threshold.
+        good_enough: f64,
+    },
+    /// The result covers other combinations than the shard.
+    #[error("result for combinations {range:?}, shard is {shard:?}")]
+    WrongRange {
+        /// Combinations the result says it covers.
+        range: Range<u64>,
+        /// The shard's combinations.
+        shard: Range<u64>,
+    },
+    /// Counts that the shard and the part do not give.
+    #[error("counts {combinations} combinations / {segments} segments, expected {want_combinations} / {want_segments}")]
+    WrongCounts {
+        /// Combinations the result counted.
+        combinations: u64,
+        /// Segments the result counted.
+        segments: u64,
+        /// Combinations of the shard.
+        want_combinations: u64,
+        /// Segments of the part.
+        want_segments: usize,
+    },
+    /// Fixtures in a shard that has no combination.
+    #[error("fixtures in an empty shard")]
+    FixturesInEmptyShard,
+    /// A fixture on segments of another shard.
+    #[error("fixture {index} on segments {segments:?}, outside the shard")]
+    OutsideShard {
+        /// Position of the fixture in the result.
+        index: usize,
+        /// Its segments.
+        segments: [usize; 3],
+    },
+    /// A fixture the part's own enumeration does not give: the worker
+    /// computes differently (or lies).
+    #[error(
+        "fixture {index} (segments {segments:?}, locators {locators:?}, score {score}) does not check out: \
+         form closure, clamp or score differ from the part's own enumeration"
+    )]
+    DoesNotCheckOut {
+        /// Position of the fixture in the result.
+        index: usize,
+        /// Its segments.
+        segments: [usize; 3],
+        /// Its locators.
+        locators: [[i64; 2]; 3],
+        /// Its score.
+        score: f64,
+    },
+}
+
+/// A `--verify` value that is none of `all`, `sample` or `1/N`.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("unknown verification {0:?} (all, sample, or 1/N)")]
+pub struct UnknownPolicy(String);
 
 /// How much of a shard result the coordinator re-derives before merging.
 /// Structural checks (range, counts, order, fixtures inside the shard,
@@ -24,7 +175,11 @@ pub enum VerifyPolicy {
     /// differently shows up there), then of one result in `one_in`, picked
     /// by a hash of the shard id (the same shards whichever worker runs
     /// them).
-    Sample { one_in: u64 },
+    Sample {
+        /// One result in this many is checked in full, once a worker has
+        /// earned trust.
+        one_in: u64,
+    },
 }
 
 /// Fixtures of each worker re-derived before [`VerifyPolicy::Sample`]
@@ -38,8 +193,8 @@ impl Default for VerifyPolicy {
 }
 
 impl std::str::FromStr for VerifyPolicy {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownPolicy;
+    fn from_str(s: &str) -> Result<Self, UnknownPolicy> {
         match s {
             "all" => Ok(VerifyPolicy::All),
             "sample" => Ok(VerifyPolicy::default()),
@@ -48,7 +203,7 @@ impl std::str::FromStr for VerifyPolicy {
                 .and_then(|n| n.parse::<u64>().ok())
                 .filter(|&n| n >= 1)
                 .map(|one_in| VerifyPolicy::Sample { one_in })
-                .ok_or_else(|| format!("unknown verification {s:?} (all, sample, or 1/N)")),
+                .ok_or_else(|| UnknownPolicy(s.to_string())),
         }
     }
 }
@@ -102,26 +257,29 @@ pub fn enters(top: &[Fixture], top_k: usize, f: &Fixture) -> bool {
 /// The checks of the fixture list that hold for any shard: at most
 /// `top_k`, no more than the admissible count, in rank order, finite
 /// scores.
-fn check_list(top_k: usize, res: &PartialResult) -> Result<(), String> {
-    if top_k != 0 && res.fixtures.len() > top_k {
-        return Err(format!("{} fixtures, top_k is {top_k}", res.fixtures.len()));
+fn check_list(top_k: usize, res: &PartialResult) -> Result<(), CheckError> {
+    let len = res.fixtures.len();
+    if top_k != 0 && len > top_k {
+        return Err(CheckError::TooManyFixtures { len, top_k });
     }
-    if (res.fixtures.len() as u64) > res.counts.admissible {
-        return Err(format!(
-            "{} fixtures but {} admissible",
-            res.fixtures.len(),
-            res.counts.admissible
-        ));
+    if (len as u64) > res.counts.admissible {
+        return Err(CheckError::MoreThanAdmissible {
+            len,
+            admissible: res.counts.admissible,
+        });
     }
     if res
         .fixtures
         .windows(2)
         .any(|w| w[0].rank_cmp(&w[1]) != Ordering::Less)
     {
-        return Err("fixtures not in rank order".into());
+        return Err(CheckError::NotInRankOrder);
     }
     match res.fixtures.iter().position(|f| !f.score.is_finite()) {
-        Some(i) => Err(format!("fixture {i} has score {}", res.fixtures[i].score)),
+        Some(index) => Err(CheckError::ScoreNotFinite {
+            index,
+            score: res.fixtures[index].score,
+        }),
         None => Ok(()),
     }
 }
@@ -130,24 +288,30 @@ fn check_list(top_k: usize, res: &PartialResult) -> Result<(), String> {
 /// re-derived: the result must cover `range` (the whole part, or its
 /// prefix up to a `--good-enough` hit) with counts consistent with its own
 /// segment count, and hold fixtures of that part.
-pub fn check_shape(top_k: usize, range: &Range<u64>, res: &PartialResult) -> Result<(), String> {
+pub fn check_shape(
+    top_k: usize,
+    range: &Range<u64>,
+    res: &PartialResult,
+) -> Result<(), CheckError> {
     let n = res.counts.segments;
     let count = fixplan_core::combinations::combination_count(n as usize);
     let want = range.end.min(count).saturating_sub(range.start);
     if res.range != *range || res.counts.combinations != want {
-        return Err(format!(
-            "result for combinations {:?} ({} of {n} segments), expected {range:?}",
-            res.range, res.counts.combinations
-        ));
+        return Err(CheckError::WrongCover {
+            range: res.range.clone(),
+            combinations: res.counts.combinations,
+            segments: n,
+            expected: range.clone(),
+        });
     }
     check_list(top_k, res)?;
-    for (i, f) in res.fixtures.iter().enumerate() {
+    for (index, f) in res.fixtures.iter().enumerate() {
         let [a, b, c] = f.segments;
         if !(a <= b && b <= c && (c as u64) < n && a != c) || f.clamp_segment as u64 >= n {
-            return Err(format!(
-                "fixture {i} on segments {:?}, not of the part",
-                f.segments
-            ));
+            return Err(CheckError::NotOfThePart {
+                index,
+                segments: f.segments,
+            });
         }
     }
     Ok(())
@@ -161,21 +325,24 @@ pub fn check_stop(
     shard: &Range<u64>,
     hit: Option<u64>,
     res: &PartialResult,
-) -> Result<(), String> {
+) -> Result<(), CheckError> {
     let best = res.fixtures.first().map(|f| f.score);
     match (good_enough, hit) {
         (None, None) => Ok(()),
-        (None, Some(h)) => Err(format!("stopped at {h} without --good-enough")),
-        (Some(_), Some(h)) if !shard.contains(&h) => {
-            Err(format!("stopped at {h}, outside the shard {shard:?}"))
+        (None, Some(at)) => Err(CheckError::StopWithoutGoodEnough { at }),
+        (Some(_), Some(at)) if !shard.contains(&at) => Err(CheckError::StopOutsideShard {
+            at,
+            shard: shard.clone(),
+        }),
+        (Some(good_enough), Some(at)) if best.is_none_or(|b| b > good_enough) => {
+            Err(CheckError::StopWithoutScore { at, good_enough })
         }
-        (Some(g), Some(h)) if best.is_none_or(|b| b > g) => Err(format!(
-            "stopped at {h} but no fixture scores {g} or better"
-        )),
-        (Some(g), None) if best.is_some_and(|b| b <= g) => Err(format!(
-            "a fixture scores {} (good enough: {g}) but the shard did not stop",
-            best.unwrap_or(g)
-        )),
+        (Some(good_enough), None) if best.is_some_and(|b| b <= good_enough) => {
+            Err(CheckError::MissedStop {
+                score: best.unwrap_or(good_enough),
+                good_enough,
+            })
+        }
         _ => Ok(()),
     }
 }
@@ -190,22 +357,22 @@ pub fn check(
     res: &PartialResult,
     top: &[Fixture],
     deep: bool,
-) -> Result<usize, String> {
+) -> Result<usize, CheckError> {
     let count = prep.combination_count();
     if res.range != *range {
-        return Err(format!(
-            "result for combinations {:?}, shard is {range:?}",
-            res.range
-        ));
+        return Err(CheckError::WrongRange {
+            range: res.range.clone(),
+            shard: range.clone(),
+        });
     }
     let want = range.end.min(count).saturating_sub(range.start);
     if res.counts.combinations != want || res.counts.segments != prep.segments.len() as u64 {
-        return Err(format!(
-            "counts {} combinations / {} segments, expected {want} / {}",
-            res.counts.combinations,
-            res.counts.segments,
-            prep.segments.len()
-        ));
+        return Err(CheckError::WrongCounts {
+            combinations: res.counts.combinations,
+            segments: res.counts.segments,
+            want_combinations: want,
+            want_segments: prep.segments.len(),
+        });
     }
     check_list(prep.top_k, res)?;
     let n = prep.segments.len();
@@ -215,23 +382,24 @@ pub fn check(
     ) {
         (Some(a), Some(b)) => (a, b),
         _ if res.fixtures.is_empty() => return Ok(0),
-        _ => return Err("fixtures in an empty shard".into()),
+        _ => return Err(CheckError::FixturesInEmptyShard),
     };
     let mut checked = 0;
-    for (i, f) in res.fixtures.iter().enumerate() {
+    for (index, f) in res.fixtures.iter().enumerate() {
         if f.segments < first || f.segments > last {
-            return Err(format!(
-                "fixture {i} on segments {:?}, outside the shard",
-                f.segments
-            ));
+            return Err(CheckError::OutsideShard {
+                index,
+                segments: f.segments,
+            });
         }
         if deep && enters(top, prep.top_k, f) {
             if !rederive(prep, f) {
-                return Err(format!(
-                    "fixture {i} (segments {:?}, locators {:?}, score {}) does not check out: \
-                     form closure, clamp or score differ from the part's own enumeration",
-                    f.segments, f.locators, f.score
-                ));
+                return Err(CheckError::DoesNotCheckOut {
+                    index,
+                    segments: f.segments,
+                    locators: f.locators,
+                    score: f.score,
+                });
             }
             checked += 1;
         }
@@ -295,5 +463,53 @@ mod tests {
         let prefix = 0..h + 1;
         assert!(check(&prep, &prefix, &res, &[], true).is_ok());
         assert!(check(&prep, &all, &res, &[], false).is_err());
+    }
+
+    /// The texts reach workers (reply notes) and logs: they stay as they were.
+    #[test]
+    fn check_errors_read_as_before() {
+        let cases = [
+            (
+                CheckError::OtherPart {
+                    got: [0xab; 32],
+                    want: [1; 32],
+                },
+                "result for part abababababab, shard is of part 010101010101",
+            ),
+            (
+                CheckError::WrongCover {
+                    range: 0..3,
+                    combinations: 3,
+                    segments: 5,
+                    expected: 0..4,
+                },
+                "result for combinations 0..3 (3 of 5 segments), expected 0..4",
+            ),
+            (
+                CheckError::StopWithoutScore {
+                    at: 7,
+                    good_enough: 0.5,
+                },
+                "stopped at 7 but no fixture scores 0.5 or better",
+            ),
+            (
+                CheckError::DoesNotCheckOut {
+                    index: 0,
+                    segments: [0, 2, 3],
+                    locators: [[0, 0], [4, 1], [4, 2]],
+                    score: 0.25,
+                },
+                "fixture 0 (segments [0, 2, 3], locators [[0, 0], [4, 1], [4, 2]], score 0.25) \
+                 does not check out: form closure, clamp or score differ from the part's own \
+                 enumeration",
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+        }
+        assert_eq!(
+            "most".parse::<VerifyPolicy>().unwrap_err().to_string(),
+            "unknown verification \"most\" (all, sample, or 1/N)"
+        );
     }
 }

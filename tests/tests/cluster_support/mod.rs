@@ -200,7 +200,7 @@ pub fn run_opts(out: &Path, top_k: usize, cluster: Option<ClusterOptions>) -> Ru
 pub fn in_order(d: &mut Distributed) -> Vec<Result<Vec<u8>, String>> {
     let mut got = Vec::new();
     while let Some((i, r)) = d.next_merged() {
-        got.push((i, r.map(|m| bytes(&m))));
+        got.push((i, r.map(|m| bytes(&m)).map_err(|e| e.to_string())));
     }
     got.sort_by_key(|(i, _)| *i);
     for (n, (i, _)) in got.iter().enumerate() {

@@ -1,0 +1,97 @@
+//! Handing out work: the next batch of shards for a worker that has just
+//! reported (and so holds none any more), sized so that the workers run
+//! out of work together.
+
+use super::state::{requeue, Settings, ShardStatus, State, ROLE};
+use fixplan_worker::info;
+use fixplan_worker::protocol::{Assign, Next};
+use std::time::Instant;
+
+/// What `worker` is to do next: work, wait, rejoin, or stop.
+pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str) -> Next {
+    let Some(w) = st.workers.get_mut(worker) else {
+        return Next::Rejoin;
+    };
+    // Anything still leased to it went out in a reply it never got.
+    let lost: Vec<u64> = w.leased.drain().collect();
+    if st.open_parts == 0 {
+        w.got_done = true;
+        return Next::Done;
+    }
+    requeue(st, lost.into_iter());
+    if !st.started {
+        if st.workers.len() < s.min_workers {
+            return Next::Idle { retry_ms: 10 };
+        }
+        st.started = true;
+        info!(
+            ROLE,
+            "{} workers: starting ({} shards)",
+            st.workers.len(),
+            st.shards.len()
+        );
+    }
+    let limit = batch_limit(st, s);
+    let Some(batch) = lease_batch(st, s, worker, limit) else {
+        return Next::Rejoin;
+    };
+    if batch.is_empty() {
+        // Short: the other shards may be done any moment, and then this
+        // worker learns at once that the run is over.
+        return Next::Idle { retry_ms: 5 };
+    }
+    st.stats.assigned += batch.len() as u64;
+    Next::Work(batch)
+}
+
+/// Guided self-scheduling: a batch of about the cost left divided among
+/// twice the threads, at most `batch_cost`, so batches shrink towards the
+/// end and the workers finish together.
+fn batch_limit(st: &State, s: &Settings) -> u64 {
+    let threads: u64 = st.workers.values().map(|w| w.threads).sum();
+    (st.queued_cost / (2 * threads.max(1))).clamp(1, s.batch_cost.max(1))
+}
+
+/// Leases shards from the front of the queue to `worker` until they cost
+/// `limit`, skipping those no longer needed; `None` if it is not known.
+fn lease_batch(st: &mut State, s: &Settings, worker: &str, limit: u64) -> Option<Vec<Assign>> {
+    let mut batch = Vec::new();
+    let mut cost = 0;
+    while cost < limit && batch.len() < crate::job::shards::MAX_BATCH_SHARDS {
+        let Some(id) = st.queue.pop_front() else {
+            break;
+        };
+        let sh = &mut st.shards[id as usize];
+        if sh.status != ShardStatus::Queued {
+            continue;
+        }
+        let part = &st.parts[sh.part];
+        if part.closed || part.stop.is_some_and(|s| sh.range.start > s) {
+            // Past a `--good-enough` hit: not needed any more.
+            sh.status = ShardStatus::Done;
+            st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
+            continue;
+        }
+        sh.status = ShardStatus::Leased {
+            worker: worker.to_string(),
+            until: Instant::now() + s.lease,
+        };
+        st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
+        cost += sh.cost;
+        let w = st.workers.get_mut(worker)?;
+        w.leased.insert(id);
+        // The part's input goes with its first shard to each worker.
+        let input = w
+            .parts_sent
+            .insert(sh.part)
+            .then(|| part.input.as_ref().clone());
+        batch.push(Assign {
+            shard_id: id,
+            digest: part.digest,
+            range: sh.range.clone(),
+            input,
+            good_enough: s.good_enough,
+        });
+    }
+    Some(batch)
+}

@@ -1,0 +1,306 @@
+//! What the scheduler knows: every part with its shard results so far,
+//! every shard and where it is, the workers, the run's figures; and the
+//! one way a shard goes back to the queue.
+
+use super::errors::PartError;
+use crate::cluster::verify::VerifyPolicy;
+use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
+use fixplan_worker::part_input::{digest, PartInput};
+use fixplan_worker::protocol::{DataPath, Digest, TransportChoice};
+use std::collections::{HashMap, HashSet, VecDeque};
+use std::ops::Range;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Who the scheduler's log lines are from.
+pub(super) const ROLE: &str = "coordinator";
+
+/// Shard range meaning "every combination of the part": a part that
+/// stays whole is sent without the coordinator preparing it (it does not
+/// know the exact count); the worker's enumeration stops at the count.
+pub const WHOLE: Range<u64> = 0..u64::MAX;
+
+/// A part as the run planned it: what the scheduler is handed.
+pub(crate) struct PlannedPart {
+    /// Its index in the caller's list: the part is delivered under it.
+    pub index: usize,
+    /// `None` for a part that goes out whole: it is prepared here only if
+    /// a result of it is re-derived.
+    pub prep: Option<Arc<PreparedPart>>,
+    /// The part, kit and parameters, to prepare it from.
+    pub source: Arc<PartInput>,
+    /// `source` encoded, as it goes to the workers.
+    pub input: Vec<u8>,
+    /// Its shards' combinations ([`WHOLE`] for a part that stays whole).
+    pub ranges: Vec<Range<u64>>,
+    /// Its segment count (estimated for a whole part), for shard costs.
+    pub segments: usize,
+}
+
+/// A part's shard results merged, as the scheduler hands it over. The
+/// part is prepared only if the coordinator had to (to cut it into
+/// shards or to re-derive its fixtures): preparing it is the consumer's
+/// call.
+#[derive(Debug)]
+pub(crate) struct MergedShards {
+    /// The part prepared here, if it was.
+    pub prep: Option<Arc<PreparedPart>>,
+    /// The part as it was sent, to prepare it from.
+    pub input: Arc<PartInput>,
+    /// The merged result, byte for byte the embedded run's.
+    pub merged: PartialResult,
+    /// `--good-enough`: the combination where the part stopped.
+    pub stopped_at: Option<u64>,
+}
+
+/// A finished part under its index in the caller's list.
+pub(crate) type Delivery = (usize, Result<MergedShards, PartError>);
+
+/// A part being worked on.
+pub(super) struct PartSlot {
+    /// `None` until needed: small parts go out whole and are prepared here
+    /// only when a result of theirs is re-derived.
+    pub(super) prep: Option<Arc<PreparedPart>>,
+    pub(super) source: Arc<PartInput>,
+    pub(super) input: Arc<Vec<u8>>,
+    /// What results must name to be taken for this part.
+    pub(super) digest: Digest,
+    /// Ids of its shards (contiguous, in combination order).
+    pub(super) shard_ids: Range<u64>,
+    /// The first `--good-enough` hit reported so far: the part ends with
+    /// the shards up to it, the rest are dropped.
+    pub(super) stop: Option<u64>,
+    /// Results taken, merged when the part is complete.
+    pub(super) partials: Vec<ShardResult>,
+    /// The best fixtures so far, for the checks of the shards to come.
+    pub(super) top: Vec<Fixture>,
+    /// Delivered (merged or failed): later results are duplicates.
+    pub(super) closed: bool,
+}
+
+impl PartSlot {
+    pub(super) fn top_k(&self) -> usize {
+        self.source.params.top_k
+    }
+
+    /// The part prepared, here and once, if it was sent out unprepared.
+    pub(super) fn prepared(&mut self) -> Result<Arc<PreparedPart>, PrepareError> {
+        if let Some(p) = &self.prep {
+            return Ok(p.clone());
+        }
+        let p = Arc::new(self.source.prepare()?);
+        self.prep = Some(p.clone());
+        Ok(p)
+    }
+}
+
+/// Where a shard is.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum ShardStatus {
+    Queued,
+    /// Handed out; back in the queue if no result comes by `until`.
+    Leased {
+        worker: String,
+        until: Instant,
+    },
+    Done,
+}
+
+pub(super) struct ShardSlot {
+    pub(super) part: usize,
+    pub(super) range: Range<u64>,
+    /// [`crate::job::shards::cost`] of the shard, for batching.
+    pub(super) cost: u64,
+    pub(super) status: ShardStatus,
+    /// The worker whose result was taken.
+    pub(super) by: Option<Arc<str>>,
+}
+
+/// A shard result taken, held until its part is complete.
+pub(super) struct ShardResult {
+    pub(super) shard: u64,
+    pub(super) hit: Option<u64>,
+    pub(super) result: PartialResult,
+}
+
+pub(super) struct WorkerSlot {
+    pub(super) name: Arc<str>,
+    /// Parts whose input it has: later shards of them go without it.
+    pub(super) parts_sent: HashSet<usize>,
+    pub(super) leased: HashSet<u64>,
+    /// Told the run is over (the coordinator waits for that to stop).
+    pub(super) got_done: bool,
+    pub(super) shards: u64,
+    /// Its enumeration threads, for the batch sizes.
+    pub(super) threads: u64,
+    /// Fixtures of this worker re-derived so far (until there are
+    /// [`crate::cluster::verify::FULL_CHECKS`], all its results are checked
+    /// in full).
+    pub(super) rederived: u64,
+}
+
+/// Run-wide figures, for the benchmark and the final log line: what the
+/// coordinator did and how much it cost.
+#[derive(Debug, Clone, Default)]
+pub struct Stats {
+    /// Shards the parts were cut into.
+    pub shards: u64,
+    /// Shard results received, taken or not.
+    pub results: u64,
+    /// Results for shards already done (a lease ran out, both answered).
+    pub duplicates: u64,
+    /// Results that failed their checks.
+    pub rejected: u64,
+    /// Shards put back in the queue (lost, expired, or to be redone).
+    pub requeued: u64,
+    /// Joins, rejoins included.
+    pub workers_joined: u64,
+    /// Workers whose liveliness token vanished.
+    pub workers_lost: u64,
+    /// Fixtures re-derived by the checks.
+    pub fixtures_rederived: u64,
+    /// Bytes of results (frames, as sent).
+    pub result_bytes: u64,
+    /// Bytes of assignments (frames, as sent).
+    pub assign_bytes: u64,
+    /// Results checked in full (every fixture entering the top-k re-derived).
+    pub results_rederived: u64,
+    /// Requests (reports) answered.
+    pub requests: u64,
+    /// Shards handed out.
+    pub assigned: u64,
+    /// CPU time of the coordinator's threads handling requests (thread
+    /// CPU clock: time the thread was preempted does not count).
+    pub handle_micros: u64,
+    /// Worker time enumerating, as reported.
+    pub worker_micros: u64,
+}
+
+/// How the scheduler serves the workers, fixed for the run.
+pub struct Settings {
+    /// Names the run in welcomes: a worker that rejoins a new run knows.
+    pub run_id: String,
+    /// This host's id: workers with the same one may use shared memory.
+    pub host_id: String,
+    /// `--transport`: forcing one side forces the data path.
+    pub transport: TransportChoice,
+    /// The iceoryx2 data path, when the coordinator serves one.
+    pub iox: Option<DataPath>,
+    /// Workers it serves at most (more on this host use zenoh).
+    pub iox_clients: usize,
+    /// How long a shard may stay with one worker.
+    pub lease: Duration,
+    /// Workers to wait for before handing out the first shard.
+    pub min_workers: usize,
+    /// How much of each result is re-derived before it is merged.
+    pub verify: VerifyPolicy,
+    /// `--good-enough` threshold of every part.
+    pub good_enough: Option<f64>,
+    /// Cost of work ([`crate::job::shards::cost`]) handed out in one
+    /// assignment at most: small shards travel together up to it.
+    pub batch_cost: u64,
+}
+
+/// Everything the scheduler changes, behind its one lock.
+pub(super) struct State {
+    pub(super) parts: Vec<PartSlot>,
+    pub(super) shards: Vec<ShardSlot>,
+    pub(super) queue: VecDeque<u64>,
+    pub(super) workers: HashMap<String, WorkerSlot>,
+    /// `min_workers` have joined once: work is handed out from then on.
+    pub(super) started: bool,
+    pub(super) open_parts: usize,
+    /// Workers caught sending a bad result.
+    pub(super) banned: HashSet<String>,
+    /// Cost of the shards in the queue (batches shrink as it runs out, so
+    /// the last ones end together).
+    pub(super) queued_cost: u64,
+    /// Parts finished while answering the current request.
+    pub(super) done: Vec<Delivery>,
+    /// Each part's index in the caller's list.
+    pub(super) part_index: Vec<usize>,
+    pub(super) stats: Stats,
+}
+
+impl State {
+    /// Every shard of `parts` in the queue, in order.
+    pub(super) fn new(parts: Vec<PlannedPart>) -> State {
+        let mut st = State {
+            parts: Vec::new(),
+            shards: Vec::new(),
+            queue: VecDeque::new(),
+            workers: HashMap::new(),
+            started: false,
+            open_parts: 0,
+            banned: HashSet::new(),
+            queued_cost: 0,
+            done: Vec::new(),
+            part_index: Vec::new(),
+            stats: Stats::default(),
+        };
+        for part in parts {
+            st.add(part);
+        }
+        st.stats.shards = st.shards.len() as u64;
+        st
+    }
+
+    fn add(&mut self, part: PlannedPart) {
+        let p = self.parts.len();
+        let first = self.shards.len() as u64;
+        for r in part.ranges.iter().cloned() {
+            let combinations = if r == WHOLE {
+                fixplan_core::combinations::combination_count(part.segments)
+            } else {
+                r.end - r.start
+            };
+            let cost = crate::job::shards::cost(combinations, part.segments);
+            self.queue.push_back(self.shards.len() as u64);
+            self.queued_cost += cost;
+            self.shards.push(ShardSlot {
+                part: p,
+                range: r,
+                cost,
+                status: ShardStatus::Queued,
+                by: None,
+            });
+        }
+        self.parts.push(PartSlot {
+            prep: part.prep,
+            source: part.source,
+            digest: digest(&part.input),
+            input: Arc::new(part.input),
+            shard_ids: first..first + part.ranges.len() as u64,
+            stop: None,
+            partials: Vec::new(),
+            top: Vec::new(),
+            closed: false,
+        });
+        self.part_index.push(part.index);
+        self.open_parts += 1;
+    }
+}
+
+/// Puts one shard back at the front of the queue, whatever became of it.
+pub(super) fn back_in_queue(st: &mut State, id: u64) {
+    let sh = &mut st.shards[id as usize];
+    sh.status = ShardStatus::Queued;
+    sh.by = None;
+    st.queued_cost += sh.cost;
+    st.queue.push_front(id);
+    st.stats.requeued += 1;
+}
+
+/// Puts shards that are not done back at the front of the queue.
+pub(super) fn requeue(st: &mut State, ids: impl Iterator<Item = u64>) -> usize {
+    let mut n = 0;
+    for id in ids {
+        if let Some(sh) = st.shards.get_mut(id as usize) {
+            if sh.status != ShardStatus::Done && sh.status != ShardStatus::Queued {
+                back_in_queue(st, id);
+                n += 1;
+            }
+        }
+    }
+    n
+}

@@ -1,0 +1,265 @@
+//! The scheduler driven by hand: bans, lost replies, batch sizes.
+
+use super::state::ShardStatus;
+use super::*;
+use crate::cluster::verify::VerifyPolicy;
+use fixplan_catalog::kit::{builtin_kit, METRIC_25};
+use fixplan_core::{Params, Part};
+use fixplan_worker::part_input::PartInput;
+use fixplan_worker::protocol::{Assign, TransportChoice};
+use std::sync::mpsc::{channel, Receiver};
+use std::sync::Arc;
+use std::time::Duration;
+
+fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> Scheduler {
+    let (c, rx) = core_rx(parts, shard, verify);
+    // Keep the channel open for parts that do close.
+    std::mem::forget(rx);
+    c
+}
+
+fn core_rx(parts: usize, shard: u64, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
+    let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
+    let planned = (0..parts)
+        .map(|i| {
+            let w = 100.0 + 10.0 * i as f64;
+            let part = Part {
+                outline: vec![[0.0, 0.0], [w, 0.0], [w, 60.0], [0.0, 60.0]],
+                access: vec![],
+            };
+            let source = PartInput {
+                part,
+                kit: kit.clone(),
+                params: Params::default(),
+                units,
+            };
+            let prep = source.prepare().expect("prepare");
+            PlannedPart {
+                index: i,
+                ranges: crate::job::shards::ranges(prep.combination_count(), shard),
+                segments: prep.segments.len(),
+                prep: Some(Arc::new(prep)),
+                source: Arc::new(source),
+                input: vec![i as u8],
+            }
+        })
+        .collect();
+    let settings = Settings {
+        run_id: "run".into(),
+        host_id: "host".into(),
+        transport: TransportChoice::Zenoh,
+        iox: None,
+        iox_clients: 1,
+        lease: Duration::from_secs(300),
+        min_workers: 1,
+        verify,
+        good_enough: None,
+        batch_cost: 1,
+    };
+    let (tx, rx) = channel();
+    (Scheduler::new(settings, planned, tx), rx)
+}
+
+/// The honest outcome of each shard of `batch` (part 0).
+fn honest(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+    let prep = c.lock().parts[0].prep.clone().expect("prepared");
+    batch
+        .iter()
+        .map(|a| {
+            Outcome::Done(Box::new(ShardDone {
+                shard_id: a.shard_id,
+                digest: a.digest,
+                micros: 1,
+                result: prep.enumerate_range(a.range.clone()),
+                hit: None,
+            }))
+        })
+        .collect()
+}
+
+fn report(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>) -> Frame {
+    let msg = Msg::Report {
+        worker: worker.into(),
+        outcomes,
+    };
+    decode(&c.handle(&encode(&msg).expect("encode"))).expect("decode")
+}
+
+#[test]
+fn a_banned_worker_s_work_on_open_parts_is_done_again() {
+    let (mut c, rx) = core_rx(1, 4, VerifyPolicy::All);
+    let total = c.lock().queued_cost;
+    c.settings.batch_cost = total / 4;
+    join(&c, "a");
+    join(&c, "b");
+    let Next::Work(first) = c.next_work("a") else {
+        panic!("no work")
+    };
+    let first_ids: Vec<u64> = first.iter().map(|a| a.shard_id).collect();
+    // `a` hands in honest results and gets more work...
+    let Frame::Msg(Msg::Reply {
+        next: Next::Work(second),
+        ..
+    }) = report(&c, "a", honest(&c, &first))
+    else {
+        panic!("no second batch")
+    };
+    assert!(first_ids
+        .iter()
+        .all(|&id| c.lock().shards[id as usize].status == ShardStatus::Done));
+    // ...then lies about one fixture of it.
+    let mut lies = honest(&c, &second);
+    let forged = lies.iter_mut().find_map(|o| match o {
+        Outcome::Done(d) if !d.result.fixtures.is_empty() => Some(d),
+        _ => None,
+    });
+    forged.expect("a shard with fixtures").result.fixtures[0].score *= 0.5;
+    assert!(matches!(report(&c, "a", lies), Frame::Refused(_)));
+    // Its first, accepted results are back in the queue.
+    for &id in &first_ids {
+        assert_eq!(c.lock().shards[id as usize].status, ShardStatus::Queued);
+    }
+    // `b` does everything; the part comes out as one enumeration.
+    let mut outcomes = Vec::new();
+    loop {
+        match report(&c, "b", outcomes) {
+            Frame::Msg(Msg::Reply {
+                next: Next::Work(b),
+                ..
+            }) => outcomes = honest(&c, &b),
+            Frame::Msg(Msg::Reply {
+                next: Next::Done, ..
+            }) => break,
+            f => panic!("{f:?}"),
+        }
+    }
+    let done = rx.try_recv().expect("the part");
+    let Ok(f) = &done[0].1 else { panic!("failed") };
+    let prep = c.lock().parts[0].prep.clone().expect("prepared");
+    assert_eq!(f.merged, prep.enumerate_all());
+}
+
+fn join(c: &Scheduler, name: &str) {
+    let j = Join {
+        worker: name.into(),
+        host_id: "other".into(),
+        pid: 1,
+        threads: 1,
+        transport: TransportChoice::Zenoh,
+        software: "test".into(),
+    };
+    assert!(matches!(c.join(j), Ok(Msg::Welcome(_))));
+}
+
+fn ids(n: &Next) -> Vec<u64> {
+    match n {
+        Next::Work(b) => b.iter().map(|a| a.shard_id).collect(),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn shards_of_a_lost_reply_go_back_to_the_queue() {
+    let c = core(2, 8, VerifyPolicy::All);
+    join(&c, "w");
+    let first = ids(&c.next_work("w"));
+    assert!(!first.is_empty());
+    // The reply was lost: the worker reports again with no outcome.
+    let again = ids(&c.next_work("w"));
+    assert_eq!(again, first, "the same shards, handed out again");
+    assert_eq!(c.stats().requeued, first.len() as u64);
+    // An unknown worker is told to join.
+    assert_eq!(c.next_work("stranger"), Next::Rejoin);
+}
+
+#[test]
+fn nothing_else_of_a_report_counts_after_a_bad_result() {
+    let mut c = core(1, 4, VerifyPolicy::All);
+    c.settings.batch_cost = u64::MAX;
+    join(&c, "liar");
+    let Next::Work(batch) = c.next_work("liar") else {
+        panic!("no work")
+    };
+    let prep = c.lock().parts[0].prep.clone().expect("prepared");
+    let mut outcomes: Vec<(bool, Outcome)> = batch
+        .iter()
+        .map(|a| {
+            let mut result = prep.enumerate_range(a.range.clone());
+            let bad = !result.fixtures.is_empty();
+            if let Some(f) = result.fixtures.first_mut() {
+                f.score *= 0.5;
+            }
+            let done = ShardDone {
+                shard_id: a.shard_id,
+                digest: a.digest,
+                micros: 1,
+                result,
+                hit: None,
+            };
+            (bad, Outcome::Done(Box::new(done)))
+        })
+        .collect();
+    // One corrupted result first, honest ones after it.
+    let first_bad = outcomes
+        .iter()
+        .position(|o| o.0)
+        .expect("a shard with fixtures");
+    let bad = outcomes.remove(first_bad);
+    let mut honest: Vec<Outcome> = outcomes.into_iter().filter(|o| !o.0).map(|o| o.1).collect();
+    assert!(!honest.is_empty(), "need honest shards too");
+    let ids: Vec<u64> = honest
+        .iter()
+        .map(|o| match o {
+            Outcome::Done(d) => d.shard_id,
+            Outcome::Failed(f) => f.shard_id,
+        })
+        .collect();
+    honest.insert(0, bad.1);
+    let report = encode(&Msg::Report {
+        worker: "liar".into(),
+        outcomes: honest,
+    })
+    .expect("encode");
+    let reply = decode(&c.handle(&report)).expect("decode");
+    assert!(
+        matches!(reply, Frame::Refused(ref r) if r.contains("liar")),
+        "{reply:?}"
+    );
+    let st = c.lock();
+    assert_eq!(st.stats.rejected, 1);
+    for id in ids {
+        assert_ne!(
+            st.shards[id as usize].status,
+            ShardStatus::Done,
+            "shard {id}"
+        );
+    }
+}
+
+#[test]
+fn batches_shrink_as_the_queue_runs_out() {
+    let mut c = core(3, 4, VerifyPolicy::All);
+    let total = c.lock().queued_cost;
+    c.settings.batch_cost = total / 4;
+    join(&c, "w");
+    let mut sizes = Vec::new();
+    loop {
+        let n = c.next_work("w");
+        let Next::Work(b) = &n else { break };
+        let cost: u64 = b
+            .iter()
+            .map(|a| c.lock().shards[a.shard_id as usize].cost)
+            .sum();
+        sizes.push(cost);
+        // Drop the lease so the next call does not re-queue the batch.
+        c.lock().workers.get_mut("w").unwrap().leased.clear();
+        for a in b {
+            c.lock().shards[a.shard_id as usize].status = ShardStatus::Done;
+        }
+    }
+    assert!(sizes.len() >= 4, "{sizes:?}");
+    let max_shard = c.lock().shards.iter().map(|s| s.cost).max().unwrap();
+    assert!(sizes[0] <= total / 4 + max_shard, "{sizes:?}");
+    assert!(sizes.last() < sizes.first(), "{sizes:?}");
+    assert_eq!(sizes.iter().sum::<u64>(), total);
+}

@@ -1,0 +1,172 @@
+//! The workers: who joins and over which data path, who is lost, whose
+//! leases run out, and what becomes of the work of a worker caught
+//! sending a bad result.
+
+use super::errors::Refusal;
+use super::state::{
+    back_in_queue, requeue, Settings, ShardSlot, ShardStatus, State, WorkerSlot, ROLE,
+};
+use fixplan_worker::protocol::{DataPath, Join, Msg, Next, TransportChoice, Welcome};
+use fixplan_worker::{info, warn};
+use std::collections::HashSet;
+use std::time::Instant;
+
+/// Where a joining worker is to send its requests: iceoryx2 shared memory
+/// if it is on this host and the coordinator serves it, else zenoh; a
+/// refusal if iceoryx2 is forced but cannot reach it.
+pub(super) fn data_path(s: &Settings, j: &Join) -> Result<DataPath, Refusal> {
+    let same_host = j.host_id == s.host_id;
+    let forced = |t| s.transport == t || j.transport == t;
+    if forced(TransportChoice::Zenoh) {
+        return Ok(DataPath::Zenoh);
+    }
+    match (&s.iox, same_host) {
+        (Some(d), true) => Ok(d.clone()),
+        _ if forced(TransportChoice::Iceoryx2) => {
+            warn!(
+                ROLE,
+                "refused worker {}: iceoryx2 forced but it is on another host", j.worker
+            );
+            Err(Refusal::IoxOnAnotherHost)
+        }
+        _ => Ok(DataPath::Zenoh),
+    }
+}
+
+/// Welcomes a worker, or tells it the run is over. A worker that joins
+/// again under its name (restarted) had its shards: they go back to the
+/// queue.
+pub(super) fn join(st: &mut State, s: &Settings, j: Join, data: DataPath) -> Msg {
+    if st.open_parts == 0 {
+        return Msg::Reply {
+            notes: Vec::new(),
+            next: Next::Done,
+        };
+    }
+    st.stats.workers_joined += 1;
+    let how = if data == DataPath::Zenoh {
+        "zenoh"
+    } else {
+        "iceoryx2"
+    };
+    info!(
+        ROLE,
+        "worker {} joined (pid {}, {} threads, fixplan {}, shards over {how})",
+        j.worker,
+        j.pid,
+        j.threads,
+        j.software
+    );
+    let old = st.workers.insert(
+        j.worker.clone(),
+        WorkerSlot {
+            name: j.worker.as_str().into(),
+            parts_sent: HashSet::new(),
+            leased: HashSet::new(),
+            got_done: false,
+            shards: 0,
+            threads: u64::from(j.threads.max(1)),
+            rederived: 0,
+        },
+    );
+    if let Some(old) = old {
+        requeue(st, old.leased.into_iter());
+    }
+    Msg::Welcome(Welcome {
+        run_id: s.run_id.clone(),
+        data,
+        lease_ms: s.lease.as_millis() as u64,
+    })
+}
+
+/// A worker's liveliness token vanished: its shards go back to the queue.
+pub(super) fn lost(st: &mut State, worker: &str) {
+    if let Some(w) = st.workers.remove(worker) {
+        st.stats.workers_lost += 1;
+        let n = requeue(st, w.leased.into_iter());
+        if st.open_parts > 0 {
+            info!(
+                ROLE,
+                "worker {worker} left after {} shards; {n} shards back in the queue", w.shards
+            );
+        }
+    }
+}
+
+/// Shards whose lease ran out by `now` go back to the queue (their worker
+/// may still answer: the first result wins).
+pub(super) fn expire_leases(st: &mut State, now: Instant) {
+    let expired: Vec<(u64, String)> = st
+        .shards
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| match &s.status {
+            ShardStatus::Leased { worker, until } if *until <= now => {
+                Some((i as u64, worker.clone()))
+            }
+            _ => None,
+        })
+        .collect();
+    for (id, worker) in expired {
+        warn!(
+            ROLE,
+            "shard {id}: lease of worker {worker} ran out; back in the queue"
+        );
+        if let Some(w) = st.workers.get_mut(&worker) {
+            w.leased.remove(&id);
+        }
+        requeue(st, std::iter::once(id));
+    }
+}
+
+/// A worker sent a bad result for shard `id`: it gets no more work, what
+/// it holds and that shard go back to the queue, and what it did for
+/// parts still open is done again.
+pub(super) fn ban(st: &mut State, worker: &str, id: u64) {
+    if let Some(w) = st.workers.remove(worker) {
+        requeue(st, w.leased.into_iter());
+    }
+    st.banned.insert(worker.to_string());
+    requeue(st, std::iter::once(id));
+    redo_work_of(st, worker);
+}
+
+/// A worker failed a check: what it did for parts still open is done
+/// again (its results there were taken, most of them unchecked under
+/// [`crate::cluster::VerifyPolicy::Sample`]). Parts already delivered keep
+/// theirs: a worker is checked in full until it has earned some trust,
+/// which is where a build or platform that computes differently shows up.
+fn redo_work_of(st: &mut State, worker: &str) {
+    let mine = |sh: &ShardSlot| sh.by.as_deref() == Some(worker);
+    let parts: HashSet<usize> = st
+        .shards
+        .iter()
+        .filter(|sh| mine(sh) && !st.parts[sh.part].closed)
+        .map(|sh| sh.part)
+        .collect();
+    for p in parts {
+        let part = &mut st.parts[p];
+        part.partials
+            .retain(|h| st.shards[h.shard as usize].by.as_deref() != Some(worker));
+        let held: HashSet<u64> = part.partials.iter().map(|h| h.shard).collect();
+        part.stop = part.partials.iter().filter_map(|h| h.hit).min();
+        let lists = part
+            .partials
+            .iter()
+            .map(|h| h.result.fixtures.clone())
+            .collect();
+        part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k());
+        let stop = part.stop;
+        for id in part.shard_ids.clone() {
+            let sh = &st.shards[id as usize];
+            // Done but not held: this worker's, or skipped past a stop
+            // that may have been its.
+            if sh.status == ShardStatus::Done
+                && !held.contains(&id)
+                && stop.is_none_or(|s| sh.range.start <= s)
+            {
+                back_in_queue(st, id);
+            }
+        }
+    }
+}
