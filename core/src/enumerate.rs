@@ -210,8 +210,3 @@ pub fn merge(top_k: usize, parts: Vec<PartialResult>) -> PartialResult {
         fixtures: merge_ranked(lists, top_k),
     }
 }
-
-/// Convenience: the ranked fixtures of a part, best first.
-pub fn ranked(prep: &PreparedPart) -> Vec<Fixture> {
-    prep.enumerate_all().fixtures
-}
