@@ -12,9 +12,9 @@
 //! - **prepared parts**: segments, pair bounds and the metric depend on the
 //!   part, the lattice spacing, the locator radius, the edge trim and the
 //!   wrenches only. They are prepared once per such key and the plate,
-//!   clamp, angle, clearance, grid step and top-k fields are taken from a
-//!   `prepare` of the variant on a unit triangle (the core's own code, so
-//!   no conversion is duplicated here; tested equal to a fresh `prepare`);
+//!   clamp, angle, clearance, grid step and top-k come from
+//!   [`PreparedPart::with_kit`] (the core's own conversion, which checks
+//!   the key's fields and is tested equal to a fresh `prepare`);
 //! - **no fixture on a larger plate**: the plate size enters SPEC only in
 //!   the last admissibility test (the fixture fits the `cols x rows` holes),
 //!   and what fits a plate fits any plate at least as large in both
@@ -39,8 +39,7 @@ use crate::sweep::{apply, point_label, Sweep};
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
 use fixplan_core::{
-    prepare, report, Counts, Kit, Params, Part, PrepareError, PreparedPart, SolveResult, Status,
-    Units,
+    prepare, report, Counts, Kit, Params, PrepareError, PreparedPart, SolveResult, Status, Units,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -208,33 +207,6 @@ fn geometry_key(part: usize, kit: &Kit, params: &Params, units: Units) -> String
     .to_string()
 }
 
-/// `prepare(part, kit, params)` from a part prepared with the same
-/// geometry key: the kit- and parameter-only fields come from a `prepare`
-/// of a unit triangle with this kit and these parameters.
-pub fn graft(
-    base: &PreparedPart,
-    kit: &Kit,
-    params: &Params,
-    units: Units,
-) -> Result<PreparedPart, PrepareError> {
-    let l = kit.spacing;
-    let tri = Part {
-        outline: vec![[0.0, 0.0], [l, 0.0], [0.0, l]],
-        access: Vec::new(),
-    };
-    let d = prepare(&tri, kit, params, units)?;
-    let mut p = base.clone();
-    p.pattern = d.pattern;
-    p.cols = d.cols;
-    p.rows = d.rows;
-    p.clamp = d.clamp;
-    p.cos_max_angle = d.cos_max_angle;
-    p.min_clearance = d.min_clearance;
-    p.grid_step = d.grid_step;
-    p.top_k = d.top_k;
-    Ok(p)
-}
-
 /// Percentiles as documented on [`StudyKitMsg`].
 pub fn median(sorted: &[f64]) -> Option<f64> {
     let n = sorted.len();
@@ -340,7 +312,7 @@ impl Engine<'_> {
                     let t0 = Instant::now();
                     let prepared = match (key.as_ref().and_then(|k| bases.get(k)), &cp.part) {
                         (Some(Ok(base)), _) => {
-                            Some(graft(base, ctx.kit, &part_params(&ctx, cp), units))
+                            Some(base.with_kit(ctx.kit, &part_params(&ctx, cp), units))
                         }
                         // A part that cannot be prepared: prepare it with
                         // this kit, for this kit's exact message.

@@ -87,13 +87,13 @@ impl Scratch {
     ) -> Option<f64> {
         self.ensure_posed(prep, setup);
         let mv = lattice_point(m);
-        let c = &prep.clamp;
+        let c = &prep.setting.clamp;
         self.body.clear();
         self.body.extend(c.body.iter().map(|&p| rot90(k, p) + mv));
         self.plunger.clear();
         self.plunger
             .extend(c.plunger.iter().map(|&p| rot90(k, p + v2(t, 0.0)) + mv));
-        let need = prep.min_clearance;
+        let need = prep.setting.min_clearance;
         let locs = setup.locators.map(lattice_point);
         let mut margin = f64::INFINITY;
         for poly in [&self.body, &self.plunger] {
@@ -124,7 +124,7 @@ impl Scratch {
     }
 
     /// Locators and clamp mount holes, for the plate fit.
-    pub fn plate_points(
+    pub(crate) fn plate_points(
         &mut self,
         locators: &[[i64; 2]; 3],
         c: &ClampGeom,

@@ -98,8 +98,8 @@ impl PreparedPart {
             let mut cos_ok = [None; 4];
             for (k, slot) in cos_ok.iter_mut().enumerate() {
                 let c = rot90(k as u8, v2(1.0, 0.0)).dot(&f);
-                if c > EPS && c >= self.cos_max_angle - EPS {
-                    *slot = Some((c - self.cos_max_angle.max(0.0)).abs().min(c - EPS));
+                if c > EPS && c >= self.setting.cos_max_angle - EPS {
+                    *slot = Some((c - self.setting.cos_max_angle.max(0.0)).abs().min(c - EPS));
                 }
             }
             if cos_ok.iter().all(Option::is_none) {
@@ -119,7 +119,7 @@ impl PreparedPart {
                 };
                 let k = k as u8;
                 let e = rot90(k, v2(0.0, 1.0));
-                let g0 = e.dot(&q0) - self.clamp.y0;
+                let g0 = e.dot(&q0) - self.setting.clamp.y0;
                 let g1 = e.dot(&dq);
                 let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
                 let (gmin, gmax) = (ga.min(gb), ga.max(gb));
@@ -176,7 +176,7 @@ impl PreparedPart {
         let k = cand.rotation;
         let d = rot90(k, v2(1.0, 0.0));
         let dq = d.dot(&cand.q);
-        let c = &self.clamp;
+        let c = &self.setting.clamp;
         let m_hi = (dq - c.t_min + EPS).floor() as i64;
         let m_lo = (dq - c.t_max - EPS).ceil() as i64;
         let di = rot90i(k, [1, 0]);
@@ -193,7 +193,7 @@ impl PreparedPart {
                 let p = rot90i(k, h.offset);
                 let p = [p[0] + m[0], p[1] + m[1]];
                 !setup.locators.contains(&p)
-                    && (self.pattern == Pattern::Square || h.kind.accepts(p[0], p[1]))
+                    && (self.setting.pattern == Pattern::Square || h.kind.accepts(p[0], p[1]))
             });
             if !holes_ok {
                 continue;
@@ -202,7 +202,12 @@ impl PreparedPart {
             let clear = scratch.clamp_clear(self, setup, k, m, t);
             let placement = clear.and_then(|_| {
                 let pts = scratch.plate_points(&setup.locators, c, k, m);
-                crate::plate::fit(pts, self.cols, self.rows, self.pattern)
+                crate::plate::fit(
+                    pts,
+                    self.setting.cols,
+                    self.setting.rows,
+                    self.setting.pattern,
+                )
             });
             let ns = lap(clock);
             if let Some(tm) = scratch.timing.as_mut() {

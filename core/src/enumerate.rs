@@ -84,7 +84,7 @@ impl PreparedPart {
         good_enough: Option<f64>,
     ) -> (PartialResult, Profile, Option<u64>) {
         let clock = std::time::Instant::now();
-        let mut acc = Accumulator::new(self.top_k);
+        let mut acc = Accumulator::new(self.setting.top_k);
         let mut scratch = Scratch::default();
         scratch.timing = timed.then(Timing::default);
         let mut search = SearchStats::default();
@@ -128,7 +128,7 @@ impl PreparedPart {
             .into_par_iter()
             .map(|r| self.enumerate_range_serial(r))
             .collect();
-        let mut out = merge(self.top_k, parts);
+        let mut out = merge(self.setting.top_k, parts);
         out.range = range;
         out.counts.segments = self.segments.len() as u64;
         out
@@ -167,7 +167,7 @@ impl PreparedPart {
             .map(|p| p.0)
             .filter(|p| stop.is_none_or(|s| p.range.start <= s))
             .collect();
-        let mut out = merge(self.top_k, kept);
+        let mut out = merge(self.setting.top_k, kept);
         out.range = range.start..stop.map_or(range.end, |s| s + 1);
         out.counts.segments = self.segments.len() as u64;
         (out, stop)

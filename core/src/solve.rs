@@ -58,6 +58,7 @@ pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureR
         normal: f.normals[3],
     });
     let clamp_holes = prep
+        .setting
         .clamp
         .holes
         .iter()

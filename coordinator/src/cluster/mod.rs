@@ -260,10 +260,10 @@ pub fn run_distributed(
                 continue;
             }
             Some(Ok(prep)) => {
-                let (count, n) = (prep.combination_count(), prep.segments.len());
+                let (count, n) = (prep.combination_count(), prep.segments().len());
                 if count == 0 {
                     let r = fixplan_worker::run_shard(&prep, 0..0);
-                    let merged = fixplan_core::merge(prep.top_k, vec![r]);
+                    let merged = fixplan_core::merge(prep.top_k(), vec![r]);
                     let done = Finished {
                         prep: Some(Arc::new(prep)),
                         input: source,

@@ -819,7 +819,7 @@ mod tests {
                 };
                 let prep = source.prepare().expect("prepare");
                 let ranges = super::super::plan::ranges(prep.combination_count(), shard);
-                let segments = prep.segments.len();
+                let segments = prep.segments().len();
                 let slot = PartSlot {
                     prep: Some(Arc::new(prep)),
                     source: Arc::new(source),
