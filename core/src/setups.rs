@@ -17,8 +17,13 @@ const ANNULUS_SLACK: f64 = 1e-7;
 /// A locator setup: combination, canonical locators and pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setup {
+    /// Segments touched by locators 1, 2, 3 (indices into the part's
+    /// segments).
     pub combo: [usize; 3],
+    /// `L1 = (0, 0)`, `L2`, `L3`: the canonical frame puts `L1` at the
+    /// origin so a fixture is counted once, not once per plate position.
     pub locators: [[i64; 2]; 3],
+    /// The part pose touching all three.
     pub pose: Pose,
     /// Contact parameters of the three locators on their segments.
     pub s: [f64; 3],
@@ -180,6 +185,7 @@ pub struct SearchStats {
 }
 
 impl SearchStats {
+    /// Sums the statistics of pieces of work (threads, shards).
     pub fn add(&mut self, o: &SearchStats) {
         self.locator_triples += o.locator_triples;
         self.pose_solutions += o.pose_solutions;
