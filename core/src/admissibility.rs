@@ -22,6 +22,7 @@ pub struct Timing {
 }
 
 impl Timing {
+    /// Sums the timings of pieces of work (threads, shards).
     pub fn add(&mut self, o: &Timing) {
         self.setups_ns += o.setups_ns;
         self.admissibility_ns += o.admissibility_ns;
@@ -51,8 +52,9 @@ pub struct Scratch {
 }
 
 impl Scratch {
-    /// Forget the posed part: a new setup begins.
-    pub fn reset_pose(&mut self) {
+    /// Forget the posed part: a new setup begins. Crate-private because the
+    /// posed-part cache is only right if this is called at every setup.
+    pub(crate) fn reset_pose(&mut self) {
         self.posed = false;
     }
 
@@ -77,7 +79,7 @@ impl Scratch {
     /// Smallest clearance margin of body and plunger (rotation `k`, mount
     /// `m`, extension `t`) against part, access regions and locators, or
     /// `None` when one is closer than `min_clearance` or overlaps.
-    pub fn clamp_clear(
+    pub(crate) fn clamp_clear(
         &mut self,
         prep: &PreparedPart,
         setup: &Setup,
@@ -87,13 +89,13 @@ impl Scratch {
     ) -> Option<f64> {
         self.ensure_posed(prep, setup);
         let mv = lattice_point(m);
-        let c = &prep.clamp;
+        let c = &prep.setting.clamp;
         self.body.clear();
         self.body.extend(c.body.iter().map(|&p| rot90(k, p) + mv));
         self.plunger.clear();
         self.plunger
             .extend(c.plunger.iter().map(|&p| rot90(k, p + v2(t, 0.0)) + mv));
-        let need = prep.min_clearance;
+        let need = prep.setting.min_clearance;
         let locs = setup.locators.map(lattice_point);
         let mut margin = f64::INFINITY;
         for poly in [&self.body, &self.plunger] {
@@ -124,7 +126,7 @@ impl Scratch {
     }
 
     /// Locators and clamp mount holes, for the plate fit.
-    pub fn plate_points(
+    pub(crate) fn plate_points(
         &mut self,
         locators: &[[i64; 2]; 3],
         c: &ClampGeom,

@@ -7,21 +7,26 @@ use crate::form_closure::{wrench, LocatorWrenches};
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::Pattern;
 use crate::metric::PartContact;
+use crate::plate::Placement;
 use crate::prepare::PreparedPart;
 use crate::ranking::{Fixture, TopK};
 use crate::report::Counts;
 use crate::setups::{lattice_point, Setup};
 
-/// Counts and best fixtures of one piece of work.
+/// Counts and best fixtures of one piece of work: one per thread, merged
+/// at the end, so the inner loop shares nothing.
 #[derive(Debug, Clone)]
 pub struct Accumulator {
+    /// SPEC section 4's counts so far.
     pub counts: Counts,
+    /// The best fixtures so far.
     pub top: TopK,
     /// Lowest score admitted so far (for `--good-enough`).
     pub best_score: f64,
 }
 
 impl Accumulator {
+    /// Empty, keeping the best `top_k` fixtures (0: all).
     pub fn new(top_k: usize) -> Self {
         Accumulator {
             counts: Counts::default(),
@@ -33,18 +38,30 @@ impl Accumulator {
 
 /// A candidate clamp contact.
 #[derive(Debug, Clone, Copy)]
-pub struct Candidate {
+pub(crate) struct Candidate {
+    /// Segment the tip touches.
     pub segment: usize,
+    /// Quarter turns of the clamp frame.
     pub rotation: u8,
     /// Axis line index: `e_k . m` for every mount of this candidate.
     pub line: i64,
-    /// Contact parameter and tip centre (plate frame).
-    pub s: f64,
+    /// Tip centre (plate frame).
     pub q: V2,
     /// Inward normal (plate frame).
     pub f: V2,
     /// Smallest decision margin so far (segment, lambda, angle).
     pub margin: f64,
+}
+
+/// The clamp mount the search settled on.
+struct Mount {
+    /// Lattice point of mount hole 0.
+    m: [i64; 2],
+    /// Extension.
+    t: f64,
+    /// Smallest clearance margin of body and plunger.
+    clear_margin: f64,
+    placement: Placement,
 }
 
 impl PreparedPart {
@@ -98,8 +115,8 @@ impl PreparedPart {
             let mut cos_ok = [None; 4];
             for (k, slot) in cos_ok.iter_mut().enumerate() {
                 let c = rot90(k as u8, v2(1.0, 0.0)).dot(&f);
-                if c > EPS && c >= self.cos_max_angle - EPS {
-                    *slot = Some((c - self.cos_max_angle.max(0.0)).abs().min(c - EPS));
+                if c > EPS && c >= self.setting.cos_max_angle - EPS {
+                    *slot = Some((c - self.setting.cos_max_angle.max(0.0)).abs().min(c - EPS));
                 }
             }
             if cos_ok.iter().all(Option::is_none) {
@@ -119,7 +136,7 @@ impl PreparedPart {
                 };
                 let k = k as u8;
                 let e = rot90(k, v2(0.0, 1.0));
-                let g0 = e.dot(&q0) - self.clamp.y0;
+                let g0 = e.dot(&q0) - self.setting.clamp.y0;
                 let g1 = e.dot(&dq);
                 let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
                 let (gmin, gmax) = (ga.min(gb), ga.max(gb));
@@ -135,7 +152,6 @@ impl PreparedPart {
                             segment: j,
                             rotation: k,
                             line,
-                            s,
                             q,
                             f,
                             margin: base_margin
@@ -155,9 +171,10 @@ impl PreparedPart {
         }
     }
 
-    /// The mount search of SPEC 4: mounts by increasing extension, the first
-    /// that passes every test. `None` if the candidate is not admissible.
-    pub fn admit(
+    /// A candidate made a fixture: the tip must clear the locators, then
+    /// the first mount of [`Self::first_mount`] decides. `None` if the
+    /// candidate is not admissible.
+    pub(crate) fn admit(
         &self,
         setup: &Setup,
         normals: &[V2; 3],
@@ -173,10 +190,45 @@ impl PreparedPart {
             }
             margin = margin.min(d.abs());
         }
+        let mount = self.first_mount(setup, cand, scratch)?;
+        let c = &self.setting.clamp;
+        let t = mount.t;
+        let t_margin = (t - c.t_min).min(c.t_max - t).abs();
+        let margin = margin.min(mount.clear_margin).min(t_margin);
+        let score = self.score(setup, cand, scratch);
+        let pose = setup.pose;
+        Some(Fixture {
+            score,
+            segments: setup.combo,
+            locators: setup.locators,
+            theta: pose.theta,
+            t: [pose.t.x, pose.t.y],
+            clamp_segment: cand.segment,
+            rotation: cand.rotation,
+            mount: mount.m,
+            extension: t,
+            contact: [cand.q.x, cand.q.y],
+            normals: [
+                [normals[0].x, normals[0].y],
+                [normals[1].x, normals[1].y],
+                [normals[2].x, normals[2].y],
+                [cand.f.x, cand.f.y],
+            ],
+            borderline: margin < BORDERLINE,
+            placement: mount.placement,
+        })
+    }
+
+    /// The mount search of SPEC 4: mounts on the candidate's axis line by
+    /// increasing extension, the first whose holes, clearances and plate
+    /// fit all pass. SPEC fixes this order so every implementation reports
+    /// the same mount.
+    #[inline]
+    fn first_mount(&self, setup: &Setup, cand: &Candidate, scratch: &mut Scratch) -> Option<Mount> {
         let k = cand.rotation;
         let d = rot90(k, v2(1.0, 0.0));
         let dq = d.dot(&cand.q);
-        let c = &self.clamp;
+        let c = &self.setting.clamp;
         let m_hi = (dq - c.t_min + EPS).floor() as i64;
         let m_lo = (dq - c.t_max - EPS).ceil() as i64;
         let di = rot90i(k, [1, 0]);
@@ -189,69 +241,67 @@ impl PreparedPart {
                 cand.line * ei[1] + along * di[1],
             ];
             along -= 1;
-            let holes_ok = c.holes.iter().all(|h| {
-                let p = rot90i(k, h.offset);
-                let p = [p[0] + m[0], p[1] + m[1]];
-                !setup.locators.contains(&p)
-                    && (self.pattern == Pattern::Square || h.kind.accepts(p[0], p[1]))
-            });
-            if !holes_ok {
+            if !self.mount_holes_free(setup, k, m) {
                 continue;
             }
             let clock = scratch.timing.is_some().then(std::time::Instant::now);
             let clear = scratch.clamp_clear(self, setup, k, m, t);
             let placement = clear.and_then(|_| {
                 let pts = scratch.plate_points(&setup.locators, c, k, m);
-                crate::plate::fit(pts, self.cols, self.rows, self.pattern)
+                let s = &self.setting;
+                crate::plate::fit(pts, s.cols, s.rows, s.pattern)
             });
             let ns = lap(clock);
             if let Some(tm) = scratch.timing.as_mut() {
                 tm.admissibility_ns += ns;
             }
-            let (Some(clear_margin), Some(placement)) = (clear, placement) else {
-                continue;
-            };
-            let t_margin = (t - c.t_min).min(c.t_max - t).abs();
-            let margin = margin.min(clear_margin).min(t_margin);
-            let pose = setup.pose;
-            let contacts = [0, 1, 2, 3].map(|i| {
-                let (q, seg) = if i < 3 {
-                    (locs[i], setup.combo[i])
-                } else {
-                    (cand.q, cand.segment)
-                };
-                PartContact {
-                    q: pose.inverse_apply(q),
-                    f: -self.segments[seg].n,
-                }
-            });
-            let clock = scratch.timing.is_some().then(std::time::Instant::now);
-            let score = self.metric.score(&contacts).unwrap_or(f64::INFINITY);
-            let ns = lap(clock);
-            if let Some(tm) = scratch.timing.as_mut() {
-                tm.metric_ns += ns;
+            if let (Some(clear_margin), Some(placement)) = (clear, placement) {
+                return Some(Mount {
+                    m,
+                    t,
+                    clear_margin,
+                    placement,
+                });
             }
-            return Some(Fixture {
-                score,
-                segments: setup.combo,
-                locators: setup.locators,
-                theta: pose.theta,
-                t: [pose.t.x, pose.t.y],
-                clamp_segment: cand.segment,
-                rotation: k,
-                mount: m,
-                extension: t,
-                contact: [cand.q.x, cand.q.y],
-                normals: [
-                    [normals[0].x, normals[0].y],
-                    [normals[1].x, normals[1].y],
-                    [normals[2].x, normals[2].y],
-                    [cand.f.x, cand.f.y],
-                ],
-                borderline: margin < BORDERLINE,
-                placement,
-            });
         }
         None
+    }
+
+    /// Whether the clamp (rotation `k`, mount `m`) can be bolted down: no
+    /// mount hole on a locator, each on a hole of the kind it needs.
+    #[inline]
+    fn mount_holes_free(&self, setup: &Setup, k: u8, m: [i64; 2]) -> bool {
+        self.setting.clamp.holes.iter().all(|h| {
+            let p = rot90i(k, h.offset);
+            let p = [p[0] + m[0], p[1] + m[1]];
+            !setup.locators.contains(&p)
+                && (self.setting.pattern == Pattern::Square || h.kind.accepts(p[0], p[1]))
+        })
+    }
+
+    /// The metric's score of the four contacts, in the part frame so it
+    /// does not depend on where the part sits on the plate.
+    #[inline]
+    fn score(&self, setup: &Setup, cand: &Candidate, scratch: &mut Scratch) -> f64 {
+        let locs = setup.locators.map(lattice_point);
+        let pose = setup.pose;
+        let contacts = [0, 1, 2, 3].map(|i| {
+            let (q, seg) = if i < 3 {
+                (locs[i], setup.combo[i])
+            } else {
+                (cand.q, cand.segment)
+            };
+            PartContact {
+                q: pose.inverse_apply(q),
+                f: -self.segments[seg].n,
+            }
+        });
+        let clock = scratch.timing.is_some().then(std::time::Instant::now);
+        let score = self.metric.score(&contacts).unwrap_or(f64::INFINITY);
+        let ns = lap(clock);
+        if let Some(tm) = scratch.timing.as_mut() {
+            tm.metric_ns += ns;
+        }
+        score
     }
 }

@@ -17,7 +17,10 @@ use std::ops::Range;
 /// Counts and top-k of a piece of one part's combination space.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PartialResult {
+    /// The combination indices covered, so a merge can tell pieces apart
+    /// and a coordinator can check a shard did the work it was given.
     pub range: Range<u64>,
+    /// SPEC section 4's counts over the range.
     pub counts: Counts,
     /// Best first; at most `top_k` (all when `top_k == 0`).
     pub fixtures: Vec<Fixture>,
@@ -27,12 +30,16 @@ pub struct PartialResult {
 /// vary from run to run).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Profile {
+    /// How much the pruning let through.
     pub search: SearchStats,
+    /// Time per stage (zero unless asked for).
     pub timing: Timing,
+    /// Wall time of the whole enumeration, nanoseconds.
     pub total_ns: u64,
 }
 
 impl Profile {
+    /// Sums the profiles of pieces of work (threads, shards).
     pub fn add(&mut self, o: &Profile) {
         self.search.add(&o.search);
         self.timing.add(&o.timing);
@@ -45,6 +52,7 @@ impl Profile {
 const CHUNK: u64 = 32;
 
 impl PreparedPart {
+    /// Size of the combination space, the range shards are cut from.
     pub fn combination_count(&self) -> u64 {
         combination_count(self.segments.len())
     }
@@ -84,7 +92,7 @@ impl PreparedPart {
         good_enough: Option<f64>,
     ) -> (PartialResult, Profile, Option<u64>) {
         let clock = std::time::Instant::now();
-        let mut acc = Accumulator::new(self.top_k);
+        let mut acc = Accumulator::new(self.setting.top_k);
         let mut scratch = Scratch::default();
         scratch.timing = timed.then(Timing::default);
         let mut search = SearchStats::default();
@@ -128,7 +136,7 @@ impl PreparedPart {
             .into_par_iter()
             .map(|r| self.enumerate_range_serial(r))
             .collect();
-        let mut out = merge(self.top_k, parts);
+        let mut out = merge(self.setting.top_k, parts);
         out.range = range;
         out.counts.segments = self.segments.len() as u64;
         out
@@ -167,7 +175,7 @@ impl PreparedPart {
             .map(|p| p.0)
             .filter(|p| stop.is_none_or(|s| p.range.start <= s))
             .collect();
-        let mut out = merge(self.top_k, kept);
+        let mut out = merge(self.setting.top_k, kept);
         out.range = range.start..stop.map_or(range.end, |s| s + 1);
         out.counts.segments = self.segments.len() as u64;
         (out, stop)
@@ -209,9 +217,4 @@ pub fn merge(top_k: usize, parts: Vec<PartialResult>) -> PartialResult {
         counts,
         fixtures: merge_ranked(lists, top_k),
     }
-}
-
-/// Convenience: the ranked fixtures of a part, best first.
-pub fn ranked(prep: &PreparedPart) -> Vec<Fixture> {
-    prep.enumerate_all().fixtures
 }

@@ -13,6 +13,7 @@ pub fn wrench(q: V2, f: V2) -> Vector3<f64> {
 /// The locator wrenches of a setup, ready to test clamp contacts.
 #[derive(Debug, Clone, Copy)]
 pub struct LocatorWrenches {
+    /// `det W`: its size is a decision margin (borderline detection).
     pub det: f64,
     /// `-W^-1`.
     pub neg_inv: Matrix3<f64>,

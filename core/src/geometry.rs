@@ -7,6 +7,7 @@
 
 use nalgebra::Vector2;
 
+/// A point or vector; nalgebra's, so the metric's matrices take it as is.
 pub type V2 = Vector2<f64>;
 
 /// SPEC's tolerance, in lattice units (and for det W, lambda and cosines).
@@ -15,6 +16,7 @@ pub const EPS: f64 = 1e-9;
 /// Within this of a decision boundary a fixture is *borderline* (SPEC 1).
 pub const BORDERLINE: f64 = 1e-6;
 
+/// Shorthand for the many literal points of the geometry and its tests.
 #[inline]
 pub fn v2(x: f64, y: f64) -> V2 {
     V2::new(x, y)
@@ -124,14 +126,6 @@ pub fn point_in_polygon(p: V2, poly: &[V2]) -> bool {
     inside
 }
 
-/// Distance from a point to a filled polygon (0 inside).
-pub fn point_polygon_distance(p: V2, poly: &[V2]) -> f64 {
-    if point_in_polygon(p, poly) {
-        return 0.0;
-    }
-    boundary_distance2(p, poly).sqrt()
-}
-
 /// Squared distance from a point to a polygon's boundary.
 pub fn boundary_distance2(p: V2, poly: &[V2]) -> f64 {
     let n = poly.len();
@@ -142,14 +136,18 @@ pub fn boundary_distance2(p: V2, poly: &[V2]) -> f64 {
     best
 }
 
-/// Axis-aligned bounding box.
+/// Axis-aligned bounding box: a cheap lower bound on a clearance, so most
+/// clamp placements skip the exact polygon test.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb {
+    /// Lower-left corner.
     pub min: V2,
+    /// Upper-right corner.
     pub max: V2,
 }
 
 impl Aabb {
+    /// The box of `points` (inverted, min above max, when empty).
     pub fn of(points: &[V2]) -> Aabb {
         let mut min = v2(f64::INFINITY, f64::INFINITY);
         let mut max = v2(f64::NEG_INFINITY, f64::NEG_INFINITY);

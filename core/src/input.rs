@@ -14,8 +14,10 @@ pub type Point = [f64; 2];
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
+    /// Millimetres: the default, and the unit SPEC's defaults are given in.
     #[default]
     Mm,
+    /// Inches: SPEC's defaults are converted (edge trim 0.04 in).
     In,
 }
 
@@ -28,6 +30,7 @@ impl Units {
         }
     }
 
+    /// How reports and tables write lengths in this unit.
     pub fn label(self) -> &'static str {
         match self {
             Units::Mm => "mm",
@@ -36,10 +39,15 @@ impl Units {
     }
 }
 
+/// Hole layout of the plate: decides which lattice points a locator may
+/// take and which hole kinds a clamp's mount holes need.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Pattern {
+    /// Every hole takes any module.
     Square,
+    /// Checkerboard: `(i, j)` is a dowel hole when `i + j` is even, tapped
+    /// otherwise; locators go in dowel holes only.
     Alternating,
 }
 
@@ -47,7 +55,9 @@ pub enum Pattern {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum HoleKind {
+    /// A hole with `i + j` even; locators and dowel pins go here.
     Dowel,
+    /// A hole with `i + j` odd; clamp bolts go here.
     Tapped,
     /// Fits either kind (only meaningful on square plates, or for modules
     /// that do not care).
@@ -71,7 +81,9 @@ impl HoleKind {
 /// Written `[i, j, "dowel"]` (or `[i, j]` for [`HoleKind::Any`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MountHole {
+    /// Lattice offset from mount hole 0, in the clamp frame.
     pub offset: [i64; 2],
+    /// What the hole under it must be on an alternating plate.
     pub kind: HoleKind,
 }
 
@@ -121,10 +133,18 @@ impl<'de> Deserialize<'de> for MountHole {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Clamp {
+    /// Holes it is bolted to; hole 0 must be `[0, 0]`, the frame's origin.
     pub mount_holes: Vec<MountHole>,
+    /// `y0`: the plunger axis is the line `y = y0`.
     pub axis_offset: f64,
+    /// `[t_min, t_max]`: the plunger tip centre is at `(t, y0)` for `t` in
+    /// this range; the mount search tries the shortest extension first.
     pub travel: [f64; 2],
+    /// Space the clamp body takes (handle sweep included), which must keep
+    /// `min_clearance` from the part, locators and access regions.
     pub body: Vec<Point>,
+    /// The plunger shaft at `t = 0` (tip circle excluded); it moves by
+    /// `(t, 0)` with the extension.
     pub plunger: Vec<Point>,
 }
 
@@ -132,11 +152,19 @@ pub struct Clamp {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Kit {
+    /// Hole spacing `l`: the lattice unit everything is converted to.
     pub spacing: f64,
+    /// Holes across; a fixture must fit on `cols x rows` holes.
     pub cols: u32,
+    /// Holes down.
     pub rows: u32,
+    /// Hole layout.
     pub pattern: Pattern,
+    /// Radius of the round locators and of the clamp tip; must stay below
+    /// half the spacing (square) or `l sqrt(2) / 2` (alternating) so
+    /// neighbouring locators fit.
     pub locator_radius: f64,
+    /// The one clamp of the kit.
     pub clamp: Clamp,
 }
 
@@ -144,14 +172,24 @@ pub struct Kit {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
+    /// Largest angle between the push direction and the inward contact
+    /// normal, in `(0, 90]`; 90 is the complete, heuristic-free setting,
+    /// smaller angles keep clamps that do not slip.
     #[serde(default = "default_angle")]
     pub max_clamp_angle_deg: f64,
+    /// Shortens every usable segment at both ends, keeping contacts off
+    /// corners that real parts round or chamfer.
     #[serde(default)]
     pub edge_trim: Option<f64>,
+    /// Smallest gap between clamp body or plunger and the part, the
+    /// locators or the access regions.
     #[serde(default)]
     pub min_clearance: Option<f64>,
+    /// Locators 2 and 3 only at multiples of this from locator 1: a coarse
+    /// step finds a subset of the fixtures, much faster.
     #[serde(default = "default_grid_step")]
     pub grid_step: u32,
+    /// Fixtures kept per part, best first; 0 keeps all.
     #[serde(default = "default_top_k")]
     pub top_k: usize,
     /// Expected wrenches `[F_x, F_y, tau]` (part frame, tau about its origin);
@@ -201,7 +239,9 @@ impl Params {
 /// A part: its outline and access constraints, in the catalogue unit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Part {
+    /// Simple polygon, either orientation (normalised to CCW).
     pub outline: Vec<Point>,
+    /// Regions no fixture component may touch (machining, markings).
     #[serde(default)]
     pub access: Vec<Vec<Point>>,
 }
@@ -210,17 +250,23 @@ pub struct Part {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
+    /// Unit of every length in the file.
     #[serde(default)]
     pub units: Units,
+    /// The part's outline (flat in the file, as Appendix A writes it).
     pub part: Vec<Point>,
+    /// The part's access constraints.
     #[serde(default)]
     pub access: Vec<Vec<Point>>,
+    /// The kit to fixture it with.
     pub kit: Kit,
+    /// Enumeration parameters; SPEC's defaults when absent.
     #[serde(default)]
     pub params: Params,
 }
 
 impl Case {
+    /// The part in the form [`crate::prepare()`] takes.
     pub fn part(&self) -> Part {
         Part {
             outline: self.part.clone(),

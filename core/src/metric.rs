@@ -14,7 +14,9 @@ use std::sync::{Arc, LazyLock};
 /// action, so either gives the same wrench.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PartContact {
+    /// Centre point.
     pub q: V2,
+    /// Inward unit normal.
     pub f: V2,
 }
 
@@ -25,7 +27,6 @@ pub trait Metric: Send + Sync + std::fmt::Debug {
     /// in the part frame, in lattice units. `None` when the contacts do not
     /// hold the part (never for a form-closed fixture).
     fn score(&self, contacts: &[PartContact; 4]) -> Option<f64>;
-    fn name(&self) -> &str;
 }
 
 /// SPEC 6 default: the largest contact force needed to resist any unit
@@ -43,8 +44,13 @@ static SPHERE: LazyLock<Arc<[Vector3<f64>]>> =
     LazyLock::new(|| fibonacci_sphere(MaxForceMetric::DIRECTIONS).into());
 
 impl MaxForceMetric {
+    /// Applied wrench directions (SPEC 6).
     pub const DIRECTIONS: usize = 256;
 
+    /// The metric of a part with this centroid and radius of gyration
+    /// (part frame, lattice units): torques are taken about the centroid
+    /// and divided by `rho`, so the score does not depend on where the
+    /// part frame's origin is.
     pub fn new(centroid: V2, rho: f64) -> Self {
         MaxForceMetric {
             centroid,
@@ -73,10 +79,6 @@ impl Metric for MaxForceMetric {
             .map(|c| Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho));
         max_force(&w, &self.directions)
     }
-
-    fn name(&self) -> &str {
-        "max-force"
-    }
 }
 
 /// User-given expected wrenches `(F_x, F_y, tau)` in physical units, `tau`
@@ -89,6 +91,8 @@ pub struct WrenchListMetric {
 }
 
 impl WrenchListMetric {
+    /// `spacing` converts contact points back to the unit the wrenches'
+    /// torques are given in.
     pub fn new(wrenches: &[[f64; 3]], spacing: f64) -> Self {
         WrenchListMetric {
             wrenches: wrenches
@@ -104,10 +108,6 @@ impl Metric for WrenchListMetric {
     fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
         let w = contacts.map(|c| Vector3::new(c.f.x, c.f.y, cross(c.q * self.spacing, c.f)));
         max_force(&w, &self.wrenches)
-    }
-
-    fn name(&self) -> &str {
-        "wrench-list"
     }
 }
 

@@ -13,6 +13,7 @@ pub struct Placement {
 }
 
 impl Placement {
+    /// The plate hole under canonical lattice point `p`.
     pub fn hole(&self, p: [i64; 2]) -> [i64; 2] {
         let q = rot90i(self.rotation, p);
         [q[0] + self.offset[0], q[1] + self.offset[1]]

@@ -6,26 +6,44 @@
 use crate::geometry::{cross, signed_area, v2, V2};
 use thiserror::Error;
 
+/// Which of SPEC 1's conditions a polygon breaks, and where; indices are
+/// the input's own (before CCW normalisation) so the user finds them.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum PolygonError {
+    /// Fewer than 3 vertices (the count).
     #[error("has {0} vertices; a polygon needs at least 3")]
     TooFewVertices(usize),
+    /// A NaN or infinite coordinate.
     #[error("vertex {index} has a non-finite coordinate")]
-    NonFinite { index: usize },
+    NonFinite {
+        /// The vertex.
+        index: usize,
+    },
+    /// Two vertices coincide.
     #[error("vertex {first} and vertex {second} are the same point ({x}, {y})")]
     RepeatedVertex {
+        /// The earlier vertex.
         first: usize,
+        /// The later vertex.
         second: usize,
+        /// Their x.
         x: f64,
+        /// Their y.
         y: f64,
     },
+    /// Two edges touch or cross (adjacent edges: fold back on each other).
     #[error("edge {first} crosses edge {second} at ({x}, {y})")]
     SelfIntersection {
+        /// The earlier edge.
         first: usize,
+        /// The later edge.
         second: usize,
+        /// x of a point they share.
         x: f64,
+        /// y of a point they share.
         y: f64,
     },
+    /// No inside: no contact normal or metric is defined.
     #[error("has zero area")]
     ZeroArea,
 }

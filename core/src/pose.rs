@@ -6,19 +6,25 @@ use crate::geometry::{cross, rot, V2};
 /// A rigid placement of the part: plate point = `R(theta) p + t`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pose {
-    /// In `[0, 2 pi)`.
+    /// In `[0, 2 pi)`, so equal poses compare equal in the ranking key.
     pub theta: f64,
+    /// `cos(theta)`, kept from the solve rather than recomputed, so every
+    /// use of the pose rotates by exactly the same matrix.
     pub cos: f64,
+    /// `sin(theta)`, see `cos`.
     pub sin: f64,
+    /// Translation, lattice units.
     pub t: V2,
 }
 
 impl Pose {
+    /// Plate point of a part point.
     #[inline]
     pub fn apply(&self, p: V2) -> V2 {
         rot(self.cos, self.sin, p) + self.t
     }
 
+    /// Plate-frame direction of a part-frame direction (normals, edges).
     #[inline]
     pub fn rotate(&self, v: V2) -> V2 {
         rot(self.cos, self.sin, v)
@@ -34,7 +40,9 @@ impl Pose {
 /// A grown-edge line `n . p = c` in the part frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Line {
+    /// Outward unit normal.
     pub n: V2,
+    /// Offset along `n`.
     pub c: f64,
 }
 

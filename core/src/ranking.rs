@@ -9,23 +9,32 @@ use std::collections::BinaryHeap;
 /// One admissible fixture in lattice units, canonical frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Fixture {
+    /// The metric's value, lower is better: the first ranking key.
     pub score: f64,
+    /// Segments touched by locators 1-3 (`a <= b <= c`).
     pub segments: [usize; 3],
     /// `L1 = (0, 0)`, `L2` in `Q`, `L3`.
     pub locators: [[i64; 2]; 3],
     /// Part pose: plate point = `R(theta) p + t`, theta in `[0, 2 pi)`.
     pub theta: f64,
+    /// See `theta`; lattice units.
     pub t: [f64; 2],
+    /// Segment the clamp tip touches.
     pub clamp_segment: usize,
     /// Quarter turns of the clamp frame.
     pub rotation: u8,
+    /// Lattice point of clamp mount hole 0.
     pub mount: [i64; 2],
+    /// Plunger extension `t`, lattice units: the shortest that passes.
     pub extension: f64,
     /// Clamp tip centre (on the grown segment).
     pub contact: [f64; 2],
     /// Inward normals at locators 1-3 and the clamp.
     pub normals: [[f64; 2]; 4],
+    /// Some decision was within [`crate::geometry::BORDERLINE`] of its
+    /// boundary: another implementation may rightly disagree on it.
     pub borderline: bool,
+    /// Where it goes on the physical plate.
     pub placement: Placement,
 }
 
@@ -77,6 +86,7 @@ pub struct TopK {
 }
 
 impl TopK {
+    /// Empty, keeping the best `k` (0: all).
     pub fn new(k: usize) -> Self {
         TopK {
             k,
@@ -84,14 +94,8 @@ impl TopK {
         }
     }
 
-    /// Whether a fixture of this score could still enter (cheap pre-check
-    /// before building it).
-    pub fn would_accept(&self, score: f64) -> bool {
-        self.k == 0
-            || self.heap.len() < self.k
-            || self.heap.peek().is_some_and(|w| score <= w.0.score)
-    }
-
+    /// Offers a fixture; it stays only while among the best `k`, so memory
+    /// is bounded by `k` however many fixtures a part has.
     pub fn push(&mut self, f: Fixture) {
         if self.k != 0 && self.heap.len() >= self.k {
             if let Some(worst) = self.heap.peek() {

@@ -16,12 +16,14 @@ pub struct Segment {
     pub n: V2,
     /// Contact parameters of the segment's ends; contacts lie strictly inside.
     pub s0: f64,
+    /// See `s0`.
     pub s1: f64,
     /// Right-hand side of the grown edge line `n . p = c`.
     pub c: f64,
 }
 
 impl Segment {
+    /// The contact centre at parameter `s` (on the grown edge line).
     #[inline]
     pub fn point(&self, s: f64) -> V2 {
         self.origin + self.u * s
@@ -33,10 +35,13 @@ impl Segment {
         (s - self.s0).min(self.s1 - s) - EPS
     }
 
+    /// First end (parameter `s0`); with [`Self::end`] it bounds the
+    /// distances that prune locator positions.
     pub fn start(&self) -> V2 {
         self.point(self.s0)
     }
 
+    /// Last end (parameter `s1`).
     pub fn end(&self) -> V2 {
         self.point(self.s1)
     }

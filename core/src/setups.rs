@@ -17,8 +17,13 @@ const ANNULUS_SLACK: f64 = 1e-7;
 /// A locator setup: combination, canonical locators and pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setup {
+    /// Segments touched by locators 1, 2, 3 (indices into the part's
+    /// segments).
     pub combo: [usize; 3],
+    /// `L1 = (0, 0)`, `L2`, `L3`: the canonical frame puts `L1` at the
+    /// origin so a fixture is counted once, not once per plate position.
     pub locators: [[i64; 2]; 3],
+    /// The part pose touching all three.
     pub pose: Pose,
     /// Contact parameters of the three locators on their segments.
     pub s: [f64; 3],
@@ -31,9 +36,9 @@ impl PreparedPart {
     /// and, on alternating plates, dowel-hole parity).
     #[inline]
     pub fn locator_point_allowed(&self, p: [i64; 2]) -> bool {
-        p[0].rem_euclid(self.grid_step) == 0
-            && p[1].rem_euclid(self.grid_step) == 0
-            && (self.pattern == Pattern::Square || (p[0] + p[1]).rem_euclid(2) == 0)
+        p[0].rem_euclid(self.setting.grid_step) == 0
+            && p[1].rem_euclid(self.setting.grid_step) == 0
+            && (self.setting.pattern == Pattern::Square || (p[0] + p[1]).rem_euclid(2) == 0)
     }
 
     /// Setups of one combination with the given `L2`, `L3` (`L1` = origin),
@@ -98,7 +103,7 @@ impl PreparedPart {
         let ab = self.pair(a, b);
         let ac = self.pair(a, c);
         let bc = self.pair(b, c);
-        let g = self.grid_step;
+        let g = self.setting.grid_step;
         let (lo2, hi2) = annulus_sq(ab);
         let imax = ab.dmax.floor() as i64 + 1;
         // L2 in Q = {i > 0, j >= 0}.
@@ -130,7 +135,7 @@ impl PreparedPart {
         stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
-        let g = self.grid_step;
+        let g = self.setting.grid_step;
         let (lo_a, hi_a) = annulus_sq(ac);
         let (lo_b, hi_b) = annulus_sq(bc);
         let p2 = v2(l2[0] as f64, l2[1] as f64);
@@ -180,6 +185,7 @@ pub struct SearchStats {
 }
 
 impl SearchStats {
+    /// Sums the statistics of pieces of work (threads, shards).
     pub fn add(&mut self, o: &SearchStats) {
         self.locator_triples += o.locator_triples;
         self.pose_solutions += o.pose_solutions;

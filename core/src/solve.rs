@@ -20,6 +20,7 @@ pub fn solve(part: &Part, kit: &Kit, params: &Params, units: Units) -> SolveResu
     }
 }
 
+/// [`solve`] of a case file, for `fixplan solve` and the reference tests.
 pub fn solve_case(case: &Case) -> SolveResult {
     solve(&case.part(), &case.kit, &case.params, case.units)
 }
@@ -44,6 +45,8 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
     }
 }
 
+/// One fixture in the reported form: lattice lengths times the spacing,
+/// radians to degrees, and the clamp's holes placed on the plate.
 pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureReport {
     let l = prep.spacing;
     let sc = |p: [f64; 2]| [p[0] * l, p[1] * l];
@@ -58,6 +61,7 @@ pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureR
         normal: f.normals[3],
     });
     let clamp_holes = prep
+        .setting
         .clamp
         .holes
         .iter()

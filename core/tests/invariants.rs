@@ -190,7 +190,7 @@ fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
     let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
     let mut w = [Vector3::zeros(); 4];
     for i in 0..4 {
-        let seg = &p.segments[segs[i]];
+        let seg = &p.segments()[segs[i]];
         let local = pose.inverse_apply(points[i]);
         // On the grown edge line, strictly inside the segment.
         assert!(
@@ -205,7 +205,7 @@ fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
     assert!(positively_spanning(&w, 1e-12), "not in form closure: {f:?}");
     // The clamp tip pushes within the allowed angle.
     let d = fixplan_core::geometry::rot90(f.rotation, v2(1.0, 0.0));
-    assert!(d.dot(&pose.rotate(-p.segments[f.clamp_segment].n)) >= p.cos_max_angle - 1e-9);
+    assert!(d.dot(&pose.rotate(-p.segments()[f.clamp_segment].n)) >= p.cos_max_angle() - 1e-9);
     // Locators are distinct lattice points, L1 at the origin, L2 in Q.
     assert_eq!(f.locators[0], [0, 0]);
     assert!(f.locators[1][0] > 0 && f.locators[1][1] >= 0);
@@ -252,8 +252,8 @@ fn metric_closed_form_equals_direct_min_max() {
     let mut checked = 0;
     for shape in [l_shape(), notched()] {
         let p = prep(&part(&shape, &[]), &kit(Pattern::Square), &params(90.0, 1));
-        let (c, j) = fixplan_core::geometry::centroid_and_polar_moment(&p.part);
-        let rho = (j / fixplan_core::geometry::signed_area(&p.part)).sqrt();
+        let (c, j) = fixplan_core::geometry::centroid_and_polar_moment(p.outline());
+        let rho = (j / fixplan_core::geometry::signed_area(p.outline())).sqrt();
         let dirs = fibonacci_sphere(256);
         for f in p.enumerate_all().fixtures.iter().step_by(7) {
             let pose = Pose {
@@ -271,7 +271,7 @@ fn metric_closed_form_equals_direct_min_max() {
             let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
             let w = [0, 1, 2, 3].map(|i| {
                 let q = pose.inverse_apply(pts[i]);
-                let n = -p.segments[segs[i]].n;
+                let n = -p.segments()[segs[i]].n;
                 Vector3::new(n.x, n.y, cross(q - c, n) / rho)
             });
             let direct = direct_score(&w, &dirs);
@@ -324,8 +324,8 @@ fn combination_count_matches_segments() {
         &params(45.0, 1),
     );
     let r = p.enumerate_all();
-    assert_eq!(r.counts.combinations, combination_count(p.segments.len()));
-    assert_eq!(r.counts.segments, p.segments.len() as u64);
+    assert_eq!(r.counts.combinations, combination_count(p.segments().len()));
+    assert_eq!(r.counts.segments, p.segments().len() as u64);
 }
 
 #[test]

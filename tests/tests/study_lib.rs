@@ -5,8 +5,6 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::load_catalog;
-use fixplan_coordinator::job::search::with_grid_step;
-use fixplan_coordinator::job::solve::derive as graft;
 use fixplan_coordinator::run::default_catalog;
 use fixplan_coordinator::study::{median, nearest_rank, study_kits};
 use fixplan_core::prepare;
@@ -32,7 +30,7 @@ fn graft_equals_a_fresh_prepare() {
         for k in &kits[1..] {
             let mut params = k.spec.params.clone();
             params.top_k = 3;
-            let g = graft(&b, &k.spec.kit, &params, cat.units).unwrap();
+            let g = b.with_kit(&k.spec.kit, &params, cat.units).unwrap();
             let f = prepare(part, &k.spec.kit, &params, cat.units).unwrap();
             assert_eq!(
                 format!("{g:?}"),
@@ -47,7 +45,10 @@ fn graft_equals_a_fresh_prepare() {
             let mut params = base.params.clone();
             params.grid_step = step;
             let f = prepare(part, &base.kit, &params, cat.units).unwrap();
-            assert_eq!(format!("{:?}", with_grid_step(&b, step)), format!("{f:?}"));
+            assert_eq!(
+                format!("{:?}", b.with_grid_step(step).unwrap()),
+                format!("{f:?}")
+            );
         }
     }
     assert!(checked > 40, "{checked}");

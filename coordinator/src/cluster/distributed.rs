@@ -189,7 +189,7 @@ fn plan(
                 continue;
             }
             Some(Ok(prep)) => {
-                let (count, n) = (prep.combination_count(), prep.segments.len());
+                let (count, n) = (prep.combination_count(), prep.segments().len());
                 if count == 0 {
                     let _ = tx.send(vec![(i, Ok(without_combinations(prep, source)))]);
                     continue;
@@ -217,7 +217,7 @@ fn plan(
 /// embedded run makes it.
 fn without_combinations(prep: PreparedPart, source: Arc<PartInput>) -> MergedShards {
     let r = fixplan_worker::run_shard(&prep, 0..0);
-    let merged = fixplan_core::merge(prep.top_k, vec![r]);
+    let merged = fixplan_core::merge(prep.top_k(), vec![r]);
     MergedShards {
         prep: Some(Arc::new(prep)),
         input: source,

@@ -232,7 +232,7 @@ fn splitmix64(x: u64) -> u64 {
 /// locators, clamp segment and rotation (core's own code path, restricted to
 /// that clamp side, so the check costs a fraction of the enumeration).
 pub fn rederive(prep: &PreparedPart, f: &Fixture) -> bool {
-    let n = prep.segments.len();
+    let n = prep.segments().len();
     let [a, b, c] = f.segments;
     if !(a <= b && b <= c && c < n && a != c) || f.locators[0] != [0, 0] {
         return false;
@@ -366,16 +366,16 @@ pub fn check(
         });
     }
     let want = range.end.min(count).saturating_sub(range.start);
-    if res.counts.combinations != want || res.counts.segments != prep.segments.len() as u64 {
+    if res.counts.combinations != want || res.counts.segments != prep.segments().len() as u64 {
         return Err(CheckError::WrongCounts {
             combinations: res.counts.combinations,
             segments: res.counts.segments,
             want_combinations: want,
-            want_segments: prep.segments.len(),
+            want_segments: prep.segments().len(),
         });
     }
-    check_list(prep.top_k, res)?;
-    let n = prep.segments.len();
+    check_list(prep.top_k(), res)?;
+    let n = prep.segments().len();
     let (first, last) = match (
         combination_at(n, range.start),
         combination_at(n, want.saturating_sub(1) + range.start),
@@ -392,7 +392,7 @@ pub fn check(
                 segments: f.segments,
             });
         }
-        if deep && enters(top, prep.top_k, f) {
+        if deep && enters(top, prep.top_k(), f) {
             if !rederive(prep, f) {
                 return Err(CheckError::DoesNotCheckOut {
                     index,

@@ -22,6 +22,6 @@ pub fn solve_prepared(prep: &PreparedPart, shard_size: Option<u64>) -> (SolveRes
         .into_par_iter()
         .map(|r| fixplan_worker::run_shard(prep, r))
         .collect();
-    let merged = merge(prep.top_k, parts);
+    let merged = merge(prep.top_k(), parts);
     (report(prep, &merged), n)
 }

@@ -142,15 +142,6 @@ pub struct SearchInfo {
     pub shards: usize,
 }
 
-/// The part with another grid step: `prepare` copies `params.grid_step`
-/// into this field and nothing else depends on it (tested against a fresh
-/// `prepare`).
-pub fn with_grid_step(prep: &PreparedPart, step: u32) -> PreparedPart {
-    let mut p = prep.clone();
-    p.grid_step = step as i64;
-    p
-}
-
 /// The summary of one step, given the previous one.
 pub fn step_summary(
     step: u32,
@@ -190,12 +181,18 @@ pub fn solve_search(
     let steps: Vec<u32> = opts
         .grid_steps
         .clone()
-        .unwrap_or_else(|| vec![prep.grid_step.max(1) as u32]);
+        .unwrap_or_else(|| vec![prep.grid_step()]);
     let mut info = SearchInfo::default();
     let mut summaries: Vec<StepSummary> = Vec::new();
     let mut last = SolveResult::invalid("no grid step");
     for step in steps {
-        let p = with_grid_step(prep, step);
+        let p = match prep.with_grid_step(step) {
+            Ok(p) => p,
+            Err(e) => {
+                last = SolveResult::invalid(e.to_string());
+                break;
+            }
+        };
         let t0 = std::time::Instant::now();
         let (res, hit) = match opts.good_enough {
             Some(g) => {

@@ -68,7 +68,7 @@ pub enum Preparation<'a> {
     #[default]
     Fresh,
     /// Derive it from the same part prepared with another kit of the same
-    /// geometry (a study's cache; see [`derive`]).
+    /// geometry (a study's cache; see [`PreparedPart::with_kit`]).
     Derived(&'a PreparedPart),
 }
 
@@ -81,37 +81,9 @@ impl Preparation<'_> {
     ) -> Result<PreparedPart, PrepareError> {
         match self {
             Preparation::Fresh => prepare(part, ctx.kit, params, ctx.units),
-            Preparation::Derived(base) => derive(base, ctx.kit, params, ctx.units),
+            Preparation::Derived(base) => base.with_kit(ctx.kit, params, ctx.units),
         }
     }
-}
-
-/// `prepare(part, kit, params)` from a part prepared with the same
-/// geometry (spacing, locator radius, edge trim, wrenches): the kit- and
-/// parameter-only fields come from a `prepare` of a unit triangle with this
-/// kit and these parameters.
-pub fn derive(
-    base: &PreparedPart,
-    kit: &Kit,
-    params: &Params,
-    units: Units,
-) -> Result<PreparedPart, PrepareError> {
-    let l = kit.spacing;
-    let tri = fixplan_core::Part {
-        outline: vec![[0.0, 0.0], [l, 0.0], [0.0, l]],
-        access: Vec::new(),
-    };
-    let d = prepare(&tri, kit, params, units)?;
-    let mut p = base.clone();
-    p.pattern = d.pattern;
-    p.cols = d.cols;
-    p.rows = d.rows;
-    p.clamp = d.clamp;
-    p.cos_max_angle = d.cos_max_angle;
-    p.min_clearance = d.min_clearance;
-    p.grid_step = d.grid_step;
-    p.top_k = d.top_k;
-    Ok(p)
 }
 
 /// Solves one catalogue part on the current rayon pool.

@@ -12,9 +12,9 @@
 //! - **prepared parts**: segments, pair bounds and the metric depend on the
 //!   part, the lattice spacing, the locator radius, the edge trim and the
 //!   wrenches only. They are prepared once per such key and the plate,
-//!   clamp, angle, clearance, grid step and top-k fields are taken from a
-//!   `prepare` of the variant on a unit triangle (the core's own code, so
-//!   no conversion is duplicated here; tested equal to a fresh `prepare`);
+//!   clamp, angle, clearance, grid step and top-k come from
+//!   [`PreparedPart::with_kit`] (the core's own conversion, which checks
+//!   the key's fields and is tested equal to a fresh `prepare`);
 //! - **no fixture on a larger plate**: the plate size enters SPEC only in
 //!   the last admissibility test (the fixture fits the `cols x rows` holes),
 //!   and what fits a plate fits any plate at least as large in both

@@ -110,19 +110,19 @@ pub fn notched() -> Vec<[f64; 2]> {
 /// No pruning: every canonical `L2` and every `L3` within the grown part's
 /// diameter, for every combination.
 pub fn brute_force(p: &PreparedPart) -> PartialResult {
-    let mut pts: Vec<_> = p.part.clone();
-    pts.extend(p.segments.iter().flat_map(|s| [s.start(), s.end()]));
+    let mut pts: Vec<_> = p.outline().to_vec();
+    pts.extend(p.segments().iter().flat_map(|s| [s.start(), s.end()]));
     let mut diam: f64 = 0.0;
     for a in &pts {
         for b in &pts {
             diam = diam.max((a - b).norm());
         }
     }
-    let diam = diam + 2.0 * p.r + 1.0;
+    let diam = diam + 2.0 * p.locator_radius() + 1.0;
     let d = diam.ceil() as i64;
     let mut acc = Accumulator::new(0);
     let mut scratch = Scratch::default();
-    let n = p.segments.len();
+    let n = p.segments().len();
     for (_, combo) in combinations_in(n, 0..u64::MAX) {
         acc.counts.combinations += 1;
         for i in 1..=d {

@@ -37,7 +37,7 @@ fn core_rx(parts: usize, shard: u64, verify: VerifyPolicy) -> (Scheduler, Receiv
             PlannedPart {
                 index: i,
                 ranges: crate::job::shards::ranges(prep.combination_count(), shard),
-                segments: prep.segments.len(),
+                segments: prep.segments().len(),
                 prep: Some(Arc::new(prep)),
                 source: Arc::new(source),
                 input: vec![i as u8],
