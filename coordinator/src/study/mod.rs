@@ -6,7 +6,7 @@
 //! A study goes: [`kits`] (which kits), [`sharing`] (which work is shared,
 //! and why that is exact), [`engine`] (the rest solved through the run
 //! path), [`stats`] (each kit's message), then out as [`report`] (table,
-//! CSV), [`chart`] (SVG) and [`file`] (MCAP, [`messages`] and schemas).
+//! CSV), [`chart`] (SVG) and [`mod@file`] (MCAP, [`messages`] and schemas).
 
 pub mod chart;
 pub mod engine;

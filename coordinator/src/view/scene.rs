@@ -13,6 +13,8 @@ use crate::output::messages::NS_PER_PART;
 use fixplan_core::{FixtureReport, Kit, Point, Units};
 use serde::Serialize;
 
+/// The frame every entity is drawn in: the plate, hole `[0, 0]` at the
+/// origin, the same for every part so that scenes replace each other.
 pub const FRAME: &str = "plate";
 
 #[derive(Serialize, Clone, Copy)]

@@ -7,6 +7,8 @@ use fixplan_core::Status;
 use std::io::Write;
 use std::path::Path;
 
+/// A status as the results file's JSON writes it, so the tables and the
+/// gallery's CSS classes use the same words.
 pub fn status_word(s: Status) -> &'static str {
     match s {
         Status::Ok => "ok",
