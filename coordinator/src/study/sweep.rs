@@ -30,33 +30,130 @@ pub const DEFAULT_RANGE_COUNT: usize = 5;
 /// Most points a sweep may expand to (a typo guard).
 pub const MAX_POINTS: usize = 10_000;
 
+/// Why a sweep was refused: a study checks its sweep before any work, and
+/// the message names the clause or kit to fix.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum SweepError {
-    #[error("sweep clause {clause:?}: {message}")]
-    Clause { clause: String, message: String },
+    /// A clause does not parse.
+    #[error("sweep clause {clause:?}: {problem}")]
+    Clause {
+        /// The clause as written (trimmed).
+        clause: String,
+        /// What is wrong with it.
+        problem: ClauseError,
+    },
+    /// Two clauses set the same key: their product would be ambiguous.
     #[error("sweep key {0:?} is given twice")]
     DuplicateKey(String),
+    /// No clause at all.
     #[error("the sweep is empty (write e.g. \"locator_radius=4,6 mm; plate=18x18,24x24\")")]
     Empty,
+    /// The product of the clauses has more than [`MAX_POINTS`] points.
     #[error("the sweep expands to {0} points (at most {MAX_POINTS})")]
     TooMany(usize),
+    /// A point makes a kit the core refuses (SPEC section 1).
     #[error("kit {kit}: {message}")]
-    Kit { kit: String, message: String },
+    Kit {
+        /// The kit's name, `BASE{key=value, ...}`.
+        kit: String,
+        /// Why it is refused.
+        message: String,
+    },
+}
+
+/// What is wrong with one clause (shown after the clause by
+/// [`SweepError::Clause`]).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ClauseError {
+    /// No `=`.
+    #[error("a clause is KEY=VALUES (e.g. locator_radius=4,6 mm)")]
+    NoEquals,
+    /// A key not in [`KEYS`].
+    #[error("unknown key {0:?} (keys: {keys})", keys = key_names())]
+    UnknownKey(String),
+    /// A unit on a key that takes none, or the wrong kind of unit.
+    #[error("{name} takes no unit {unit:?}", name = .key.name())]
+    NoUnit {
+        /// The clause's key.
+        key: Key,
+        /// The unit written.
+        unit: String,
+    },
+    /// Two commas in a row, or nothing after `=`.
+    #[error("empty value (two commas, or nothing after =)")]
+    EmptyValue,
+    /// A unit (or other letters) inside a value.
+    #[error("{0:?}: write the unit once at the end of the clause (e.g. 4,6,8 mm)")]
+    UnitInValue(String),
+    /// Not a finite number.
+    #[error("{0:?} is not a number")]
+    NotANumber(String),
+    /// A plate size that is not a whole number >= 1.
+    #[error("{what} {text:?} is not a whole number >= 1")]
+    NotAWholeNumber {
+        /// Which number (`plate cols`, `plate rows`, `plate size`).
+        what: &'static str,
+        /// The number as written.
+        text: String,
+    },
+    /// A range without `..` before its `/` or `:`.
+    #[error("{0:?}: a range is written A..B")]
+    RangeSyntax(String),
+    /// A range `A..B` with `A > B`.
+    #[error("range {range:?} goes down ({a} > {b})")]
+    RangeDown {
+        /// The range as written.
+        range: String,
+        /// Its start.
+        a: f64,
+        /// Its end.
+        b: f64,
+    },
+    /// `A..B/N` with `N < 2`.
+    #[error("range {0:?}: the count after / must be >= 2")]
+    RangeCount(String),
+    /// A range of more than [`MAX_POINTS`] values.
+    #[error("range {0:?} has more than {MAX_POINTS} values")]
+    RangeTooLong(String),
+    /// `A..B:S` with `S <= 0`.
+    #[error("range {0:?}: the step after : must be > 0")]
+    RangeStep(String),
+    /// A range in a `plate` clause.
+    #[error("plate takes COLSxROWS values, no ranges")]
+    PlateRange,
+    /// A range in a `travel` clause.
+    #[error("travel takes MAX or MIN..MAX values, no ranges: list several with commas")]
+    TravelRange,
+    /// A travel `MIN..MAX` with `MIN > MAX`.
+    #[error("travel {0:?}: MIN is above MAX")]
+    TravelDown(String),
+    /// A grid step that is not a whole number >= 1.
+    #[error("grid_step {0} is not a whole number >= 1")]
+    GridStep(f64),
 }
 
 /// What a clause sets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Key {
+    /// `locator_radius` (length).
     LocatorRadius,
+    /// `spacing`: the hole spacing (length).
     Spacing,
+    /// `edge_trim` (length).
     EdgeTrim,
+    /// `min_clearance` (length).
     MinClearance,
+    /// `plate`: holes, `COLSxROWS`.
     Plate,
+    /// `travel`: the clamp's `MAX` or `MIN..MAX` (length).
     Travel,
+    /// `max_clamp_angle` (degrees).
     MaxClampAngle,
+    /// `grid_step` (whole number >= 1).
     GridStep,
 }
 
+/// The keys as written in a sweep, in the order the help lists them.
 pub const KEYS: &[(&str, Key)] = &[
     ("locator_radius", Key::LocatorRadius),
     ("spacing", Key::Spacing),
@@ -68,7 +165,13 @@ pub const KEYS: &[(&str, Key)] = &[
     ("grid_step", Key::GridStep),
 ];
 
+fn key_names() -> String {
+    let names: Vec<_> = KEYS.iter().map(|(n, _)| *n).collect();
+    names.join(", ")
+}
+
 impl Key {
+    /// The key as written in a sweep (and in a point's label).
     pub fn name(self) -> &'static str {
         KEYS.iter()
             .find(|(_, k)| *k == self)
@@ -86,9 +189,13 @@ impl Key {
 /// One value of a clause, lengths already in the catalogue's unit.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Value {
+    /// A number: a length, an angle or a grid step.
     Num(f64),
+    /// A plate, `COLS x ROWS` holes.
     Plate(u32, u32),
+    /// A travel `MAX`: the kit's minimum stays.
     TravelMax(f64),
+    /// A travel `MIN..MAX`.
     TravelPair(f64, f64),
 }
 
@@ -115,13 +222,16 @@ fn fmt_num(x: f64) -> String {
 /// A parsed clause: its key and values, in order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Clause {
+    /// What the clause sets.
     pub key: Key,
+    /// The values, ranges expanded, in the order written.
     pub values: Vec<Value>,
 }
 
 /// A parsed sweep.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Sweep {
+    /// At most one clause per key, in the order written.
     pub clauses: Vec<Clause>,
 }
 
@@ -138,34 +248,41 @@ fn round(x: f64) -> f64 {
     }
 }
 
-fn parse_num(s: &str) -> Result<f64, String> {
+fn parse_num(s: &str) -> Result<f64, ClauseError> {
     let t = s.trim();
     match t.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("{t:?} is not a number")),
+        _ => Err(ClauseError::NotANumber(t.to_string())),
     }
 }
 
-fn parse_int(s: &str, what: &str) -> Result<u32, String> {
+fn parse_int(s: &str, what: &'static str) -> Result<u32, ClauseError> {
     let t = s.trim();
     match t.parse::<u32>() {
         Ok(n) if n >= 1 => Ok(n),
-        _ => Err(format!("{what} {t:?} is not a whole number >= 1")),
+        _ => Err(ClauseError::NotAWholeNumber {
+            what,
+            text: t.to_string(),
+        }),
     }
 }
 
 /// Expands `A..B`, `A..B/N` or `A..B:S`.
-fn expand_range(item: &str) -> Result<Vec<f64>, String> {
+fn expand_range(item: &str) -> Result<Vec<f64>, ClauseError> {
     let (body, spec) = match item.find(['/', ':']) {
         Some(i) => (&item[..i], Some((&item[i..i + 1], &item[i + 1..]))),
         None => (item, None),
     };
     let (a, b) = body
         .split_once("..")
-        .ok_or_else(|| format!("{item:?}: a range is written A..B"))?;
+        .ok_or_else(|| ClauseError::RangeSyntax(item.to_string()))?;
     let (a, b) = (parse_num(a)?, parse_num(b)?);
     if a > b {
-        return Err(format!("range {item:?} goes down ({a} > {b})"));
+        return Err(ClauseError::RangeDown {
+            range: item.to_string(),
+            a,
+            b,
+        });
     }
     match spec {
         None | Some(("/", _)) => {
@@ -175,11 +292,11 @@ fn expand_range(item: &str) -> Result<Vec<f64>, String> {
                     .parse::<usize>()
                     .ok()
                     .filter(|&n| n >= 2)
-                    .ok_or_else(|| format!("range {item:?}: the count after / must be >= 2"))?,
+                    .ok_or_else(|| ClauseError::RangeCount(item.to_string()))?,
                 None => DEFAULT_RANGE_COUNT,
             };
             if n > MAX_POINTS {
-                return Err(format!("range {item:?} has more than {MAX_POINTS} values"));
+                return Err(ClauseError::RangeTooLong(item.to_string()));
             }
             if a == b {
                 return Ok(vec![a]);
@@ -191,11 +308,11 @@ fn expand_range(item: &str) -> Result<Vec<f64>, String> {
         Some((_, s)) => {
             let s = parse_num(s)?;
             if s <= 0.0 {
-                return Err(format!("range {item:?}: the step after : must be > 0"));
+                return Err(ClauseError::RangeStep(item.to_string()));
             }
             let n = ((b - a) / s + 1e-9).floor() as usize + 1;
             if n > MAX_POINTS {
-                return Err(format!("range {item:?} has more than {MAX_POINTS} values"));
+                return Err(ClauseError::RangeTooLong(item.to_string()));
             }
             Ok((0..n).map(|i| round(a + s * i as f64)).collect())
         }
@@ -219,95 +336,104 @@ fn split_unit(values: &str) -> (&str, Option<&str>) {
     (v, None)
 }
 
-fn parse_clause(text: &str, units: Units) -> Result<Clause, String> {
-    let (k, v) = text
-        .split_once('=')
-        .ok_or("a clause is KEY=VALUES (e.g. locator_radius=4,6 mm)")?;
+/// The factor from the clause's unit to the catalogue's `units`.
+fn unit_factor(unit: Option<&str>, key: Key, units: Units) -> Result<f64, ClauseError> {
+    match (unit, key) {
+        (None, _) => Ok(1.0),
+        (Some("deg"), Key::MaxClampAngle) => Ok(1.0),
+        (Some(u @ ("mm" | "in")), k) if k.is_length() => {
+            let from = if u == "mm" { Units::Mm } else { Units::In };
+            Ok(from.mm_per_unit() / units.mm_per_unit())
+        }
+        (Some(u), key) => Err(ClauseError::NoUnit {
+            key,
+            unit: u.to_string(),
+        }),
+    }
+}
+
+fn parse_clause(text: &str, units: Units) -> Result<Clause, ClauseError> {
+    let (k, v) = text.split_once('=').ok_or(ClauseError::NoEquals)?;
     let name = k.trim();
     let key = KEYS
         .iter()
         .find(|(n, _)| *n == name)
         .map(|&(_, k)| k)
-        .ok_or_else(|| {
-            let names: Vec<_> = KEYS.iter().map(|(n, _)| *n).collect();
-            format!("unknown key {name:?} (keys: {})", names.join(", "))
-        })?;
+        .ok_or_else(|| ClauseError::UnknownKey(name.to_string()))?;
     let (values, unit) = split_unit(v);
-    let factor = match (unit, key) {
-        (None, _) => 1.0,
-        (Some("deg"), Key::MaxClampAngle) => 1.0,
-        (Some(u @ ("mm" | "in")), k) if k.is_length() => {
-            let from = if u == "mm" { Units::Mm } else { Units::In };
-            from.mm_per_unit() / units.mm_per_unit()
-        }
-        (Some(u), k) => return Err(format!("{} takes no unit {u:?}", k.name())),
-    };
+    let factor = unit_factor(unit, key, units)?;
     let mut out = Vec::new();
     for item in values.split(',') {
         let item = item.trim();
         if item.is_empty() {
-            return Err("empty value (two commas, or nothing after =)".into());
+            return Err(ClauseError::EmptyValue);
         }
         if item
             .chars()
             .any(|c| c.is_ascii_alphabetic() && c != 'x' && c != 'e')
         {
-            return Err(format!(
-                "{item:?}: write the unit once at the end of the clause (e.g. 4,6,8 mm)"
-            ));
+            return Err(ClauseError::UnitInValue(item.to_string()));
         }
         match key {
-            Key::Plate => {
-                if item.contains("..") {
-                    return Err("plate takes COLSxROWS values, no ranges".into());
-                }
-                let (c, r) = match item.split_once('x') {
-                    Some((c, r)) => (parse_int(c, "plate cols")?, parse_int(r, "plate rows")?),
-                    None => {
-                        let n = parse_int(item, "plate size")?;
-                        (n, n)
-                    }
-                };
-                out.push(Value::Plate(c, r));
-            }
-            Key::Travel => {
-                if item.contains(['/', ':']) {
-                    return Err(
-                        "travel takes MAX or MIN..MAX values, no ranges: list several with commas"
-                            .into(),
-                    );
-                }
-                match item.split_once("..") {
-                    Some((a, b)) => {
-                        let (a, b) = (parse_num(a)? * factor, parse_num(b)? * factor);
-                        if a > b {
-                            return Err(format!("travel {item:?}: MIN is above MAX"));
-                        }
-                        out.push(Value::TravelPair(round(a), round(b)));
-                    }
-                    None => out.push(Value::TravelMax(round(parse_num(item)? * factor))),
-                }
-            }
-            _ => {
-                if item.contains('x') {
-                    return Err(format!("{item:?} is not a number"));
-                }
-                let nums = if item.contains("..") {
-                    expand_range(item)?
-                } else {
-                    vec![parse_num(item)?]
-                };
-                for x in nums {
-                    let x = round(x * factor);
-                    if key == Key::GridStep && (x.fract() != 0.0 || x < 1.0) {
-                        return Err(format!("grid_step {x} is not a whole number >= 1"));
-                    }
-                    out.push(Value::Num(x));
-                }
-            }
+            Key::Plate => out.push(parse_plate(item)?),
+            Key::Travel => out.push(parse_travel(item, factor)?),
+            _ => out.extend(parse_numbers(key, item, factor)?),
         }
     }
     Ok(Clause { key, values: out })
+}
+
+/// `COLSxROWS`, or `N` for `N x N`.
+fn parse_plate(item: &str) -> Result<Value, ClauseError> {
+    if item.contains("..") {
+        return Err(ClauseError::PlateRange);
+    }
+    let (c, r) = match item.split_once('x') {
+        Some((c, r)) => (parse_int(c, "plate cols")?, parse_int(r, "plate rows")?),
+        None => {
+            let n = parse_int(item, "plate size")?;
+            (n, n)
+        }
+    };
+    Ok(Value::Plate(c, r))
+}
+
+/// `MAX` or `MIN..MAX`, times `factor`.
+fn parse_travel(item: &str, factor: f64) -> Result<Value, ClauseError> {
+    if item.contains(['/', ':']) {
+        return Err(ClauseError::TravelRange);
+    }
+    match item.split_once("..") {
+        Some((a, b)) => {
+            let (a, b) = (parse_num(a)? * factor, parse_num(b)? * factor);
+            if a > b {
+                return Err(ClauseError::TravelDown(item.to_string()));
+            }
+            Ok(Value::TravelPair(round(a), round(b)))
+        }
+        None => Ok(Value::TravelMax(round(parse_num(item)? * factor))),
+    }
+}
+
+/// A number or a range, times `factor`; grid steps must come out whole.
+fn parse_numbers(key: Key, item: &str, factor: f64) -> Result<Vec<Value>, ClauseError> {
+    if item.contains('x') {
+        return Err(ClauseError::NotANumber(item.to_string()));
+    }
+    let nums = if item.contains("..") {
+        expand_range(item)?
+    } else {
+        vec![parse_num(item)?]
+    };
+    nums.into_iter()
+        .map(|x| {
+            let x = round(x * factor);
+            if key == Key::GridStep && (x.fract() != 0.0 || x < 1.0) {
+                return Err(ClauseError::GridStep(x));
+            }
+            Ok(Value::Num(x))
+        })
+        .collect()
 }
 
 impl Sweep {
@@ -319,9 +445,9 @@ impl Sweep {
             if c.is_empty() {
                 continue;
             }
-            let clause = parse_clause(c, units).map_err(|message| SweepError::Clause {
+            let clause = parse_clause(c, units).map_err(|problem| SweepError::Clause {
                 clause: c.to_string(),
-                message,
+                problem,
             })?;
             if clauses.iter().any(|o| o.key == clause.key) {
                 return Err(SweepError::DuplicateKey(clause.key.name().into()));
@@ -399,7 +525,7 @@ pub fn apply(base: &KitSpec, p: &[(Key, Value)]) -> Result<KitSpec, SweepError> 
             }
         }
     }
-    let units = fixplan_core::Units::Mm; // validate_params only reads defaults
+    let units = Units::Mm; // validate_params only reads defaults
     validate_kit(&k.kit)
         .and_then(|_| validate_params(&k.params, units))
         .map_err(|e| SweepError::Kit {

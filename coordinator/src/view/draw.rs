@@ -7,34 +7,49 @@ use fixplan_core::{FixtureReport, Kit, Pattern, Point};
 /// A circle: centre and radius.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Circle {
+    /// Centre, plate frame.
     pub c: Point,
+    /// Radius, catalogue unit.
     pub r: f64,
 }
 
 /// A contact: where the part is touched and the inward normal there.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
+    /// Where the locator or clamp tip touches the part's edge.
     pub at: Point,
+    /// Unit normal into the part: the direction the contact pushes.
     pub normal: Point,
 }
 
 /// A plate hole: position (plate frame) and whether it is a dowel hole.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hole {
+    /// Column, as the placement's `[col, row]` names it.
     pub col: i64,
+    /// Row.
     pub row: i64,
+    /// Centre, plate frame.
     pub at: Point,
+    /// A dowel hole takes a locator; the others are tapped (alternating
+    /// pattern), and are drawn differently.
     pub dowel: bool,
 }
 
 /// Everything to draw for one fixture, in plate coordinates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FixtureDrawing {
+    /// The part's outline in its pose.
     pub part: Vec<Point>,
+    /// The access regions in the part's pose (nothing may cover them).
     pub access: Vec<Vec<Point>>,
+    /// Locators 1-3, in the order the report lists them.
     pub locators: [Circle; 3],
+    /// The clamp body at its mount and rotation.
     pub clamp_body: Vec<Point>,
+    /// The plunger, moved out by the clamp's extension.
     pub plunger: Vec<Point>,
+    /// The plunger's tip, where the clamp touches the part.
     pub tip: Circle,
     /// Locators 1-3 then the clamp.
     pub contacts: Vec<Contact>,

@@ -1,8 +1,13 @@
 //! What people look at: the Foxglove scene of a part, SVG pictures of
 //! fixtures with an HTML gallery, and the tables and JSON lines of `show`
 //! and `export`. Uses `output` (messages, the results reader) and core.
+//!
+//! [`draw`] places a fixture on the plate; [`scene`] (Foxglove) and
+//! [`picture`] (SVG, with [`svg`]) draw it; [`render`] writes the pictures
+//! and the gallery; [`show`] prints tables and JSON lines.
 
 pub mod draw;
+pub mod picture;
 pub mod render;
 pub mod scene;
 pub mod show;

@@ -8,11 +8,13 @@
 //! (~400 us a part). Fields are declared in alphabetical order, which is
 //! the order a `Value` map wrote them in, so the bytes did not change.
 
-use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, Circle};
+use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, Circle, FixtureDrawing};
 use crate::output::messages::NS_PER_PART;
 use fixplan_core::{FixtureReport, Kit, Point, Units};
 use serde::Serialize;
 
+/// The frame every entity is drawn in: the plate, hole `[0, 0]` at the
+/// origin, the same for every part so that scenes replace each other.
 pub const FRAME: &str = "plate";
 
 #[derive(Serialize, Clone, Copy)]
@@ -23,7 +25,7 @@ struct Color {
     r: f64,
 }
 
-fn color(r: f64, g: f64, b: f64, a: f64) -> Color {
+const fn color(r: f64, g: f64, b: f64, a: f64) -> Color {
     Color { a, b, g, r }
 }
 
@@ -239,6 +241,125 @@ impl Scene {
     }
 }
 
+/// Outline colour of the part.
+const PART: Color = color(0.2, 0.6, 1.0, 1.0);
+/// Outline colour of the access regions.
+const ACCESS: Color = color(1.0, 0.55, 0.0, 1.0);
+
+impl Scene {
+    /// Without a fixture: the part's outline and access regions in the part
+    /// frame with a "no fixture" label; empty plate and fixture entities
+    /// clear the previous part's.
+    fn unplaced(&self, id: &str, outline: &[Point], access: &[Vec<Point>]) -> Vec<Entity<'static>> {
+        let lines = std::iter::once(self.loop_line(outline, 3.0, PART))
+            .chain(access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)))
+            .collect();
+        let at = bounds(outline).map(|b| b[1]).unwrap_or([0.0, 0.0]);
+        let texts = vec![self.text(at, format!("{id}: no fixture"))];
+        vec![
+            self.entity(
+                "part",
+                Shapes {
+                    lines,
+                    texts,
+                    ..Shapes::default()
+                },
+            ),
+            self.entity("plate", Shapes::default()),
+            self.entity("fixture", Shapes::default()),
+        ]
+    }
+
+    /// The plate: its edge and the holes within 1.5 spacings of the
+    /// fixture's bounds `[lo, hi]` (a whole plate is hundreds of disks a
+    /// part).
+    fn plate(&self, kit: &Kit, [lo, hi]: [Point; 2]) -> Entity<'static> {
+        let l = kit.spacing;
+        let hole_r = kit.locator_radius.min(0.3 * l);
+        let holes = plate_holes(kit)
+            .filter(|h| {
+                h.at[0] >= lo[0] - 1.5 * l
+                    && h.at[0] <= hi[0] + 1.5 * l
+                    && h.at[1] >= lo[1] - 1.5 * l
+                    && h.at[1] <= hi[1] + 1.5 * l
+            })
+            .map(|h| {
+                let c = if h.dowel {
+                    color(0.55, 0.55, 0.55, 1.0)
+                } else {
+                    color(0.35, 0.35, 0.4, 1.0)
+                };
+                self.disk(&Circle { c: h.at, r: hole_r }, 0.0005, c)
+            })
+            .collect();
+        self.entity(
+            "plate",
+            Shapes {
+                lines: vec![self.loop_line(&plate_outline(kit), 2.0, color(0.6, 0.6, 0.6, 1.0))],
+                cylinders: holes,
+                ..Shapes::default()
+            },
+        )
+    }
+
+    /// The part in its pose, access regions, and its rank and score at
+    /// `hi`, the fixture's top right corner.
+    fn posed_part(
+        &self,
+        id: &str,
+        d: &FixtureDrawing,
+        hi: Point,
+        f: &FixtureReport,
+    ) -> Entity<'static> {
+        let mut part_lines = vec![self.loop_line(&d.part, 3.0, PART)];
+        part_lines.extend(d.access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)));
+        let label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
+        self.entity(
+            "part",
+            Shapes {
+                lines: part_lines,
+                texts: vec![self.text(hi, label)],
+                ..Shapes::default()
+            },
+        )
+    }
+
+    /// Locators, clamp (body, plunger, tip) and the contact normals.
+    fn fixture(&self, kit: &Kit, d: &FixtureDrawing) -> Entity<'static> {
+        let steel = color(0.85, 0.85, 0.2, 1.0);
+        let mut cylinders: Vec<Cylinder> = d
+            .locators
+            .iter()
+            .map(|c| self.disk(c, 0.01, steel))
+            .collect();
+        cylinders.push(self.disk(&d.tip, 0.01, color(0.9, 0.2, 0.2, 1.0)));
+        let arrows = d
+            .contacts
+            .iter()
+            .map(|c| {
+                self.arrow(
+                    c.at,
+                    c.normal,
+                    0.6 * kit.spacing * self.m,
+                    color(0.1, 0.9, 0.3, 1.0),
+                )
+            })
+            .collect();
+        self.entity(
+            "fixture",
+            Shapes {
+                arrows,
+                cylinders,
+                lines: vec![
+                    self.loop_line(&d.clamp_body, 2.0, color(0.9, 0.2, 0.2, 1.0)),
+                    self.loop_line(&d.plunger, 2.0, color(0.9, 0.5, 0.5, 1.0)),
+                ],
+                ..Shapes::default()
+            },
+        )
+    }
+}
+
 /// The scene of part `index`: with a fixture, the part posed on the plate
 /// with the best fixture; without, the outline alone in the part frame.
 pub fn scene_update(
@@ -254,89 +375,18 @@ pub fn scene_update(
         m: units.mm_per_unit() / 1000.0,
         ns: index as u64 * NS_PER_PART,
     };
-    let part_col = color(0.2, 0.6, 1.0, 1.0);
-    let access_col = color(1.0, 0.55, 0.0, 1.0);
-    let mut entities = Vec::new();
-    let Some(f) = best else {
-        let lines = std::iter::once(s.loop_line(outline, 3.0, part_col))
-            .chain(access.iter().map(|a| s.loop_line(a, 2.0, access_col)))
-            .collect();
-        let at = bounds(outline).map(|b| b[1]).unwrap_or([0.0, 0.0]);
-        let texts = vec![s.text(at, format!("{id}: no fixture"))];
-        entities.push(s.entity(
-            "part",
-            Shapes {
-                lines,
-                texts,
-                ..Shapes::default()
-            },
-        ));
-        entities.push(s.entity("plate", Shapes::default()));
-        entities.push(s.entity("fixture", Shapes::default()));
-        return SceneUpdate {
-            deletions: [],
-            entities,
-        };
+    let entities = match best {
+        None => s.unplaced(id, outline, access),
+        Some(f) => {
+            let d = fixture_drawing(kit, outline, access, f);
+            let [lo, hi] = d.bounds();
+            vec![
+                s.plate(kit, [lo, hi]),
+                s.posed_part(id, &d, hi, f),
+                s.fixture(kit, &d),
+            ]
+        }
     };
-    let d = fixture_drawing(kit, outline, access, f);
-    let l = kit.spacing;
-    let [lo, hi] = d.bounds();
-    let hole_r = kit.locator_radius.min(0.3 * l);
-    let holes = plate_holes(kit)
-        .filter(|h| {
-            h.at[0] >= lo[0] - 1.5 * l
-                && h.at[0] <= hi[0] + 1.5 * l
-                && h.at[1] >= lo[1] - 1.5 * l
-                && h.at[1] <= hi[1] + 1.5 * l
-        })
-        .map(|h| {
-            let c = if h.dowel {
-                color(0.55, 0.55, 0.55, 1.0)
-            } else {
-                color(0.35, 0.35, 0.4, 1.0)
-            };
-            s.disk(&Circle { c: h.at, r: hole_r }, 0.0005, c)
-        })
-        .collect();
-    entities.push(s.entity(
-        "plate",
-        Shapes {
-            lines: vec![s.loop_line(&plate_outline(kit), 2.0, color(0.6, 0.6, 0.6, 1.0))],
-            cylinders: holes,
-            ..Shapes::default()
-        },
-    ));
-    let mut part_lines = vec![s.loop_line(&d.part, 3.0, part_col)];
-    part_lines.extend(d.access.iter().map(|a| s.loop_line(a, 2.0, access_col)));
-    let label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
-    entities.push(s.entity(
-        "part",
-        Shapes {
-            lines: part_lines,
-            texts: vec![s.text(hi, label)],
-            ..Shapes::default()
-        },
-    ));
-    let steel = color(0.85, 0.85, 0.2, 1.0);
-    let mut cylinders: Vec<Cylinder> = d.locators.iter().map(|c| s.disk(c, 0.01, steel)).collect();
-    cylinders.push(s.disk(&d.tip, 0.01, color(0.9, 0.2, 0.2, 1.0)));
-    let arrows = d
-        .contacts
-        .iter()
-        .map(|c| s.arrow(c.at, c.normal, 0.6 * l * s.m, color(0.1, 0.9, 0.3, 1.0)))
-        .collect();
-    entities.push(s.entity(
-        "fixture",
-        Shapes {
-            arrows,
-            cylinders,
-            lines: vec![
-                s.loop_line(&d.clamp_body, 2.0, color(0.9, 0.2, 0.2, 1.0)),
-                s.loop_line(&d.plunger, 2.0, color(0.9, 0.5, 0.5, 1.0)),
-            ],
-            ..Shapes::default()
-        },
-    ));
     SceneUpdate {
         deletions: [],
         entities,

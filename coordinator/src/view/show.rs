@@ -7,6 +7,8 @@ use fixplan_core::Status;
 use std::io::Write;
 use std::path::Path;
 
+/// A status as the results file's JSON writes it, so the tables and the
+/// gallery's CSS classes use the same words.
 pub fn status_word(s: Status) -> &'static str {
     match s {
         Status::Ok => "ok",
@@ -31,7 +33,7 @@ fn warn_incomplete(path: &Path, complete: bool, truncated: &Option<String>) {
 /// Prints the ranking of each part (or of `part` only), `top` rows each
 /// (`0`: all kept fixtures).
 pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) -> Result<()> {
-    let contents = for_each_record(path, part, |run, rec| print_part(run, rec, top, out))?;
+    let contents = for_each_record(path, part, |_, rec| print_part(rec, top, out))?;
     warn_incomplete(path, contents.complete, &contents.truncated);
     if part.is_none() {
         writeln!(
@@ -46,12 +48,7 @@ pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) ->
     Ok(())
 }
 
-fn print_part(
-    run: &crate::output::messages::RunMsg,
-    rec: &PartRecord,
-    top: usize,
-    out: &mut dyn Write,
-) -> Result<()> {
+fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
     let p = &rec.part;
     let u = p.units.label();
     write!(out, "== {} [{}]", p.id, status_word(p.status))?;
@@ -73,7 +70,6 @@ fn print_part(
     if fx.is_empty() {
         return Ok(());
     }
-    let _ = run;
     let pose = format!("pose x, y ({u}), theta");
     writeln!(
         out,

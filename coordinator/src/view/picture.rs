@@ -1,0 +1,305 @@
+//! The SVG pictures of `fixplan render`: one per fixture (plate holes,
+//! part in its pose, access regions shaded, locators, clamp body and
+//! plunger at its extension, contact points and normals, score in the
+//! caption), or one of the part alone when it has no fixture. Hand-written
+//! SVG: small files that open in any browser and stay the same byte for
+//! byte.
+
+use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
+use super::svg::escape;
+use crate::output::messages::RunMsg;
+use crate::output::reader::PartRecord;
+use fixplan_core::{FixtureReport, Kit, Point, Status};
+use std::fmt::Write as _;
+
+const WIDTH: f64 = 760.0;
+const PAD: f64 = 20.0;
+const CAPTION: f64 = 80.0;
+
+/// Maps plate coordinates (y up) to SVG pixels (y down).
+struct View {
+    x0: f64,
+    y1: f64,
+    k: f64,
+    w: f64,
+    h: f64,
+}
+
+impl View {
+    fn new(b: [Point; 2]) -> View {
+        let (dx, dy) = ((b[1][0] - b[0][0]).max(1e-9), (b[1][1] - b[0][1]).max(1e-9));
+        let k = (WIDTH - 2.0 * PAD) / dx.max(dy * 1.0);
+        let w = dx * k + 2.0 * PAD;
+        let h = dy * k + 2.0 * PAD;
+        View {
+            x0: b[0][0],
+            y1: b[1][1],
+            k,
+            w: w.max(WIDTH),
+            h,
+        }
+    }
+
+    fn p(&self, p: Point) -> (f64, f64) {
+        (
+            (p[0] - self.x0) * self.k + PAD,
+            (self.y1 - p[1]) * self.k + PAD,
+        )
+    }
+
+    fn points(&self, pts: &[Point]) -> String {
+        pts.iter()
+            .map(|&q| {
+                let (x, y) = self.p(q);
+                format!("{x:.2},{y:.2}")
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    fn polygon(&self, out: &mut String, pts: &[Point], style: &str) {
+        let _ = writeln!(out, r#"<polygon points="{}" {style}/>"#, self.points(pts));
+    }
+
+    fn circle(&self, out: &mut String, c: Point, r: f64, style: &str) {
+        let (x, y) = self.p(c);
+        let _ = writeln!(
+            out,
+            r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" {style}/>"#,
+            r * self.k
+        );
+    }
+}
+
+fn header(v: &View) -> String {
+    let h = v.h + CAPTION;
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.0} {h:.0}\" \
+         font-family=\"sans-serif\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
+         markerWidth=\"6\" markerHeight=\"6\" orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" \
+         fill=\"#138a36\"/></marker>\n<pattern id=\"hatch\" patternUnits=\"userSpaceOnUse\" width=\"8\" height=\"8\" \
+         patternTransform=\"rotate(45)\"><rect width=\"8\" height=\"8\" fill=\"#ffb347\" fill-opacity=\"0.35\"/>\
+         <line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"#e07b00\" stroke-width=\"2\"/></pattern></defs>\n\
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+        w = v.w
+    )
+}
+
+fn caption(out: &mut String, v: &View, lines: &[String]) {
+    for (i, l) in lines.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            r##"<text x="{PAD}" y="{:.1}" font-size="{}" fill="#222">{}</text>"##,
+            v.h + 18.0 + 20.0 * i as f64,
+            if i == 0 { 15 } else { 12 },
+            escape(l)
+        );
+    }
+}
+
+/// The SVG of one fixture of a part: the plate around it, the part in its
+/// pose, clamp, locators and contact normals, and a caption with the
+/// numbers a machinist sets the fixture up by.
+pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
+    let kit = &run.kit;
+    let d: FixtureDrawing = fixture_drawing(kit, &rec.part.outline, &rec.part.access, f);
+    let l = kit.spacing;
+    let [lo, hi] = d.bounds();
+    let b = [
+        [lo[0] - 0.8 * l, lo[1] - 0.8 * l],
+        [hi[0] + 0.8 * l, hi[1] + 0.8 * l],
+    ];
+    let v = View::new(b);
+    let mut s = header(&v);
+    let hole_r = (0.18 * l).min(kit.locator_radius);
+    draw_plate(&mut s, &v, kit, b, hole_r);
+    draw_part(&mut s, &v, &d);
+    draw_clamp(&mut s, &v, &d, hole_r);
+    draw_locators(&mut s, &v, &d);
+    draw_contacts(&mut s, &v, &d, l);
+    caption(&mut s, &v, &fixture_caption(rec, f));
+    s.push_str("</svg>\n");
+    s
+}
+
+/// Plate: edge and the holes within `b` (dowel filled, tapped as rings).
+fn draw_plate(s: &mut String, v: &View, kit: &Kit, b: [Point; 2], hole_r: f64) {
+    v.polygon(
+        s,
+        &plate_outline(kit),
+        r##"fill="#eef0f3" stroke="#9aa3ad" stroke-width="1.5""##,
+    );
+    for h in plate_holes(kit) {
+        if h.at[0] < b[0][0] || h.at[0] > b[1][0] || h.at[1] < b[0][1] || h.at[1] > b[1][1] {
+            continue;
+        }
+        let style = if h.dowel {
+            r##"fill="#b9c0c8" stroke="#7d8893" stroke-width="1""##
+        } else {
+            r##"fill="none" stroke="#7d8893" stroke-width="1.2" stroke-dasharray="2,2""##
+        };
+        v.circle(s, h.at, hole_r, style);
+    }
+}
+
+/// Part in its pose and its access regions, hatched.
+fn draw_part(s: &mut String, v: &View, d: &FixtureDrawing) {
+    v.polygon(
+        s,
+        &d.part,
+        r##"fill="#cfe3f7" fill-opacity="0.9" stroke="#1f5fa8" stroke-width="2""##,
+    );
+    for a in &d.access {
+        v.polygon(
+            s,
+            a,
+            r##"fill="url(#hatch)" stroke="#e07b00" stroke-width="1.5""##,
+        );
+    }
+}
+
+/// Clamp: body, plunger at its extension, tip; mount holes marked.
+fn draw_clamp(s: &mut String, v: &View, d: &FixtureDrawing, hole_r: f64) {
+    v.polygon(
+        s,
+        &d.clamp_body,
+        r##"fill="#d9443a" fill-opacity="0.22" stroke="#b0271f" stroke-width="1.5""##,
+    );
+    v.polygon(
+        s,
+        &d.plunger,
+        r##"fill="#d9443a" fill-opacity="0.55" stroke="#b0271f" stroke-width="1.2""##,
+    );
+    v.circle(
+        s,
+        d.tip.c,
+        d.tip.r,
+        r##"fill="#e8776f" stroke="#b0271f" stroke-width="1.5""##,
+    );
+    for h in &d.clamp_holes {
+        v.circle(s, *h, hole_r * 0.6, r##"fill="#b0271f""##);
+    }
+}
+
+/// Locators with labels L1 to L3 (the caption's order).
+fn draw_locators(s: &mut String, v: &View, d: &FixtureDrawing) {
+    for (i, c) in d.locators.iter().enumerate() {
+        v.circle(
+            s,
+            c.c,
+            c.r,
+            r##"fill="#4a4f57" stroke="#1d2025" stroke-width="1.5""##,
+        );
+        let (x, y) = v.p(c.c);
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.1}" y="{:.1}" font-size="12" fill="white" text-anchor="middle">L{}</text>"#,
+            y + 4.0,
+            i + 1
+        );
+    }
+}
+
+/// Contacts: points and inward normals, `0.6 l` long.
+fn draw_contacts(s: &mut String, v: &View, d: &FixtureDrawing, l: f64) {
+    for c in &d.contacts {
+        let (x, y) = v.p(c.at);
+        let e = [
+            c.at[0] + 0.6 * l * c.normal[0],
+            c.at[1] + 0.6 * l * c.normal[1],
+        ];
+        let (ex, ey) = v.p(e);
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x:.2}" y1="{y:.2}" x2="{ex:.2}" y2="{ey:.2}" stroke="#138a36" stroke-width="2" marker-end="url(#arrow)"/>"##
+        );
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{x:.2}" cy="{y:.2}" r="3.5" fill="#138a36"/>"##
+        );
+    }
+}
+
+/// Rank and score; pose and clamp setting; the plate holes used.
+fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
+    let u = rec.part.units.label();
+    let holes = |h: &[[i64; 2]]| {
+        h.iter()
+            .map(|p| format!("({},{})", p[0], p[1]))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    [
+        format!(
+            "{} — rank {} of {} — score {:.4}{}",
+            rec.part.id,
+            f.rank,
+            rec.fixtures.result.counts.map_or(0, |c| c.admissible),
+            f.score,
+            if f.borderline { " (borderline)" } else { "" }
+        ),
+        format!(
+            "pose x {:.2} {u}, y {:.2} {u}, theta {:.2}°; clamp rotation {}°, extension {:.2} {u}",
+            f.pose.x, f.pose.y, f.pose.theta_deg, f.clamp.rotation_deg, f.clamp.extension,
+        ),
+        format!(
+            "plate holes [col,row]: locators {}, clamp {}{}",
+            holes(&f.placement.locators),
+            holes(&f.placement.clamp_holes),
+            if f.placement.rotation_deg != 0 {
+                " (plate turned 90°)"
+            } else {
+                ""
+            }
+        ),
+    ]
+}
+
+/// The SVG of a part without a fixture: its outline and the reason.
+pub fn part_svg(rec: &PartRecord) -> String {
+    let p = &rec.part;
+    let mut pts = p.outline.clone();
+    for a in &p.access {
+        pts.extend(a.iter().copied());
+    }
+    // No outline (it could not be read): a caption alone.
+    let v = match bounds(&pts) {
+        Some(b) => {
+            let m = 0.08 * (b[1][0] - b[0][0]).max(b[1][1] - b[0][1]).max(1e-9);
+            View::new([[b[0][0] - m, b[0][1] - m], [b[1][0] + m, b[1][1] + m]])
+        }
+        None => View {
+            x0: 0.0,
+            y1: 0.0,
+            k: 1.0,
+            w: WIDTH,
+            h: 10.0,
+        },
+    };
+    let mut s = header(&v);
+    if p.outline.len() >= 2 {
+        v.polygon(
+            &mut s,
+            &p.outline,
+            r##"fill="#cfe3f7" stroke="#1f5fa8" stroke-width="2""##,
+        );
+    }
+    for a in &p.access {
+        v.polygon(
+            &mut s,
+            a,
+            r##"fill="url(#hatch)" stroke="#e07b00" stroke-width="1.5""##,
+        );
+    }
+    let why = match p.status {
+        Status::NoFixture => "no fixture of this kit holds this part".to_string(),
+        _ => p.error.clone().unwrap_or_default(),
+    };
+    caption(
+        &mut s,
+        &v,
+        &[format!("{} — {:?}", p.id, p.status).to_lowercase(), why],
+    );
+    s.push_str("</svg>\n");
+    s
+}
