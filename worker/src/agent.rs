@@ -10,13 +10,13 @@ use crate::protocol::{
     TransportChoice, PROTOCOL_VERSION,
 };
 use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
-use crate::{info, warn};
 use fixplan_core::PreparedPart;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use thiserror::Error;
+use tracing::{info, warn};
 use zenoh::Wait;
 
 /// Misbehaviours for tests of the coordinator's checks.
@@ -99,6 +99,8 @@ enum DataLink {
 struct Agent {
     opts: WorkerOptions,
     name: String,
+    /// `worker NAME`: the `role` of every log line.
+    role: String,
     keys: Keys,
     session: zenoh::Session,
     pool: rayon::ThreadPool,
@@ -149,10 +151,6 @@ const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 const SILENCE: Duration = Duration::from_secs(15);
 
 impl Agent {
-    fn role(&self) -> String {
-        format!("worker {}", self.name)
-    }
-
     fn send(&self, link: &DataLink, msg: &Msg) -> Result<Frame, LinkError> {
         let bytes = encode_as(self.opts.protocol_version, msg)
             .map_err(|e| LinkError::Zenoh(e.to_string()))?;
@@ -242,7 +240,7 @@ impl Agent {
             let (notes, next) = match reply {
                 Ok(Frame::Msg(Msg::Reply { notes, next })) => (notes, next),
                 Ok(Frame::Msg(m)) => {
-                    warn!(self.role(), "unexpected reply to a report: {m:?}");
+                    warn!(role = self.role, "unexpected reply to a report: {m:?}");
                     std::thread::sleep(Duration::from_millis(200));
                     continue;
                 }
@@ -252,7 +250,7 @@ impl Agent {
                     // first copy of a result and notes the others).
                     if last_heard.elapsed() > SILENCE {
                         warn!(
-                            self.role(),
+                            role = self.role,
                             "the coordinator is silent ({e}); joining again"
                         );
                         return Ok(false);
@@ -263,7 +261,7 @@ impl Agent {
             };
             last_heard = Instant::now();
             for n in notes {
-                warn!(self.role(), "{n}");
+                warn!(role = self.role, "{n}");
             }
             let outcomes = match next {
                 Next::Work(batch) => {
@@ -295,7 +293,7 @@ impl Agent {
                     next: Next::Done, ..
                 })) => {
                     if !self.opts.stay && finished_run.is_none() {
-                        info!(self.role(), "the run is already over");
+                        info!(role = self.role, "the run is already over");
                         return Ok(());
                     }
                     std::thread::sleep(Duration::from_millis(500));
@@ -303,7 +301,7 @@ impl Agent {
                 }
                 Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
                 Ok(Frame::Msg(m)) => {
-                    warn!(self.role(), "unexpected reply to join: {m:?}");
+                    warn!(role = self.role, "unexpected reply to join: {m:?}");
                     std::thread::sleep(Duration::from_millis(500));
                     continue;
                 }
@@ -315,7 +313,7 @@ impl Agent {
                 Err(e) => {
                     if !said_waiting && waiting_since.elapsed() > Duration::from_secs(2) {
                         info!(
-                            self.role(),
+                            role = self.role,
                             "waiting for a coordinator on {} ({e})",
                             self.keys.join()
                         );
@@ -339,7 +337,10 @@ impl Agent {
                         // reaches the same coordinator, unless iceoryx2
                         // was asked for.
                         Err(e) if self.opts.transport != TransportChoice::Iceoryx2 => {
-                            warn!(self.role(), "iceoryx2 unavailable ({e}); shards over zenoh");
+                            warn!(
+                                role = self.role,
+                                "iceoryx2 unavailable ({e}); shards over zenoh"
+                            );
                             DataLink::Zenoh
                         }
                         Err(e) => return Err(e.into()),
@@ -347,7 +348,7 @@ impl Agent {
                 }
             };
             info!(
-                self.role(),
+                role = self.role,
                 "joined run {} ({} threads, shards over {})",
                 welcome.run_id,
                 self.pool.current_num_threads(),
@@ -358,7 +359,7 @@ impl Agent {
             );
             if self.serve_run(link)? {
                 info!(
-                    self.role(),
+                    role = self.role,
                     "run {} is over: {} shards done", welcome.run_id, self.summary.shards
                 );
                 if !self.opts.stay {
@@ -375,7 +376,6 @@ impl Agent {
 
 /// Runs a worker until its run is over (or forever with `stay`).
 pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
-    crate::log::init();
     crate::iox::quiet_logs();
     let name = opts.name.clone().unwrap_or_else(|| unique_name("w"));
     let keys = Keys::new(&opts.key_prefix);
@@ -392,6 +392,7 @@ pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
         .map_err(|e| LinkError::Zenoh(e.to_string()))?;
     let mut agent = Agent {
         opts,
+        role: format!("worker {name}"),
         name,
         keys,
         session,

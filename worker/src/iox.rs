@@ -232,10 +232,15 @@ pub fn serve(
             match active.loan_slice_uninit(reply.len()) {
                 Ok(r) => {
                     if let Err(e) = r.write_from_slice(&reply).send() {
-                        crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
+                        tracing::warn!(
+                            role = "coordinator",
+                            "iceoryx2: cannot send a reply: {e:?}"
+                        );
                     }
                 }
-                Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
+                Err(e) => {
+                    tracing::warn!(role = "coordinator", "iceoryx2: cannot loan a reply: {e:?}");
+                }
             }
             answered = true;
         }

@@ -240,7 +240,6 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
 }
 
 pub fn bench_main(a: &BenchArgs) -> Result<()> {
-    fixplan_worker::log::set_quiet(true);
     let parts = inputs(a)?;
     println!(
         "catalogue: {} parts, verification {}",

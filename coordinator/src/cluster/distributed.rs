@@ -7,14 +7,15 @@ use super::runtime::{self, Runtime};
 use super::scheduler::{Finished, PartDone, PartSlot, Scheduler, Settings, Stats, WHOLE};
 use crate::job::shards;
 use fixplan_core::{PartialResult, PreparedPart};
+use fixplan_worker::iox;
 use fixplan_worker::part_input::{digest, PartInput};
 use fixplan_worker::protocol::TransportChoice;
-use fixplan_worker::{info, iox};
 use rayon::prelude::*;
 use std::collections::VecDeque;
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
+use tracing::info;
 
 /// A part's merged result with its prepared form (for the report: plate
 /// placement needs it) and, with `--good-enough`, where it stopped.
@@ -91,7 +92,7 @@ impl Distributed {
                 Ok(done) => self.ready.extend(done),
                 Err(RecvTimeoutError::Timeout) => {
                     info!(
-                        "coordinator",
+                        role = "coordinator",
                         "waiting for workers: {} of {} parts done", self.delivered, self.total
                     );
                 }
@@ -110,7 +111,6 @@ pub fn run_distributed(
     parts: Vec<PartInput>,
     opts: ClusterOptions,
 ) -> Result<Distributed, ClusterError> {
-    fixplan_worker::log::init();
     iox::quiet_logs();
     let total = parts.len();
     let (tx, rx) = channel::<Vec<PartDone>>();
@@ -201,7 +201,7 @@ pub fn run_distributed(
         let stale = iox::remove_stale();
         if !stale.is_empty() {
             info!(
-                "coordinator",
+                role = "coordinator",
                 "removed the iceoryx2 resources of {} dead runs",
                 stale.len()
             );

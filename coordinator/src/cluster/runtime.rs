@@ -8,12 +8,12 @@ use super::local::{LocalSpec, LocalWorkers};
 use super::scheduler::Scheduler;
 use fixplan_worker::iox;
 use fixplan_worker::protocol::DataPath;
-use fixplan_worker::warn;
 use fixplan_worker::zenoh_link::{open, Keys, ZenohOptions};
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
+use tracing::warn;
 use zenoh::sample::SampleKind;
 use zenoh::Wait;
 
@@ -66,7 +66,7 @@ impl Runtime {
                 );
                 if let Err(e) = r {
                     let _ = ready_tx.send(Err(e.to_string()));
-                    warn!(ROLE, "iceoryx2 server stopped: {e}");
+                    warn!(role = ROLE, "iceoryx2 server stopped: {e}");
                 }
             }));
             match ready_rx.recv_timeout(Duration::from_secs(10)) {
@@ -93,7 +93,7 @@ impl Runtime {
                         .unwrap_or_default();
                     let reply = c.handle(&bytes, &pi);
                     if let Err(e) = query.reply(query.key_expr().clone(), reply).wait() {
-                        warn!(ROLE, "cannot reply on {}: {e}", query.key_expr());
+                        warn!(role = ROLE, "cannot reply on {}: {e}", query.key_expr());
                     }
                 })
                 .wait()

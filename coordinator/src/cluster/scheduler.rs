@@ -10,12 +10,12 @@ use fixplan_worker::protocol::{
     decode, encode, encode_refused, refusal_for, Assign, DataPath, Digest, Frame, Join, Msg, Next,
     Outcome, ShardDone, ShardFailed, TransportChoice, Welcome,
 };
-use fixplan_worker::{info, warn};
 use std::collections::{HashMap, HashSet, VecDeque};
 use std::ops::Range;
 use std::sync::mpsc::Sender;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+use tracing::{info, warn};
 
 /// A finished part: merged result, or the message of why it failed.
 pub type PartDone = (usize, Result<Finished, String>);
@@ -255,11 +255,11 @@ impl Scheduler {
         let t0 = super::cpu_time::thread_micros();
         let reply = match decode(bytes) {
             Err(e) => {
-                warn!(ROLE, "dropped a message: {e}");
+                warn!(role = ROLE, "dropped a message: {e}");
                 encode_refused(&refusal_for(&e))
             }
             Ok(Frame::Refused(r)) => {
-                warn!(ROLE, "dropped an unexpected refusal: {r}");
+                warn!(role = ROLE, "dropped an unexpected refusal: {r}");
                 encode_refused("refused: unexpected message")
             }
             Ok(Frame::Msg(m)) => {
@@ -338,7 +338,7 @@ impl Scheduler {
             }
             other => {
                 warn!(
-                    ROLE,
+                    role = ROLE,
                     "dropped a message that only a coordinator sends: {}",
                     kind(&other)
                 );
@@ -358,7 +358,7 @@ impl Scheduler {
                 (Some(d), true) => d.clone(),
                 _ => {
                     warn!(
-                        ROLE,
+                        role = ROLE,
                         "refused worker {}: iceoryx2 forced but it is on another host", j.worker
                     );
                     return Err("refused: iceoryx2 transport forced, but the worker is not on the coordinator's host".into());
@@ -384,7 +384,7 @@ impl Scheduler {
             "iceoryx2"
         };
         info!(
-            ROLE,
+            role = ROLE,
             "worker {} joined (pid {}, {} threads, fixplan {}, shards over {how})",
             j.worker,
             j.pid,
@@ -434,7 +434,7 @@ impl Scheduler {
             }
             st.started = true;
             info!(
-                ROLE,
+                role = ROLE,
                 "{} workers: starting ({} shards)",
                 st.workers.len(),
                 st.shards.len()
@@ -503,7 +503,7 @@ impl Scheduler {
         st.stats.results += 1;
         let Some(sh) = st.shards.get(r.shard_id as usize) else {
             warn!(
-                ROLE,
+                role = ROLE,
                 "dropped a result for unknown shard {} from worker {}", r.shard_id, worker
             );
             return Err("unknown shard".into());
@@ -552,7 +552,7 @@ impl Scheduler {
             Err(e) => {
                 st.stats.rejected += 1;
                 warn!(
-                    ROLE,
+                    role = ROLE,
                     "rejected shard {} (part #{}, combinations {range:?}) from worker {}: {e}; it goes back to the queue",
                     r.shard_id,
                     part_index.get(p).copied().unwrap_or(p),
@@ -649,7 +649,7 @@ impl Scheduler {
             Err(e) => e.to_string(),
             Ok(_) => {
                 warn!(
-                    ROLE,
+                    role = ROLE,
                     "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
                 );
                 f.message
@@ -675,7 +675,7 @@ impl Scheduler {
             let n = requeue(&mut st, w.leased.into_iter());
             if st.open_parts > 0 {
                 info!(
-                    ROLE,
+                    role = ROLE,
                     "worker {worker} left after {} shards; {n} shards back in the queue", w.shards
                 );
             }
@@ -700,7 +700,7 @@ impl Scheduler {
             .collect();
         for (id, worker) in expired {
             warn!(
-                ROLE,
+                role = ROLE,
                 "shard {id}: lease of worker {worker} ran out; back in the queue"
             );
             if let Some(w) = st.workers.get_mut(&worker) {
