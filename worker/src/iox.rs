@@ -35,8 +35,11 @@ const SLICE_HINT: usize = 4096;
 /// Start of every prefix this crate creates.
 pub const PREFIX_HEAD: &str = "fxp";
 
-fn err<E: std::fmt::Debug>(what: &str) -> impl FnOnce(E) -> LinkError + '_ {
-    move |e| LinkError::Iceoryx2(format!("{what}: {e:?}"))
+fn err<E: std::fmt::Debug>(step: &'static str) -> impl FnOnce(E) -> LinkError {
+    move |e| LinkError::Iceoryx2 {
+        step,
+        detail: format!("{e:?}"),
+    }
 }
 
 /// Silences iceoryx2's own logging below errors (it warns about a missing
@@ -54,6 +57,8 @@ pub fn new_prefix() -> String {
     format!("{PREFIX_HEAD}{}x{:08x}_", std::process::id(), nanos)
 }
 
+/// iceoryx2's configuration with the run's global `prefix`: every node of
+/// a run (coordinator and workers) must use the same one to meet.
 pub fn config(prefix: &str) -> Result<Config, LinkError> {
     let mut c = Config::default();
     c.global.prefix = FileName::new(prefix.as_bytes()).map_err(err("prefix"))?;
