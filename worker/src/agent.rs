@@ -4,19 +4,19 @@
 
 use crate::host::{host_id, unique_name};
 use crate::iox::IoxClient;
-use crate::part_input::{digest, PartInput};
+use crate::part_input::{PartInput, WireInputError};
 use crate::protocol::{
     encode_as, Assign, DataPath, Digest, Frame, Join, Msg, Next, Outcome, ShardDone, ShardFailed,
     TransportChoice, PROTOCOL_VERSION,
 };
 use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
-use crate::{info, warn};
 use fixplan_core::PreparedPart;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use thiserror::Error;
+use tracing::{info, warn};
 use zenoh::Wait;
 
 /// Misbehaviours for tests of the coordinator's checks.
@@ -28,9 +28,25 @@ pub enum Fault {
     SlowMs(u64),
 }
 
+/// A `--fault` value that names no [`Fault`].
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum FaultError {
+    /// Neither `corrupt-score` nor `slow:MS`.
+    #[error("unknown fault {0:?} (corrupt-score, slow:MS)")]
+    Unknown(String),
+    /// `slow:` without a number of milliseconds.
+    #[error("{text}: {source}")]
+    SlowMs {
+        /// The value given.
+        text: String,
+        /// Why it is not a number.
+        source: std::num::ParseIntError,
+    },
+}
+
 impl std::str::FromStr for Fault {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = FaultError;
+    fn from_str(s: &str) -> Result<Self, FaultError> {
         if s == "corrupt-score" {
             return Ok(Fault::CorruptScore);
         }
@@ -38,17 +54,26 @@ impl std::str::FromStr for Fault {
             return ms
                 .parse()
                 .map(Fault::SlowMs)
-                .map_err(|e| format!("{s}: {e}"));
+                .map_err(|source| FaultError::SlowMs {
+                    text: s.to_string(),
+                    source,
+                });
         }
-        Err(format!("unknown fault {s:?} (corrupt-score, slow:MS)"))
+        Err(FaultError::Unknown(s.to_string()))
     }
 }
 
+/// What `fixplan worker` was told on its command line.
 #[derive(Debug, Clone)]
 pub struct WorkerOptions {
+    /// How to reach the coordinator.
     pub zenoh: ZenohOptions,
+    /// The run's key prefix: the coordinator's `--key-prefix`.
     pub key_prefix: String,
+    /// Enumeration threads (default: all cores).
     pub threads: Option<usize>,
+    /// The transport to ask for (iceoryx2 only helps on the coordinator's
+    /// host).
     pub transport: TransportChoice,
     /// Wait for the next run instead of exiting when a run is over.
     pub stay: bool,
@@ -56,6 +81,7 @@ pub struct WorkerOptions {
     pub name: Option<String>,
     /// Protocol version to claim (tests of the version check).
     pub protocol_version: u16,
+    /// Misbehave on purpose (tests of the coordinator's checks).
     pub fault: Option<Fault>,
 }
 
@@ -74,22 +100,33 @@ impl Default for WorkerOptions {
     }
 }
 
+/// Why a worker stopped before its run was over.
 #[derive(Debug, Error)]
 pub enum WorkerError {
-    #[error("{0}")]
+    /// No zenoh session, or an iceoryx2 link that was asked for failed.
+    #[error(transparent)]
     Link(#[from] LinkError),
+    /// The coordinator will not have this worker (another protocol version,
+    /// rejected results): retrying would not help, so `fixplan worker`
+    /// exits with code 3.
     #[error("the coordinator refused this worker: {0}")]
     Refused(String),
+    /// The enumeration threads could not be started.
     #[error("cannot start the thread pool: {0}")]
-    Pool(String),
+    Pool(rayon::ThreadPoolBuildError),
 }
 
 /// What a worker did, for its exit line.
 #[derive(Debug, Clone, Default)]
 pub struct WorkerSummary {
+    /// Shards assigned to this worker (done or failed).
     pub shards: u64,
+    /// Part inputs it prepared (once per part and run, thanks to the cache).
     pub parts_prepared: u64,
 }
+
+/// A prepared part, or why there is none, shared by the shards of the part.
+type Prepared = Arc<Result<PreparedPart, WireInputError>>;
 
 enum DataLink {
     Zenoh,
@@ -99,15 +136,21 @@ enum DataLink {
 struct Agent {
     opts: WorkerOptions,
     name: String,
+    /// `worker NAME`: the `role` of every log line.
+    role: String,
     keys: Keys,
     session: zenoh::Session,
     pool: rayon::ThreadPool,
-    cache: HashMap<Digest, Arc<Result<PreparedPart, String>>>,
+    cache: HashMap<Digest, Prepared>,
     summary: WorkerSummary,
 }
 
 /// One shard of an assignment, enumerated (on the calling rayon pool).
-fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, String>) -> Outcome {
+fn shard_outcome(
+    fault: Option<Fault>,
+    a: Assign,
+    prep: &Result<PreparedPart, WireInputError>,
+) -> Outcome {
     let failed = |message: String| {
         Outcome::Failed(ShardFailed {
             shard_id: a.shard_id,
@@ -116,7 +159,7 @@ fn shard_outcome(fault: Option<Fault>, a: Assign, prep: &Result<PreparedPart, St
     };
     let prep = match prep {
         Ok(p) => p,
-        Err(m) => return failed(m.clone()),
+        Err(e) => return failed(e.to_string()),
     };
     let t0 = Instant::now();
     let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
@@ -149,13 +192,8 @@ const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 const SILENCE: Duration = Duration::from_secs(15);
 
 impl Agent {
-    fn role(&self) -> String {
-        format!("worker {}", self.name)
-    }
-
     fn send(&self, link: &DataLink, msg: &Msg) -> Result<Frame, LinkError> {
-        let bytes = encode_as(self.opts.protocol_version, msg)
-            .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+        let bytes = encode_as(self.opts.protocol_version, msg)?;
         match link {
             DataLink::Zenoh => request(&self.session, &self.keys.work(), bytes, REQUEST_TIMEOUT),
             DataLink::Iox(c) => c.request(&bytes, REQUEST_TIMEOUT),
@@ -171,8 +209,7 @@ impl Agent {
             transport: self.opts.transport,
             software: env!("CARGO_PKG_VERSION").into(),
         };
-        let bytes = encode_as(self.opts.protocol_version, &Msg::Join(j))
-            .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+        let bytes = encode_as(self.opts.protocol_version, &Msg::Join(j))?;
         request(
             &self.session,
             &self.keys.join(),
@@ -181,23 +218,14 @@ impl Agent {
         )
     }
 
-    fn prepared(&mut self, a: &Assign) -> Arc<Result<PreparedPart, String>> {
+    fn prepared(&mut self, a: &Assign) -> Prepared {
         // A batch may hold several shards of one part: the first carries
         // the input, the cache serves the rest.
         if let Some(p) = self.cache.get(&a.digest) {
             return p.clone();
         }
-        let p = match &a.input {
-            None => Err("the coordinator sent no input for an unknown part".to_string()),
-            Some(bytes) if digest(bytes) != a.digest => {
-                Err("part input does not match its digest".to_string())
-            }
-            Some(bytes) => PartInput::decode(bytes)
-                .map_err(|e| e.to_string())
-                .and_then(|i| i.prepare().map_err(|e| e.to_string())),
-        };
+        let p = Arc::new(PartInput::prepare_wire(&a.digest, a.input.as_deref()));
         self.summary.parts_prepared += 1;
-        let p = Arc::new(p);
         // Only cache what the coordinator sent: a missing input is retried.
         if a.input.is_some() {
             self.cache.insert(a.digest, p.clone());
@@ -242,7 +270,7 @@ impl Agent {
             let (notes, next) = match reply {
                 Ok(Frame::Msg(Msg::Reply { notes, next })) => (notes, next),
                 Ok(Frame::Msg(m)) => {
-                    warn!(self.role(), "unexpected reply to a report: {m:?}");
+                    warn!(role = self.role, "unexpected reply to a report: {m:?}");
                     std::thread::sleep(Duration::from_millis(200));
                     continue;
                 }
@@ -252,7 +280,7 @@ impl Agent {
                     // first copy of a result and notes the others).
                     if last_heard.elapsed() > SILENCE {
                         warn!(
-                            self.role(),
+                            role = self.role,
                             "the coordinator is silent ({e}); joining again"
                         );
                         return Ok(false);
@@ -263,7 +291,7 @@ impl Agent {
             };
             last_heard = Instant::now();
             for n in notes {
-                warn!(self.role(), "{n}");
+                warn!(role = self.role, "{n}");
             }
             let outcomes = match next {
                 Next::Work(batch) => {
@@ -295,7 +323,7 @@ impl Agent {
                     next: Next::Done, ..
                 })) => {
                     if !self.opts.stay && finished_run.is_none() {
-                        info!(self.role(), "the run is already over");
+                        info!(role = self.role, "the run is already over");
                         return Ok(());
                     }
                     std::thread::sleep(Duration::from_millis(500));
@@ -303,7 +331,7 @@ impl Agent {
                 }
                 Ok(Frame::Refused(r)) => return Err(WorkerError::Refused(r)),
                 Ok(Frame::Msg(m)) => {
-                    warn!(self.role(), "unexpected reply to join: {m:?}");
+                    warn!(role = self.role, "unexpected reply to join: {m:?}");
                     std::thread::sleep(Duration::from_millis(500));
                     continue;
                 }
@@ -315,7 +343,7 @@ impl Agent {
                 Err(e) => {
                     if !said_waiting && waiting_since.elapsed() > Duration::from_secs(2) {
                         info!(
-                            self.role(),
+                            role = self.role,
                             "waiting for a coordinator on {} ({e})",
                             self.keys.join()
                         );
@@ -339,7 +367,10 @@ impl Agent {
                         // reaches the same coordinator, unless iceoryx2
                         // was asked for.
                         Err(e) if self.opts.transport != TransportChoice::Iceoryx2 => {
-                            warn!(self.role(), "iceoryx2 unavailable ({e}); shards over zenoh");
+                            warn!(
+                                role = self.role,
+                                "iceoryx2 unavailable ({e}); shards over zenoh"
+                            );
                             DataLink::Zenoh
                         }
                         Err(e) => return Err(e.into()),
@@ -347,7 +378,7 @@ impl Agent {
                 }
             };
             info!(
-                self.role(),
+                role = self.role,
                 "joined run {} ({} threads, shards over {})",
                 welcome.run_id,
                 self.pool.current_num_threads(),
@@ -358,7 +389,7 @@ impl Agent {
             );
             if self.serve_run(link)? {
                 info!(
-                    self.role(),
+                    role = self.role,
                     "run {} is over: {} shards done", welcome.run_id, self.summary.shards
                 );
                 if !self.opts.stay {
@@ -375,7 +406,6 @@ impl Agent {
 
 /// Runs a worker until its run is over (or forever with `stay`).
 pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
-    crate::log::init();
     crate::iox::quiet_logs();
     let name = opts.name.clone().unwrap_or_else(|| unique_name("w"));
     let keys = Keys::new(&opts.key_prefix);
@@ -383,15 +413,16 @@ pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
     if let Some(n) = opts.threads {
         pool = pool.num_threads(n);
     }
-    let pool = pool.build().map_err(|e| WorkerError::Pool(e.to_string()))?;
+    let pool = pool.build().map_err(WorkerError::Pool)?;
     let session = open(&opts.zenoh)?;
     let _token = session
         .liveliness()
         .declare_token(keys.alive(&name))
         .wait()
-        .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+        .map_err(LinkError::Zenoh)?;
     let mut agent = Agent {
         opts,
+        role: format!("worker {name}"),
         name,
         keys,
         session,

@@ -35,8 +35,11 @@ const SLICE_HINT: usize = 4096;
 /// Start of every prefix this crate creates.
 pub const PREFIX_HEAD: &str = "fxp";
 
-fn err<E: std::fmt::Debug>(what: &str) -> impl FnOnce(E) -> LinkError + '_ {
-    move |e| LinkError::Iceoryx2(format!("{what}: {e:?}"))
+fn err<E: std::fmt::Debug>(step: &'static str) -> impl FnOnce(E) -> LinkError {
+    move |e| LinkError::Iceoryx2 {
+        step,
+        detail: format!("{e:?}"),
+    }
 }
 
 /// Silences iceoryx2's own logging below errors (it warns about a missing
@@ -54,6 +57,8 @@ pub fn new_prefix() -> String {
     format!("{PREFIX_HEAD}{}x{:08x}_", std::process::id(), nanos)
 }
 
+/// iceoryx2's configuration with the run's global `prefix`: every node of
+/// a run (coordinator and workers) must use the same one to meet.
 pub fn config(prefix: &str) -> Result<Config, LinkError> {
     let mut c = Config::default();
     c.global.prefix = FileName::new(prefix.as_bytes()).map_err(err("prefix"))?;
@@ -232,10 +237,15 @@ pub fn serve(
             match active.loan_slice_uninit(reply.len()) {
                 Ok(r) => {
                     if let Err(e) = r.write_from_slice(&reply).send() {
-                        crate::warn!("coordinator", "iceoryx2: cannot send a reply: {e:?}");
+                        tracing::warn!(
+                            role = "coordinator",
+                            "iceoryx2: cannot send a reply: {e:?}"
+                        );
                     }
                 }
-                Err(e) => crate::warn!("coordinator", "iceoryx2: cannot loan a reply: {e:?}"),
+                Err(e) => {
+                    tracing::warn!(role = "coordinator", "iceoryx2: cannot loan a reply: {e:?}");
+                }
             }
             answered = true;
         }

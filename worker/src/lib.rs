@@ -8,7 +8,9 @@
 //! - [`zenoh_link`]: zenoh configuration, key expressions, request/reply;
 //! - [`iox`]: iceoryx2 request/reply through shared memory on one host;
 //! - [`agent`]: the `fixplan worker` loop;
-//! - [`host`]: host ids and unique names; [`log`]: log lines.
+//! - [`host`]: host ids and unique names;
+//! - [`log`]: the log line format and the subscriber of the `fixplan` command
+//!   (library code only emits `tracing` events).
 
 pub mod agent;
 pub mod host;

@@ -15,15 +15,46 @@ use thiserror::Error;
 /// One part of a distributed run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartInput {
+    /// The outline and access regions, as the catalogue gave them.
     pub part: Part,
+    /// The kit, in the catalogue's unit: the worker builds its own lattice.
     pub kit: Kit,
+    /// The parameters after the catalogue's per-part overrides.
     pub params: Params,
+    /// The unit of `part` and `kit`, which scales the tolerances.
     pub units: Units,
 }
 
+/// Why a part input cannot cross the wire: postcard's error, which names
+/// what it could not encode or read.
 #[derive(Debug, Error)]
-#[error("part input: {0}")]
-pub struct InputError(String);
+pub enum InputError {
+    /// The coordinator cannot encode the input (a value postcard refuses).
+    #[error("part input: {0}")]
+    Encode(postcard::Error),
+    /// The bytes are not a part input of this protocol version.
+    #[error("part input: {0}")]
+    Decode(postcard::Error),
+}
+
+/// Why a worker has no prepared part for an assignment: the shard fails
+/// with this text and the part becomes `invalid` (see
+/// [`crate::protocol::ShardFailed`]).
+#[derive(Debug, Error)]
+pub enum WireInputError {
+    /// The assignment is for a part this worker has not been sent.
+    #[error("the coordinator sent no input for an unknown part")]
+    Missing,
+    /// The input was damaged or belongs to another part.
+    #[error("part input does not match its digest")]
+    DigestMismatch,
+    /// The input could not be read.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The input was read but the part or kit is unusable.
+    #[error(transparent)]
+    Prepare(#[from] PrepareError),
+}
 
 // `Kit`'s serde form reads mount holes in several spellings (untagged),
 // which a binary format cannot; the wire form spells them one way.
@@ -82,11 +113,12 @@ impl PartInput {
             params: self.params.clone(),
             units: self.units,
         };
-        postcard::to_allocvec(&w).map_err(|e| InputError(e.to_string()))
+        postcard::to_allocvec(&w).map_err(InputError::Encode)
     }
 
+    /// Reads the wire bytes of [`PartInput::encode`].
     pub fn decode(bytes: &[u8]) -> Result<PartInput, InputError> {
-        let w: WireInput = postcard::from_bytes(bytes).map_err(|e| InputError(e.to_string()))?;
+        let w: WireInput = postcard::from_bytes(bytes).map_err(InputError::Decode)?;
         let c = w.kit.clamp;
         Ok(PartInput {
             part: w.part,
@@ -116,8 +148,24 @@ impl PartInput {
         })
     }
 
+    /// Prepares the part as the coordinator does: the same input gives the
+    /// same [`PreparedPart`], so shards from any worker merge.
     pub fn prepare(&self) -> Result<PreparedPart, PrepareError> {
         prepare(&self.part, &self.kit, &self.params, self.units)
+    }
+
+    /// Prepares the part of an assignment from the wire input that came with
+    /// it, after checking it against the `expected` digest the shards of
+    /// the part are named by.
+    pub fn prepare_wire(
+        expected: &Digest,
+        input: Option<&[u8]>,
+    ) -> Result<PreparedPart, WireInputError> {
+        let bytes = input.ok_or(WireInputError::Missing)?;
+        if digest(bytes) != *expected {
+            return Err(WireInputError::DigestMismatch);
+        }
+        Ok(PartInput::decode(bytes)?.prepare()?)
     }
 }
 
@@ -152,5 +200,32 @@ mod tests {
         assert_eq!(back, input);
         assert_eq!(back.encode().unwrap(), b);
         assert!(PartInput::decode(&b[..b.len() / 2]).is_err());
+    }
+
+    #[test]
+    fn wire_inputs_are_checked_before_they_are_prepared() {
+        let case: fixplan_core::Case =
+            serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json")).unwrap();
+        let input = PartInput {
+            part: case.part(),
+            kit: case.kit.clone(),
+            params: case.params.clone(),
+            units: case.units,
+        };
+        let b = input.encode().unwrap();
+        let d = digest(&b);
+        assert!(PartInput::prepare_wire(&d, Some(&b)).is_ok());
+        let text = |r: Result<PreparedPart, WireInputError>| r.err().map(|e| e.to_string());
+        assert_eq!(
+            text(PartInput::prepare_wire(&d, None)).as_deref(),
+            Some("the coordinator sent no input for an unknown part")
+        );
+        assert_eq!(
+            text(PartInput::prepare_wire(&[0; 32], Some(&b))).as_deref(),
+            Some("part input does not match its digest")
+        );
+        let cut = &b[..b.len() / 2];
+        let e = text(PartInput::prepare_wire(&digest(cut), Some(cut))).unwrap();
+        assert!(e.starts_with("part input: "), "{e}");
     }
 }

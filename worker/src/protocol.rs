@@ -30,18 +30,27 @@ pub enum TransportChoice {
     /// iceoryx2 when the worker is on the coordinator's host, else zenoh.
     #[default]
     Auto,
+    /// zenoh only: the worker's results take the network path even on the
+    /// coordinator's host (tests, or a `/dev/shm` too small to share).
     Zenoh,
+    /// iceoryx2 only: a worker that cannot share the coordinator's memory
+    /// is refused rather than quietly slower.
     Iceoryx2,
 }
 
+/// A `--transport` value that is none of `auto`, `zenoh`, `iceoryx2`.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("unknown transport {0:?} (auto, zenoh or iceoryx2)")]
+pub struct UnknownTransport(pub String);
+
 impl std::str::FromStr for TransportChoice {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownTransport;
+    fn from_str(s: &str) -> Result<Self, UnknownTransport> {
         match s {
             "auto" => Ok(TransportChoice::Auto),
             "zenoh" => Ok(TransportChoice::Zenoh),
             "iceoryx2" => Ok(TransportChoice::Iceoryx2),
-            _ => Err(format!("unknown transport {s:?} (auto, zenoh or iceoryx2)")),
+            _ => Err(UnknownTransport(s.to_string())),
         }
     }
 }
@@ -59,11 +68,17 @@ impl std::fmt::Display for TransportChoice {
 /// A worker asks to take part in the run (zenoh, `PREFIX/join`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Join {
+    /// The worker's unique name: its results, its liveliness token and the
+    /// logs are matched by it.
     pub worker: String,
     /// Identifies the host and its `/dev/shm` (see [`crate::host::host_id`]).
     pub host_id: String,
+    /// The worker's process id, for the operator reading the coordinator's
+    /// log.
     pub pid: u32,
+    /// The worker's enumeration threads: batches are sized to keep them busy.
     pub threads: u32,
+    /// The transport the worker wants for its shards.
     pub transport: TransportChoice,
     /// fixplan version of the worker, for messages.
     pub software: String,
@@ -72,18 +87,24 @@ pub struct Join {
 /// Where the worker sends its shard requests after joining.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub enum DataPath {
+    /// Queries on `PREFIX/work`, as for the join.
     Zenoh,
     /// iceoryx2 request-response service `service` under the global prefix
     /// `prefix`, with the event services `service/req` and `service/resp`.
     Iceoryx2 {
+        /// The run's iceoryx2 global prefix (one per run: runs never meet).
         prefix: String,
+        /// The request-response service's name.
         service: String,
     },
 }
 
+/// The coordinator's answer to a [`Join`] it accepts.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Welcome {
+    /// Names the run: a worker that stays does not rejoin a run it finished.
     pub run_id: String,
+    /// Where to send reports from now on.
     pub data: DataPath,
     /// How long a shard may stay out before it is given to another worker.
     pub lease_ms: u64,
@@ -92,8 +113,12 @@ pub struct Welcome {
 /// One shard to enumerate.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Assign {
+    /// Names the shard in the worker's report.
     pub shard_id: u64,
+    /// The part the shard belongs to: the key of the worker's cache of
+    /// prepared parts.
     pub digest: Digest,
+    /// The combinations to enumerate.
     pub range: Range<u64>,
     /// The part's wire input ([`crate::part_input::PartInput::encode`]),
     /// only the first time this worker gets a shard of the part.
@@ -106,8 +131,12 @@ pub struct Assign {
 /// A finished shard (of the worker named in the [`Msg::Report`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ShardDone {
+    /// The shard of the [`Assign`].
     pub shard_id: u64,
+    /// The part the worker enumerated: the coordinator checks it is the one
+    /// it assigned.
     pub digest: Digest,
+    /// Time spent on the shard, for the coordinator's statistics.
     pub micros: u64,
     /// The enumeration of the shard, or with `good_enough` of its prefix
     /// up to and including `hit`.
@@ -120,14 +149,18 @@ pub struct ShardDone {
 /// not prepare): the part becomes `invalid` with this message.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ShardFailed {
+    /// The shard of the [`Assign`].
     pub shard_id: u64,
+    /// What went wrong, in words: it becomes the part's error message.
     pub message: String,
 }
 
 /// What became of one shard of an assignment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Outcome {
+    /// Enumerated (boxed: the result is large beside a failure).
     Done(Box<ShardDone>),
+    /// Not enumerated, and enumerating it again would fail the same way.
     Failed(ShardFailed),
 }
 
@@ -138,7 +171,10 @@ pub enum Next {
     /// the round trip stays small beside the work.
     Work(Vec<Assign>),
     /// Nothing to do now; report again after this long.
-    Idle { retry_ms: u64 },
+    Idle {
+        /// How long to wait: the coordinator paces idle workers.
+        retry_ms: u64,
+    },
     /// The run is over.
     Done,
     /// The coordinator does not know this worker (declared dead, or another
@@ -152,18 +188,24 @@ pub enum Next {
 /// needed two: result, then pull).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Msg {
+    /// A worker asks to take part (`PREFIX/join`).
     Join(Join),
+    /// The coordinator accepts a join.
     Welcome(Welcome),
     /// The outcomes of the last assignment (none on the first report),
     /// and a request for more work.
     Report {
+        /// The reporting worker's name from its [`Join`].
         worker: String,
+        /// One per shard of the last assignment.
         outcomes: Vec<Outcome>,
     },
     /// The answer to a report: why any outcome was not taken (a duplicate,
     /// a rejected result), and what to do next.
     Reply {
+        /// Texts for the worker's log, one per outcome not taken.
         notes: Vec<String>,
+        /// The next assignment, or why there is none.
         next: Next,
     },
 }
@@ -171,25 +213,38 @@ pub enum Msg {
 /// A decoded frame.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Frame {
+    /// A message of this protocol version.
     Msg(Msg),
+    /// A refusal, whatever the version of its sender: the text says why.
     Refused(String),
 }
 
+/// Why a frame cannot be read: the coordinator turns it into a refusal
+/// ([`refusal_for`]), a worker stops.
 #[derive(Debug, Error, PartialEq)]
 pub enum DecodeError {
+    /// Not a frame at all (another program on the key or service).
     #[error("not a fixplan message ({0} bytes, no FX header)")]
     NotFixplan(usize),
+    /// A peer of another protocol version.
     #[error("protocol version {got}, this side speaks version {PROTOCOL_VERSION}")]
-    Version { got: u16 },
+    Version {
+        /// The version the peer claims.
+        got: u16,
+    },
+    /// A kind byte this version does not define.
     #[error("unknown message kind {0}")]
     Kind(u8),
+    /// The body is not a [`Msg`] (truncated or damaged).
     #[error("malformed message: {0}")]
-    Body(String),
+    Body(postcard::Error),
 }
 
+/// A message postcard cannot encode (it encodes every [`Msg`] there is,
+/// so this is a bug, reported rather than unwrapped).
 #[derive(Debug, Error)]
 #[error("cannot encode message: {0}")]
-pub struct EncodeError(String);
+pub struct EncodeError(postcard::Error);
 
 fn header(version: u16, kind: u8) -> Vec<u8> {
     let mut v = Vec::with_capacity(256);
@@ -208,7 +263,7 @@ pub fn encode(msg: &Msg) -> Result<Vec<u8>, EncodeError> {
 /// version check).
 pub fn encode_as(version: u16, msg: &Msg) -> Result<Vec<u8>, EncodeError> {
     let v = header(version, KIND_MSG);
-    postcard::to_extend(msg, v).map_err(|e| EncodeError(e.to_string()))
+    postcard::to_extend(msg, v).map_err(EncodeError)
 }
 
 /// A refusal, readable by a peer of any protocol version.
@@ -237,7 +292,7 @@ pub fn decode(bytes: &[u8]) -> Result<Frame, DecodeError> {
     }
     match postcard::from_bytes::<Msg>(body) {
         Ok(m) => Ok(Frame::Msg(m)),
-        Err(e) => Err(DecodeError::Body(e.to_string())),
+        Err(e) => Err(DecodeError::Body(e)),
     }
 }
 

@@ -8,7 +8,7 @@
 //! - `P/alive/WORKER`: liveliness token of each worker;
 //! - `P/coordinator`: liveliness token of the coordinator.
 
-use crate::protocol::{decode, DecodeError, Frame};
+use crate::protocol::{decode, DecodeError, EncodeError, Frame};
 use std::path::PathBuf;
 use std::time::Duration;
 use thiserror::Error;
@@ -19,25 +19,57 @@ use zenoh::Wait;
 pub struct ZenohOptions {
     /// `peer` (default) or `client` (through a zenoh router).
     pub mode: Option<String>,
+    /// Endpoints to listen on (`tcp/0.0.0.0:7447`): how the others reach a
+    /// coordinator, or a worker in peer mode.
     pub listen: Vec<String>,
+    /// Endpoints to connect to: a coordinator or a router.
     pub connect: Vec<String>,
     /// A zenoh configuration file (JSON5): TLS, access control, routers.
     /// `listen`/`connect` given on the command line override its endpoints.
     pub config_file: Option<PathBuf>,
 }
 
+/// Why a request, or the link for it, failed. A worker keeps trying on
+/// [`LinkError::NoReply`] and zenoh errors (the coordinator may not be up
+/// yet) and stops on the others.
 #[derive(Debug, Error)]
 pub enum LinkError {
+    /// The zenoh configuration options were refused.
     #[error("zenoh configuration: {0}")]
-    Config(String),
+    Config(zenoh::Error),
+    /// The zenoh configuration file cannot be read or was refused.
+    #[error("zenoh configuration: {}: {detail}", path.display())]
+    ConfigFile {
+        /// The file given.
+        path: PathBuf,
+        /// zenoh's reason.
+        detail: zenoh::Error,
+    },
+    /// A zenoh session, query or token failed.
     #[error("zenoh: {0}")]
-    Zenoh(String),
-    #[error("iceoryx2: {0}")]
-    Iceoryx2(String),
+    Zenoh(zenoh::Error),
+    /// The coordinator's queryable answered with an error instead of a
+    /// frame (its text).
+    #[error("zenoh: error reply: {0}")]
+    ErrorReply(String),
+    /// An iceoryx2 step failed: which one, and iceoryx2's error (the types
+    /// differ per step, so it is kept as its debug text).
+    #[error("iceoryx2: {step}: {detail}")]
+    Iceoryx2 {
+        /// The step (`node`, `open request-response service`, `loan`...).
+        step: &'static str,
+        /// iceoryx2's error.
+        detail: String,
+    },
+    /// No reply in time: the coordinator is not (or no longer) there.
     #[error("no reply from the coordinator")]
     NoReply,
+    /// A reply that is not a frame of this protocol version.
     #[error("unreadable reply: {0}")]
     Decode(#[from] DecodeError),
+    /// The request could not be encoded.
+    #[error(transparent)]
+    Encode(#[from] EncodeError),
 }
 
 fn json_list(v: &[String]) -> String {
@@ -48,10 +80,12 @@ fn json_list(v: &[String]) -> String {
 /// A zenoh configuration: the file if any, else defaults with multicast
 /// scouting off (explicit endpoints only) and gossip off.
 pub fn zenoh_config(o: &ZenohOptions) -> Result<zenoh::Config, LinkError> {
-    let cfg_err = |e: zenoh::Error| LinkError::Config(e.to_string());
+    let cfg_err = LinkError::Config;
     let mut c = match &o.config_file {
-        Some(p) => zenoh::Config::from_file(p)
-            .map_err(|e| LinkError::Config(format!("{}: {e}", p.display())))?,
+        Some(p) => zenoh::Config::from_file(p).map_err(|detail| LinkError::ConfigFile {
+            path: p.clone(),
+            detail,
+        })?,
         None => {
             let mut c = zenoh::Config::default();
             c.insert_json5("scouting/multicast/enabled", "false")
@@ -75,37 +109,45 @@ pub fn zenoh_config(o: &ZenohOptions) -> Result<zenoh::Config, LinkError> {
     Ok(c)
 }
 
+/// Opens a session with [`zenoh_config`]: blocking, no async runtime
+/// needed (zenoh runs its own).
 pub fn open(o: &ZenohOptions) -> Result<zenoh::Session, LinkError> {
     let c = zenoh_config(o)?;
-    zenoh::open(c)
-        .wait()
-        .map_err(|e| LinkError::Zenoh(e.to_string()))
+    zenoh::open(c).wait().map_err(LinkError::Zenoh)
 }
 
 /// Key expressions of one run.
 #[derive(Debug, Clone)]
 pub struct Keys {
+    /// The run's prefix without a trailing `/`: runs with different prefixes
+    /// share a zenoh network without meeting.
     pub prefix: String,
 }
 
 impl Keys {
+    /// Keys under `prefix` (a trailing `/` is ignored).
     pub fn new(prefix: &str) -> Keys {
         Keys {
             prefix: prefix.trim_end_matches('/').to_string(),
         }
     }
+    /// The coordinator's queryable for [`crate::protocol::Msg::Join`].
     pub fn join(&self) -> String {
         format!("{}/join", self.prefix)
     }
+    /// The coordinator's queryable for reports over zenoh.
     pub fn work(&self) -> String {
         format!("{}/work", self.prefix)
     }
+    /// A worker's liveliness token: its loss re-queues the worker's shards.
     pub fn alive(&self, worker: &str) -> String {
         format!("{}/alive/{worker}", self.prefix)
     }
+    /// Every worker's liveliness token, for the coordinator's subscriber.
     pub fn alive_all(&self) -> String {
         format!("{}/alive/*", self.prefix)
     }
+    /// The coordinator's liveliness token.
     pub fn coordinator(&self) -> String {
         format!("{}/coordinator", self.prefix)
     }
@@ -123,13 +165,12 @@ pub fn request(
         .payload(bytes)
         .timeout(timeout)
         .wait()
-        .map_err(|e| LinkError::Zenoh(e.to_string()))?;
+        .map_err(LinkError::Zenoh)?;
     let reply = replies.recv().map_err(|_| LinkError::NoReply)?;
     match reply.result() {
         Ok(sample) => Ok(decode(&sample.payload().to_bytes())?),
-        Err(e) => Err(LinkError::Zenoh(format!(
-            "error reply: {}",
-            String::from_utf8_lossy(&e.payload().to_bytes())
-        ))),
+        Err(e) => Err(LinkError::ErrorReply(
+            String::from_utf8_lossy(&e.payload().to_bytes()).into_owned(),
+        )),
     }
 }

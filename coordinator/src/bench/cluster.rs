@@ -247,7 +247,6 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
 /// Runs the measurements and prints them: throughput with 1 and 2 local
 /// workers, what the coordinator spent per shard, and round trips.
 pub fn bench_main(a: &BenchArgs) -> Result<()> {
-    fixplan_worker::log::set_quiet(true);
     let parts = inputs(a)?;
     println!(
         "catalogue: {} parts, verification {}",

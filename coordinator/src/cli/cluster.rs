@@ -150,10 +150,8 @@ pub struct RunClusterArgs {
 impl RunClusterArgs {
     /// The cluster of `--workers N` (none without it): N local worker
     /// processes sharing `threads` (default: this host's cores).
-    pub fn options(&self, threads: Option<usize>, quiet: bool) -> Option<ClusterOptions> {
+    pub fn options(&self, threads: Option<usize>) -> Option<ClusterOptions> {
         let n = self.workers.filter(|&n| n > 0)?;
-        // The coordinator's own log lines follow the command's --quiet.
-        fixplan_worker::log::set_quiet(quiet);
         Some(ClusterOptions {
             key_prefix: fixplan_worker::host::unique_name("fixplan-run"),
             transport: self.transport,
@@ -169,7 +167,6 @@ impl RunClusterArgs {
 
 /// `fixplan coordinator`.
 pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result<Totals> {
-    fixplan_worker::log::set_quiet(a.quiet);
     let mut zenoh = a.net.zenoh();
     if zenoh.listen.is_empty() && zenoh.connect.is_empty() && zenoh.config_file.is_none() {
         zenoh.listen = vec!["tcp/0.0.0.0:7447".into()];
@@ -207,7 +204,6 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
 
 /// `fixplan worker`: exit code 3 when refused.
 pub fn worker_main(a: &WorkerArgs) -> Result<()> {
-    fixplan_worker::log::set_quiet(a.quiet);
     let opts = WorkerOptions {
         zenoh: a.net.zenoh(),
         key_prefix: a.net.key_prefix.clone(),

@@ -210,8 +210,27 @@ pub fn main() {
     }
 }
 
+/// Whether the command asked for warnings only in its logs (`--quiet`;
+/// `bench-cluster` always, its tables are the output).
+fn quiet_logs(cmd: &Cmd) -> bool {
+    match cmd {
+        Cmd::Run { quiet, .. } => *quiet,
+        Cmd::Study(a) => a.quiet,
+        Cmd::Coordinator(a) => a.quiet,
+        Cmd::Worker(a) => a.quiet,
+        Cmd::BenchCluster(_) => true,
+        Cmd::Solve { .. }
+        | Cmd::Bench { .. }
+        | Cmd::Show { .. }
+        | Cmd::Export { .. }
+        | Cmd::Render { .. } => false,
+    }
+}
+
 fn real_main() -> Result<()> {
     let cli = Cli::parse();
+    // Once per process, before any work: library code only emits events.
+    fixplan_worker::log::init(quiet_logs(&cli.cmd));
     match cli.cmd {
         Cmd::Solve { case, threads } => {
             if let Some(n) = threads {
@@ -237,7 +256,7 @@ fn real_main() -> Result<()> {
             cluster,
             search,
         } => {
-            let backend = match cluster.options(threads, quiet) {
+            let backend = match cluster.options(threads) {
                 Some(mut c) => {
                     c.shard_size = shard_size;
                     Backend::Cluster(c)

@@ -152,6 +152,6 @@ pub fn study_cli_main(a: &StudyArgs, default_catalog: PathBuf) -> Result<StudyRe
         no_share: a.no_share,
         quiet: a.quiet,
     };
-    let copts = a.cluster.options(a.threads, a.quiet);
+    let copts = a.cluster.options(a.threads);
     study_main(&opts, copts.as_ref())
 }

@@ -9,15 +9,16 @@ use super::scheduler::{
 };
 use crate::job::shards;
 use fixplan_core::{PartialResult, PreparedPart};
+use fixplan_worker::iox;
 use fixplan_worker::part_input::PartInput;
 use fixplan_worker::protocol::{DataPath, TransportChoice};
 use fixplan_worker::zenoh_link::ZenohOptions;
-use fixplan_worker::{info, iox};
 use rayon::prelude::*;
 use std::collections::VecDeque;
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::sync::Arc;
 use std::time::Duration;
+use tracing::info;
 
 /// A part the workers finished: its merged result, byte for byte the
 /// embedded run's, with the part prepared (a report's plate placement
@@ -104,7 +105,7 @@ impl Distributed {
                 Ok(done) => self.ready.extend(done),
                 Err(RecvTimeoutError::Timeout) => {
                     info!(
-                        "coordinator",
+                        role = "coordinator",
                         "waiting for workers: {} of {} parts done", self.delivered, self.total
                     );
                 }
@@ -123,7 +124,6 @@ pub fn run_distributed(
     parts: Vec<PartInput>,
     opts: ClusterOptions,
 ) -> Result<Distributed, ClusterError> {
-    fixplan_worker::log::init();
     iox::quiet_logs();
     let total = parts.len();
     let (tx, rx) = channel::<Vec<Delivery>>();
@@ -251,7 +251,7 @@ fn iox_data_path(opts: &ClusterOptions) -> Option<DataPath> {
     let stale = iox::remove_stale();
     if !stale.is_empty() {
         info!(
-            "coordinator",
+            role = "coordinator",
             "removed the iceoryx2 resources of {} dead runs",
             stale.len()
         );

@@ -9,13 +9,13 @@ use super::options::ClusterError;
 use super::scheduler::Scheduler;
 use fixplan_worker::iox;
 use fixplan_worker::protocol::DataPath;
-use fixplan_worker::warn;
 use fixplan_worker::zenoh_link::{open, Keys, ZenohOptions};
 use std::any::Any;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
+use tracing::warn;
 use zenoh::sample::SampleKind;
 use zenoh::Wait;
 
@@ -150,7 +150,7 @@ fn serve_iox(
             |b| c.handle(b),
         );
         if let Err(e) = r {
-            warn!(ROLE, "iceoryx2 server stopped: {e}");
+            warn!(role = ROLE, "iceoryx2 server stopped: {e}");
             let _ = ready_tx.send(Err(e));
         }
     });
@@ -182,7 +182,7 @@ fn serve_zenoh(
                     .unwrap_or_default();
                 let reply = c.handle(&bytes);
                 if let Err(e) = query.reply(query.key_expr().clone(), reply).wait() {
-                    warn!(ROLE, "cannot reply on {}: {e}", query.key_expr());
+                    warn!(role = ROLE, "cannot reply on {}: {e}", query.key_expr());
                 }
             })
             .wait()

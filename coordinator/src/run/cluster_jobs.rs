@@ -149,8 +149,8 @@ impl ClusterJobs {
             }
         }
         let s = self.dist.finish();
-        fixplan_worker::info!(
-            "coordinator",
+        tracing::info!(
+            role = "coordinator",
             "run over: {} shards, {} results ({} duplicate, {} rejected), {} re-queued, {} workers joined, {} lost, {} fixtures re-derived",
             s.shards,
             s.results,

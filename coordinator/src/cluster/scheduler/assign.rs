@@ -3,9 +3,9 @@
 //! out of work together.
 
 use super::state::{requeue, Settings, ShardStatus, State, ROLE};
-use fixplan_worker::info;
 use fixplan_worker::protocol::{Assign, Next};
 use std::time::Instant;
+use tracing::info;
 
 /// What `worker` is to do next: work, wait, rejoin, or stop.
 pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str) -> Next {
@@ -25,7 +25,7 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str) -> Next {
         }
         st.started = true;
         info!(
-            ROLE,
+            role = ROLE,
             "{} workers: starting ({} shards)",
             st.workers.len(),
             st.shards.len()

@@ -25,11 +25,11 @@ use fixplan_worker::protocol::{
     decode, encode, encode_refused, refusal_for, Frame, Join, Msg, Next, Outcome, ShardDone,
     ShardFailed,
 };
-use fixplan_worker::warn;
 use state::{State, ROLE};
 use std::sync::mpsc::Sender;
 use std::sync::{Mutex, MutexGuard};
 use std::time::Instant;
+use tracing::warn;
 
 /// The shard queue, leases, workers and results of one run, answering
 /// the workers' requests. Shared by the transports' threads: one lock
@@ -85,11 +85,11 @@ impl Scheduler {
         let t0 = super::cpu_time::thread_micros();
         let reply = match decode(bytes) {
             Err(e) => {
-                warn!(ROLE, "dropped a message: {e}");
+                warn!(role = ROLE, "dropped a message: {e}");
                 encode_refused(&refusal_for(&e))
             }
             Ok(Frame::Refused(r)) => {
-                warn!(ROLE, "dropped an unexpected refusal: {r}");
+                warn!(role = ROLE, "dropped an unexpected refusal: {r}");
                 encode_refused(&Refusal::Unexpected.to_string())
             }
             Ok(Frame::Msg(m)) => {
@@ -143,7 +143,7 @@ impl Scheduler {
             Msg::Report { worker, outcomes } => self.report(&worker, outcomes),
             other => {
                 warn!(
-                    ROLE,
+                    role = ROLE,
                     "dropped a message that only a coordinator sends: {}",
                     kind(&other)
                 );

@@ -10,8 +10,8 @@ use super::workers;
 use crate::cluster::verify::{self, CheckError};
 use fixplan_core::merge;
 use fixplan_worker::protocol::{ShardDone, ShardFailed};
-use fixplan_worker::warn;
 use std::ops::Range;
+use tracing::warn;
 
 /// Takes one shard result, or says why not (a rejected one bans its
 /// worker).
@@ -53,7 +53,7 @@ pub(super) fn take_result(
 fn shard_of(st: &mut State, r: &ShardDone, worker: &str) -> Result<(usize, Range<u64>), NotTaken> {
     let Some(sh) = st.shards.get(r.shard_id as usize) else {
         warn!(
-            ROLE,
+            role = ROLE,
             "dropped a result for unknown shard {} from worker {}", r.shard_id, worker
         );
         return Err(NotTaken::UnknownShard);
@@ -104,8 +104,7 @@ fn reject(
 ) {
     st.stats.rejected += 1;
     let part_index = &st.part_index;
-    warn!(
-        ROLE,
+    warn!(role = ROLE,
         "rejected shard {} (part #{}, combinations {range:?}) from worker {}: {e}; it goes back to the queue",
         r.shard_id,
         part_index.get(p).copied().unwrap_or(p),
@@ -218,7 +217,7 @@ pub(super) fn take_failure(st: &mut State, f: ShardFailed, worker: &str) -> Resu
         Err(e) => PartError::Prepare(e),
         Ok(_) => {
             warn!(
-                ROLE,
+                role = ROLE,
                 "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
             );
             PartError::Worker(f.message)

@@ -7,9 +7,9 @@ use super::state::{
     back_in_queue, requeue, Settings, ShardSlot, ShardStatus, State, WorkerSlot, ROLE,
 };
 use fixplan_worker::protocol::{DataPath, Join, Msg, Next, TransportChoice, Welcome};
-use fixplan_worker::{info, warn};
 use std::collections::HashSet;
 use std::time::Instant;
+use tracing::{info, warn};
 
 /// Where a joining worker is to send its requests: iceoryx2 shared memory
 /// if it is on this host and the coordinator serves it, else zenoh; a
@@ -24,7 +24,7 @@ pub(super) fn data_path(s: &Settings, j: &Join) -> Result<DataPath, Refusal> {
         (Some(d), true) => Ok(d.clone()),
         _ if forced(TransportChoice::Iceoryx2) => {
             warn!(
-                ROLE,
+                role = ROLE,
                 "refused worker {}: iceoryx2 forced but it is on another host", j.worker
             );
             Err(Refusal::IoxOnAnotherHost)
@@ -50,7 +50,7 @@ pub(super) fn join(st: &mut State, s: &Settings, j: Join, data: DataPath) -> Msg
         "iceoryx2"
     };
     info!(
-        ROLE,
+        role = ROLE,
         "worker {} joined (pid {}, {} threads, fixplan {}, shards over {how})",
         j.worker,
         j.pid,
@@ -86,7 +86,7 @@ pub(super) fn lost(st: &mut State, worker: &str) {
         let n = requeue(st, w.leased.into_iter());
         if st.open_parts > 0 {
             info!(
-                ROLE,
+                role = ROLE,
                 "worker {worker} left after {} shards; {n} shards back in the queue", w.shards
             );
         }
@@ -109,7 +109,7 @@ pub(super) fn expire_leases(st: &mut State, now: Instant) {
         .collect();
     for (id, worker) in expired {
         warn!(
-            ROLE,
+            role = ROLE,
             "shard {id}: lease of worker {worker} ran out; back in the queue"
         );
         if let Some(w) = st.workers.get_mut(&worker) {
