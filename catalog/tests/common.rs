@@ -1,5 +1,6 @@
 //! Helpers shared by the integration tests (included with `mod common`).
-#![allow(dead_code)]
+#![allow(dead_code, missing_docs)] // test helpers, documented where they are used
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};

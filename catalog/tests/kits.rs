@@ -1,4 +1,5 @@
 //! Kits: built-in, TOML files, unit conversion, validation through core.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 mod common;
 use common::*;

@@ -1,5 +1,6 @@
 //! part -> file -> part, for each format and both units: the writers are
 //! exact inverses of the readers.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::{parse_part, write_dxf, write_json, write_svg, Format, ReadOptions};
 use fixplan_core::{Part, Units};

@@ -6,7 +6,7 @@
 //! [`job`] (shards, grid steps, merge); [`run`] turns the result into the
 //! part's messages ([`output`], with the scene of [`view`]) and writes them
 //! in catalogue order. [`study`] runs many kits through the same path,
-//! [`bench`] measures it, and [`cli`] is the command line over all of it.
+//! [`mod@bench`] measures it, and [`cli`] is the command line over all of it.
 //! Imports flow one way: `cli` -> `bench`, `study` -> `run` -> `cluster`,
 //! `view` -> `output` -> `job` (`scripts/import_cycles.py` checks it).
 

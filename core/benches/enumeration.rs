@@ -1,4 +1,6 @@
 //! Hot pieces and whole parts. `cargo bench -p fixplan-core`.
+// criterion_main! generates an undocumented `main`.
+#![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use fixplan_core::form_closure::{wrench, LocatorWrenches};

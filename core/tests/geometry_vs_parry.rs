@@ -1,6 +1,7 @@
 //! Our clearance primitives against parry2d on convex shapes, where parry's
 //! distance is exact: the hand-written versions exist for eps semantics and
 //! speed, not to disagree.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_core::geometry::{polygon_clearance, polygon_disk_clearance, v2, V2};
 use parry2d_f64::math::{Pose, Vector};

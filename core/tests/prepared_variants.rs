@@ -1,6 +1,7 @@
 //! A prepared part re-used with another setting (`with_kit`,
 //! `with_grid_step`) is the part a fresh `prepare` gives: a study and a
 //! coarse-to-fine search rely on it to skip re-deriving the geometry.
+#![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 mod support;
 

@@ -149,3 +149,29 @@ pub fn run(parts: &[BenchPart], repeat: usize) {
         );
     }
 }
+
+/// `fixplan bench`: the parts of `catalog` with `kit`, or the case files
+/// `cases` (the bundled bench cases when none), measured on one thread.
+pub fn bench_main(
+    cases: &[PathBuf],
+    catalog: Option<&Path>,
+    kit: &str,
+    repeat: usize,
+) -> Result<()> {
+    let parts = match catalog {
+        Some(c) => {
+            let cat = fixplan_catalog::load_catalog(c)?;
+            let spec = fixplan_catalog::load_kit(kit, cat.units)?;
+            let parts = cat
+                .parts
+                .into_iter()
+                .map(|p| (p.id, p.part.map_err(|e| e.to_string())))
+                .collect();
+            parts_from_catalog(parts, &spec.kit, &spec.params, cat.units)
+        }
+        None if cases.is_empty() => parts_from_cases(&default_cases())?,
+        None => parts_from_cases(cases)?,
+    };
+    run(&parts, repeat);
+    Ok(())
+}

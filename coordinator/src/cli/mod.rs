@@ -11,8 +11,6 @@ use crate::run::backend::Backend;
 use crate::run::{default_catalog, load_and_run, RunOptions};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use fixplan_core::Status;
-use solve::solve_file;
 use std::path::PathBuf;
 
 /// Design modular fixtures for planar parts: every fixture of three round
@@ -232,18 +230,7 @@ fn real_main() -> Result<()> {
     // Once per process, before any work: library code only emits events.
     fixplan_worker::log::init(quiet_logs(&cli.cmd));
     match cli.cmd {
-        Cmd::Solve { case, threads } => {
-            if let Some(n) = threads {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
-                    .build_global()?;
-            }
-            let res = solve_file(&case);
-            println!("{}", serde_json::to_string_pretty(&res)?);
-            if res.status == Status::Invalid {
-                std::process::exit(2);
-            }
-        }
+        Cmd::Solve { case, threads } => solve::solve_main(&case, threads)?,
         Cmd::Run {
             catalog,
             kit,
@@ -288,26 +275,7 @@ fn real_main() -> Result<()> {
             catalog,
             kit,
             repeat,
-        } => {
-            use crate::bench::parts as bench_cmd;
-            let parts = match catalog {
-                Some(c) => {
-                    let cat = fixplan_catalog::load_catalog(&c)?;
-                    let spec = fixplan_catalog::load_kit(&kit, cat.units)?;
-                    let parts = cat
-                        .parts
-                        .into_iter()
-                        .map(|p| (p.id, p.part.map_err(|e| e.to_string())))
-                        .collect();
-                    bench_cmd::parts_from_catalog(parts, &spec.kit, &spec.params, cat.units)
-                }
-                None if cases.is_empty() => {
-                    bench_cmd::parts_from_cases(&bench_cmd::default_cases())?
-                }
-                None => bench_cmd::parts_from_cases(&cases)?,
-            };
-            bench_cmd::run(&parts, repeat);
-        }
+        } => crate::bench::parts::bench_main(&cases, catalog.as_deref(), &kit, repeat)?,
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             crate::view::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;

@@ -22,3 +22,19 @@ pub fn solve_file(path: &Path) -> SolveResult {
     }
     res
 }
+
+/// `fixplan solve`: prints the result JSON; exit code 2 for an invalid
+/// part, so scripts can tell a bad input from a part with no fixture.
+pub fn solve_main(case: &Path, threads: Option<usize>) -> anyhow::Result<()> {
+    if let Some(n) = threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()?;
+    }
+    let res = solve_file(case);
+    println!("{}", serde_json::to_string_pretty(&res)?);
+    if res.status == Status::Invalid {
+        std::process::exit(2);
+    }
+    Ok(())
+}
