@@ -7,6 +7,7 @@
 //! one part and returns the result format of SPEC Appendix A.
 
 pub mod admissibility;
+pub mod arc;
 pub mod clamp;
 pub mod combinations;
 pub mod enumerate;
