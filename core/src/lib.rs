@@ -15,6 +15,7 @@ pub mod form_closure;
 pub mod geometry;
 pub mod input;
 pub mod metric;
+pub mod outline;
 pub mod plate;
 pub mod polygon;
 pub mod pose;
