@@ -65,21 +65,27 @@ fn span_membership_at_the_ends() {
 }
 
 /// Minimum of `f` on `[0, 1]`: dense samples, then golden-section search
-/// around the best one (the brute-force reference for distances).
+/// around every local minimum of the samples (the brute-force reference
+/// for distances; a curve can pass near another in several places).
 fn brute_min(f: impl Fn(f64) -> f64) -> f64 {
     const N: usize = 4000;
-    let (mut best_t, mut best) = (0.0, f(0.0));
-    for i in 1..=N {
-        let t = i as f64 / N as f64;
-        let v = f(t);
-        if v < best {
-            (best_t, best) = (t, v);
+    let h = 1.0 / N as f64;
+    let v: Vec<f64> = (0..=N).map(|i| f(i as f64 * h)).collect();
+    let mut best = v.iter().copied().fold(f64::INFINITY, f64::min);
+    for i in 0..=N {
+        let left = if i > 0 { v[i - 1] } else { f64::INFINITY };
+        let right = if i < N { v[i + 1] } else { f64::INFINITY };
+        if v[i] <= left && v[i] <= right {
+            best = best.min(golden(&f, (i as f64 - 1.0) * h, (i as f64 + 1.0) * h));
         }
     }
-    let (mut lo, mut hi) = (
-        (best_t - 1.0 / N as f64).max(0.0),
-        (best_t + 1.0 / N as f64).min(1.0),
-    );
+    best
+}
+
+/// Golden-section minimum of a unimodal `f` on `[lo, hi]` clipped to
+/// `[0, 1]`.
+fn golden(f: &impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    let (mut lo, mut hi) = (lo.max(0.0), hi.min(1.0));
     let g = 0.5 * (5f64.sqrt() - 1.0);
     for _ in 0..80 {
         let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
@@ -89,7 +95,7 @@ fn brute_min(f: impl Fn(f64) -> f64) -> f64 {
             lo = x1;
         }
     }
-    best.min(f(0.5 * (lo + hi)))
+    f(0.5 * (lo + hi))
 }
 
 fn arc_strategy() -> impl Strategy<Value = CircArc> {
