@@ -403,6 +403,11 @@ pub fn segment_circle(a: V2, b: V2, c: V2, r: f64, tol: f64) -> Hits {
 /// `tol` (or exactly, when `tol` is 0) give none: the caller decides what a
 /// shared circle means.
 pub fn circle_circle(c1: V2, r1: f64, c2: V2, r2: f64, tol: f64) -> Hits {
+    if r1 > r2 {
+        // From the smaller circle: `r1 - x` below then cancels at the
+        // small radius, not at a nearly straight arc's huge one.
+        return circle_circle(c2, r2, c1, r1, tol);
+    }
     let dv = c2 - c1;
     let d = dv.norm();
     let mut out = Hits::default();

@@ -311,3 +311,24 @@ fn intersections_of_hand_made_curves() {
         assert!(off_arc(&upper, *p) < 1e-12 && off_arc(&other, *p) < 1e-12);
     }
 }
+
+#[test]
+fn circle_circle_with_a_nearly_straight_arc() {
+    // Through the origin: a circle of radius 5e4 tangent to the x axis
+    // there, and one of radius 5. Computed from the huge circle, `r - x`
+    // cancels at 5e4 and the points come out 1e-8 off; from the small one
+    // they are good to rounding of the huge centre (5e4 * 1e-16).
+    let (c1, r1) = (v2(0., -5e4), 5e4);
+    let (c2, r2) = (v2(3., 4.), 5.0);
+    for hits in [
+        circle_circle(c1, r1, c2, r2, 0.0),
+        circle_circle(c2, r2, c1, r1, 0.0),
+    ] {
+        assert_eq!(hits.as_slice().len(), 2);
+        for p in hits.as_slice() {
+            assert!(((p - c1).norm() - r1).abs() < 1e-10, "{p:?}");
+            assert!(((p - c2).norm() - r2).abs() < 1e-10, "{p:?}");
+        }
+        assert!(hits.as_slice().iter().any(|p| p.norm() < 1e-10));
+    }
+}

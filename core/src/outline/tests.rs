@@ -614,3 +614,18 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn nearly_straight_arc_meeting_a_sharp_one_is_valid() {
+    // From a proptest failure: edge 0 has radius 5.2e4 on a part of size
+    // 35 and meets edge 1 at 158 degrees; their circles meet again at
+    // (-29.57, 3.60), outside edge 0. A general circle-circle intersection
+    // put the shared vertex 4e-8 off itself (more than the 3.5e-8
+    // tolerance) and called it a crossing.
+    let v = vs(&[
+        [17.45844275660866, 8.891553364291067, 0.00016903217002687098],
+        [-17.732303693253478, 4.93960261772418, -0.36117042001630634],
+        [-6.144169445225201, -11.774165547908966, 0.0],
+    ]);
+    Outline::new(&v).unwrap();
+}
