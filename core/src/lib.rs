@@ -7,6 +7,7 @@
 //! one part and returns the result format of SPEC Appendix A.
 
 pub mod admissibility;
+pub mod arc;
 pub mod clamp;
 pub mod combinations;
 pub mod enumerate;
@@ -14,6 +15,7 @@ pub mod form_closure;
 pub mod geometry;
 pub mod input;
 pub mod metric;
+pub mod outline;
 pub mod plate;
 pub mod polygon;
 pub mod pose;
