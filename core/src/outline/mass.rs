@@ -1,6 +1,7 @@
 //! Area, centroid and polar second moment of the true region (SPEC 6, 8.1).
 
-use super::{edges_of, Edge, Vertex};
+use super::edge::{edges_of, Edge};
+use super::vertex::Vertex;
 use crate::arc::segment_moments;
 use crate::geometry::{centroid_and_polar_moment, cross, signed_area, v2, V2};
 

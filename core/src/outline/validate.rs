@@ -7,7 +7,9 @@
 //! intersection a few ulps from the shared vertex, and two edges that come
 //! closer than that are touching for any practical purpose.
 
-use super::{ccw_of_cw_outline, edges_of, mass::general, Edge, Vertex};
+use super::edge::{ccw_of_cw_outline, edges_of, Edge};
+use super::mass::general;
+use super::vertex::Vertex;
 use crate::arc::{same_circle, CircArc};
 use crate::geometry::{point_segment_dist2, V2};
 use crate::polygon::{validate_polygon, PolygonError};
