@@ -1,136 +1,40 @@
 //! The JSON Schemas embedded in a results file, one per channel of
 //! [`super::messages`]: what lets a generic MCAP viewer decode them.
 
-use super::messages::{SCHEMA_FIXTURES, SCHEMA_PART, SCHEMA_RUN};
+use super::messages::{FixturesMsg, PartMsg, RunMsg, SCHEMA_FIXTURES, SCHEMA_PART, SCHEMA_RUN};
+use schemars::{generate::SchemaSettings, JsonSchema};
 
-fn schema(title: &str, body: serde_json::Value) -> Vec<u8> {
-    let mut v = body;
+/// The JSON Schema of `T`, generated from the type (serde attributes and
+/// doc comments included): draft 2020-12, every subschema inline (no
+/// `$ref`, which simple viewers do not follow), titled `title`.
+pub fn schema_of<T: JsonSchema>(title: &str) -> serde_json::Value {
+    let generator = SchemaSettings::draft2020_12()
+        .with(|s| s.inline_subschemas = true)
+        .into_generator();
+    let mut v: serde_json::Value = generator.into_root_schema_for::<T>().into();
     if let Some(o) = v.as_object_mut() {
-        o.insert(
-            "$schema".into(),
-            "https://json-schema.org/draft/2020-12/schema".into(),
-        );
         o.insert("title".into(), title.into());
     }
-    serde_json::to_vec_pretty(&v).unwrap_or_default()
+    v
 }
 
-fn point() -> serde_json::Value {
-    serde_json::json!({"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2})
+fn pretty(v: &serde_json::Value) -> Vec<u8> {
+    serde_json::to_vec_pretty(v).unwrap_or_default()
 }
 
-fn polygon() -> serde_json::Value {
-    serde_json::json!({"type": "array", "items": point()})
-}
-
-fn lattice() -> serde_json::Value {
-    serde_json::json!({"type": "array", "items": {"type": "integer"}, "minItems": 2, "maxItems": 2})
-}
-
-fn counts() -> serde_json::Value {
-    serde_json::json!({"type": "object", "properties": {
-        "segments": {"type": "integer"}, "combinations": {"type": "integer"},
-        "setups": {"type": "integer"}, "candidates": {"type": "integer"},
-        "admissible": {"type": "integer"}}})
-}
-
-fn status() -> serde_json::Value {
-    serde_json::json!({"enum": ["ok", "no_fixture", "invalid"]})
-}
-
-/// The schema of `/fixplan/run`.
+/// The schema of `/fixplan/run`, generated from [`RunMsg`].
 pub fn run_schema() -> Vec<u8> {
-    schema(
-        SCHEMA_RUN,
-        serde_json::json!({
-            "description": "What was run: tool version, catalogue (with a digest of its content), kit and parameters.",
-            "type": "object",
-            "required": ["tool", "version", "catalog", "kit_name", "kit", "params"],
-            "properties": {
-                "tool": {"type": "string"}, "version": {"type": "string"},
-                "catalog": {"type": "object", "properties": {
-                    "name": {"type": "string"}, "source": {"type": "string"},
-                    "units": {"enum": ["mm", "in"]}, "parts": {"type": "integer"},
-                    "digest": {"type": "string"}}},
-                "kit_name": {"type": "string"},
-                "kit": {"type": "object", "description": "SPEC Appendix A kit, catalogue units"},
-                "params": {"type": "object", "description": "SPEC Appendix A params"},
-                "grid_steps": {"type": "array", "items": {"type": "integer"}},
-                "good_enough": {"type": "number"}
-            }
-        }),
-    )
+    pretty(&schema_of::<RunMsg>(SCHEMA_RUN))
 }
 
-/// The schema of `/fixplan/part`.
+/// The schema of `/fixplan/part`, generated from [`PartMsg`].
 pub fn part_schema() -> Vec<u8> {
-    schema(
-        SCHEMA_PART,
-        serde_json::json!({
-            "description": "One catalogue part: outline and access regions (part frame, catalogue units), outcome, counts, timings.",
-            "type": "object",
-            "required": ["index", "id", "status", "units", "quantity", "outline", "fixtures", "timing"],
-            "properties": {
-                "index": {"type": "integer"}, "id": {"type": "string"},
-                "file": {"type": ["string", "null"]},
-                "status": status(), "error": {"type": ["string", "null"]},
-                "warnings": {"type": "array", "items": {"type": "string"}},
-                "units": {"enum": ["mm", "in"]}, "quantity": {"type": "number"},
-                "outline": polygon(), "access": {"type": "array", "items": polygon()},
-                "counts": {"oneOf": [counts(), {"type": "null"}]},
-                "fixtures": {"type": "integer"}, "best_score": {"type": ["number", "null"]},
-                "timing": {"type": "object", "properties": {
-                    "prepare_ms": {"type": "number"}, "enumerate_ms": {"type": "number"},
-                    "shards": {"type": "integer"}}},
-                "refine": {"type": "array", "description": "--grid-steps: one entry per step, coarse to fine",
-                    "items": {"type": "object", "properties": {
-                        "grid_step": {"type": "integer"}, "counts": counts(),
-                        "fixtures": {"type": "integer"},
-                        "best_score": {"type": ["number", "null"]},
-                        "best": {"type": ["object", "null"], "description": "the best fixture at this step (as in /fixplan/fixtures)"},
-                        "added": {"type": "integer", "description": "admissible fixtures added to the previous step"},
-                        "improved_by": {"type": ["number", "null"], "description": "previous best score minus this one"},
-                        "stopped_at": {"type": "integer"},
-                        "enumerate_ms": {"type": "number"}}}},
-                "stopped": {"enum": ["good_enough"], "description": "why the enumeration ended early"},
-                "stopped_at": {"type": "integer", "description": "combination index of the early stop"}
-            }
-        }),
-    )
+    pretty(&schema_of::<PartMsg>(SCHEMA_PART))
 }
 
-/// The schema of `/fixplan/fixtures`.
+/// The schema of `/fixplan/fixtures`, generated from [`FixturesMsg`].
 pub fn fixtures_schema() -> Vec<u8> {
-    let fixture = serde_json::json!({"type": "object", "properties": {
-        "rank": {"type": "integer"}, "score": {"type": "number"},
-        "segments": {"type": "array", "items": {"type": "integer"}},
-        "locators": {"type": "array", "items": lattice()},
-        "pose": {"type": "object", "properties": {
-            "x": {"type": "number"}, "y": {"type": "number"}, "theta_deg": {"type": "number"}}},
-        "clamp": {"type": "object", "properties": {
-            "segment": {"type": "integer"}, "rotation_deg": {"type": "integer"},
-            "mount": lattice(), "extension": {"type": "number"}, "contact": point()}},
-        "borderline": {"type": "boolean"},
-        "contacts": {"type": "array", "items": {"type": "object", "properties": {
-            "point": point(), "normal": point()}}},
-        "placement": {"type": "object", "properties": {
-            "rotation_deg": {"type": "integer"},
-            "locators": {"type": "array", "items": lattice()},
-            "clamp_holes": {"type": "array", "items": lattice()}}}
-    }});
-    schema(
-        SCHEMA_FIXTURES,
-        serde_json::json!({
-            "description": "The ranked fixtures of one part: SPEC Appendix A result plus contacts and plate placement.",
-            "type": "object",
-            "required": ["part", "status", "fixtures"],
-            "properties": {
-                "part": {"type": "string"}, "status": status(),
-                "error": {"type": "string"}, "counts": counts(),
-                "fixtures": {"type": "array", "items": fixture}
-            }
-        }),
-    )
+    pretty(&schema_of::<FixturesMsg>(SCHEMA_FIXTURES))
 }
 
 /// The official `foxglove.SceneUpdate` JSON Schema, vendored byte for byte
@@ -224,6 +128,29 @@ mod tests {
     fn official_scene_schema_objects_all_have_properties() {
         let v: serde_json::Value = serde_json::from_slice(FOXGLOVE_SCENE_UPDATE).unwrap();
         assert_eq!(objects_without_properties(&v), Vec::<String>::new());
+    }
+
+    #[test]
+    fn generated_schemas_are_titled_2020_12_with_properties_everywhere() {
+        let schemas = [
+            (SCHEMA_RUN, run_schema()),
+            (SCHEMA_PART, part_schema()),
+            (SCHEMA_FIXTURES, fixtures_schema()),
+        ];
+        for (title, bytes) in schemas {
+            let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+            assert_eq!(v["title"], title);
+            assert_eq!(v["$schema"], "https://json-schema.org/draft/2020-12/schema");
+            assert_eq!(
+                objects_without_properties(&v),
+                Vec::<String>::new(),
+                "{title}"
+            );
+            assert!(
+                !bytes.windows(5).any(|w| w == b"$ref\""),
+                "{title} has a $ref"
+            );
+        }
     }
 
     #[test]
