@@ -13,6 +13,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+#[path = "support/schema_check.rs"]
+mod schema_check;
+
 fn fixplan() -> Command {
     Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
 }
@@ -115,6 +118,34 @@ fn run_small(dir: &Path) -> (PathBuf, Output) {
         .output()
         .unwrap();
     (res, ok(out))
+}
+
+/// `fixplan run` on the bundled sample catalogue: every message valid
+/// against its channel's embedded schema, scene messages against the
+/// official `foxglove.SceneUpdate` too, and no object schema without
+/// `properties` (what the viewers' schema parser needs).
+#[test]
+fn every_message_of_a_sample_run_validates_against_its_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(fixplan()
+        .arg("run")
+        .current_dir(dir.path())
+        .output()
+        .unwrap());
+    let res = dir.path().join("results.mcap");
+    let parts = export_lines(&res).len();
+    assert!(parts > 0);
+    let counts = schema_check::validate_every_message(&std::fs::read(&res).unwrap());
+    let expected: BTreeMap<String, usize> = [
+        (TOPIC_RUN, 1),
+        (TOPIC_PART, parts),
+        (TOPIC_FIXTURES, parts),
+        (TOPIC_SCENE, parts),
+    ]
+    .into_iter()
+    .map(|(t, n)| (t.to_string(), n))
+    .collect();
+    assert_eq!(counts, expected);
 }
 
 #[test]
