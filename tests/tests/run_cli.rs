@@ -440,6 +440,32 @@ fn resume_refuses_a_different_run() {
     assert_eq!(export_lines(&res).len(), 5);
 }
 
+/// The `fixplan.run` metadata record names the kit and the catalogue, as
+/// the run message does.
+#[test]
+fn run_metadata_names_kit_and_catalogue() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let bytes = std::fs::read(&res).unwrap();
+    let summary = mcap::Summary::read(&bytes).unwrap().expect("summary");
+    assert_eq!(summary.metadata_indexes.len(), 1);
+    let index = &summary.metadata_indexes[0];
+    assert_eq!(index.name, METADATA_RUN);
+    let m = mcap::read::metadata(&bytes, index).unwrap().metadata;
+    let file = ResultsFile::open(&res).unwrap();
+    let c = file.for_each_part(|_, _| true).unwrap();
+    assert_eq!(m["tool"], "fixplan");
+    assert_eq!(m["kit_name"], "metric-25");
+    assert_eq!(m["catalog_digest"], c.run.catalog.digest);
+    assert_eq!(m["catalog_name"], c.run.catalog.name);
+    assert_eq!(m["catalog_units"], "mm");
+    assert_eq!(m["catalog_parts"], "5");
+    let kit: fixplan_core::Kit = serde_json::from_str(&m["kit"]).unwrap();
+    assert_eq!(kit, c.run.kit);
+    let params: fixplan_core::Params = serde_json::from_str(&m["params"]).unwrap();
+    assert_eq!(params.top_k, 4);
+}
+
 /// The file read back with the `mcap` crate: summary, indexes, zstd chunks,
 /// four channels with JSON Schemas, every message valid JSON.
 #[test]

@@ -28,6 +28,10 @@ pub const SCHEMA_FIXTURES: &str = "fixplan.Fixtures";
 /// Foxglove recognises the scene only under this exact name.
 pub const SCHEMA_SCENE: &str = "foxglove.SceneUpdate";
 
+/// Name of the MCAP metadata record that repeats the run message's kit and
+/// catalogue as strings, for tools that list a file's metadata.
+pub const METADATA_RUN: &str = "fixplan.run";
+
 /// Nanoseconds of log time per part: part `i` is logged at `i` seconds, so
 /// Foxglove's timeline steps through the catalogue one part per second.
 pub const NS_PER_PART: u64 = 1_000_000_000;
