@@ -4,6 +4,7 @@
 //! enumeration: everything is in the catalogue's length unit here; the
 //! enumeration converts to lattice units itself (see [`crate::prepare()`]).
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// A point as it appears in files: `[x, y]`.
@@ -11,7 +12,7 @@ pub type Point = [f64; 2];
 
 /// Length unit of a catalogue or case. Only used for defaults and labels: the
 /// numbers are never converted inside the core.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     /// Millimetres: the default, and the unit SPEC's defaults are given in.
@@ -41,7 +42,7 @@ impl Units {
 
 /// Hole layout of the plate: decides which lattice points a locator may
 /// take and which hole kinds a clamp's mount holes need.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Pattern {
     /// Every hole takes any module.
@@ -52,7 +53,7 @@ pub enum Pattern {
 }
 
 /// The kind of hole a module needs on an alternating plate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum HoleKind {
     /// A hole with `i + j` even; locators and dowel pins go here.
@@ -98,6 +99,26 @@ impl Serialize for MountHole {
     }
 }
 
+/// The schema of the form [`MountHole`] is written in: `[i, j, kind]`
+/// (reading also accepts `[i, j]` and `{offset, kind}`).
+impl JsonSchema for MountHole {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "MountHole".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let kind = generator.subschema_for::<HoleKind>();
+        schemars::json_schema!({
+            "description": "A clamp mount hole: lattice offset (i, j) and hole kind",
+            "type": "array",
+            "prefixItems": [{"type": "integer"}, {"type": "integer"}, kind],
+            "items": false,
+            "minItems": 3,
+            "maxItems": 3
+        })
+    }
+}
+
 impl<'de> Deserialize<'de> for MountHole {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         #[derive(Deserialize)]
@@ -130,7 +151,7 @@ impl<'de> Deserialize<'de> for MountHole {
 
 /// The sliding clamp, in its own frame: origin at mount hole 0, `+x` the push
 /// direction.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Clamp {
     /// Holes it is bolted to; hole 0 must be `[0, 0]`, the frame's origin.
@@ -149,7 +170,7 @@ pub struct Clamp {
 }
 
 /// A modular fixture kit: plate, locators and clamp (SPEC section 1).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Kit {
     /// Hole spacing `l`: the lattice unit everything is converted to.
@@ -169,7 +190,7 @@ pub struct Kit {
 }
 
 /// Enumeration parameters; `None` means SPEC's default for the unit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// Largest angle between the push direction and the inward contact
@@ -237,7 +258,7 @@ impl Params {
 }
 
 /// A part: its outline and access constraints, in the catalogue unit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 pub struct Part {
     /// Simple polygon, either orientation (normalised to CCW).
     pub outline: Vec<Point>,
@@ -247,7 +268,7 @@ pub struct Part {
 }
 
 /// A single-part case file (SPEC Appendix A).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
     /// Unit of every length in the file.

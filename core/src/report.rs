@@ -1,11 +1,12 @@
 //! The result format of SPEC Appendix A (plus the per-contact details and the
 //! plate placement that section 5 asks for), in the catalogue's unit.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// A part's outcome (SPEC section 7): `no_fixture` is a real answer about
 /// the kit, `invalid` a problem with the input.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Status {
     /// At least one admissible fixture.
@@ -17,7 +18,7 @@ pub enum Status {
 }
 
 /// The per-part counts of SPEC section 4.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 pub struct Counts {
     /// Usable segments of the part (SPEC 2).
     pub segments: u64,
@@ -45,7 +46,7 @@ impl Counts {
 
 /// The part's pose in the canonical plate frame, in the catalogue unit and
 /// degrees so it can be read without knowing the lattice.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PoseReport {
     /// Translation x.
     pub x: f64,
@@ -56,7 +57,7 @@ pub struct PoseReport {
 }
 
 /// The clamp of a fixture (SPEC Appendix A).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ClampReport {
     /// Segment the tip touches.
     pub segment: usize,
@@ -72,7 +73,7 @@ pub struct ClampReport {
 
 /// One contact: where the locator (or clamp tip) centre touches, and the
 /// inward normal it pushes along, in the canonical plate frame.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ContactReport {
     /// Centre of the locator or tip, catalogue unit.
     pub point: [f64; 2],
@@ -82,7 +83,7 @@ pub struct ContactReport {
 
 /// Where each module goes on the physical plate: `[column, row]` of holes,
 /// hole `[0, 0]` being a dowel hole on an alternating plate.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PlacementReport {
     /// Rotation applied to the canonical frame (0 or 90 degrees).
     pub rotation_deg: u32,
@@ -95,7 +96,7 @@ pub struct PlacementReport {
 /// One ranked fixture as reported (SPEC Appendix A, plus contacts and
 /// placement): lattice indices stay integers, lengths are in the
 /// catalogue unit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct FixtureReport {
     /// 1 for the best.
     pub rank: usize,
@@ -119,7 +120,7 @@ pub struct FixtureReport {
 
 /// One part's answer (SPEC Appendix A), what `fixplan solve` prints and a
 /// catalogue run stores per part.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SolveResult {
     /// Outcome.
     pub status: Status,

@@ -13,6 +13,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
+#[path = "support/schema_check.rs"]
+mod schema_check;
+
 fn fixplan() -> Command {
     Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
 }
@@ -115,6 +118,34 @@ fn run_small(dir: &Path) -> (PathBuf, Output) {
         .output()
         .unwrap();
     (res, ok(out))
+}
+
+/// `fixplan run` on the bundled sample catalogue: every message valid
+/// against its channel's embedded schema, scene messages against the
+/// official `foxglove.SceneUpdate` too, and no object schema without
+/// `properties` (what the viewers' schema parser needs).
+#[test]
+fn every_message_of_a_sample_run_validates_against_its_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(fixplan()
+        .arg("run")
+        .current_dir(dir.path())
+        .output()
+        .unwrap());
+    let res = dir.path().join("results.mcap");
+    let parts = export_lines(&res).len();
+    assert!(parts > 0);
+    let counts = schema_check::validate_every_message(&std::fs::read(&res).unwrap());
+    let expected: BTreeMap<String, usize> = [
+        (TOPIC_RUN, 1),
+        (TOPIC_PART, parts),
+        (TOPIC_FIXTURES, parts),
+        (TOPIC_SCENE, parts),
+    ]
+    .into_iter()
+    .map(|(t, n)| (t.to_string(), n))
+    .collect();
+    assert_eq!(counts, expected);
 }
 
 #[test]
@@ -407,6 +438,32 @@ fn resume_refuses_a_different_run() {
         .unwrap());
     assert!(String::from_utf8_lossy(&out.stderr).contains("5 parts already done"));
     assert_eq!(export_lines(&res).len(), 5);
+}
+
+/// The `fixplan.run` metadata record names the kit and the catalogue, as
+/// the run message does.
+#[test]
+fn run_metadata_names_kit_and_catalogue() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let bytes = std::fs::read(&res).unwrap();
+    let summary = mcap::Summary::read(&bytes).unwrap().expect("summary");
+    assert_eq!(summary.metadata_indexes.len(), 1);
+    let index = &summary.metadata_indexes[0];
+    assert_eq!(index.name, METADATA_RUN);
+    let m = mcap::read::metadata(&bytes, index).unwrap().metadata;
+    let file = ResultsFile::open(&res).unwrap();
+    let c = file.for_each_part(|_, _| true).unwrap();
+    assert_eq!(m["tool"], "fixplan");
+    assert_eq!(m["kit_name"], "metric-25");
+    assert_eq!(m["catalog_digest"], c.run.catalog.digest);
+    assert_eq!(m["catalog_name"], c.run.catalog.name);
+    assert_eq!(m["catalog_units"], "mm");
+    assert_eq!(m["catalog_parts"], "5");
+    let kit: fixplan_core::Kit = serde_json::from_str(&m["kit"]).unwrap();
+    assert_eq!(kit, c.run.kit);
+    let params: fixplan_core::Params = serde_json::from_str(&m["params"]).unwrap();
+    assert_eq!(params.top_k, 4);
 }
 
 /// The file read back with the `mcap` crate: summary, indexes, zstd chunks,

@@ -12,6 +12,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[path = "support/schema_check.rs"]
+mod schema_check;
+
 fn fixplan() -> Command {
     Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
 }
@@ -183,6 +186,34 @@ fn check_against_run(dir: &Path, catalog: &Path, k: &StudyKitMsg, quantities: &[
     assert!((k.held_pct - 100.0 * held as f64 / lines.len() as f64).abs() < 1e-9);
     assert_eq!(k.median_score, median(&scores), "{}", k.name);
     assert_eq!(k.p90_score, p90(&scores), "{}", k.name);
+}
+
+/// Every message of a study file (kits of a sweep) valid against its
+/// channel's embedded schema, and no object schema without `properties`.
+#[test]
+fn every_message_of_a_study_validates_against_its_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    let catalog = setup(dir.path());
+    let mcap_path = dir.path().join("study.mcap");
+    ok(fixplan()
+        .args(["study", "--catalog"])
+        .arg(&catalog)
+        .args(["--kit", "metric-25", "--kit", "paper-inch"])
+        .args(["--sweep", "plate=4x4,20x20"])
+        .arg("-o")
+        .arg(&mcap_path)
+        .output()
+        .unwrap());
+    let counts = schema_check::validate_every_message(&std::fs::read(&mcap_path).unwrap());
+    let kits = read_mcap(&mcap_path).unwrap().0.len();
+    assert!(kits > 2, "{kits} kits");
+    let expected: BTreeMap<String, usize> = [
+        ("/fixplan/study".to_string(), kits),
+        ("/fixplan/study_summary".to_string(), 1),
+    ]
+    .into_iter()
+    .collect();
+    assert_eq!(counts, expected);
 }
 
 #[test]

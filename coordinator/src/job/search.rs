@@ -13,6 +13,7 @@
 
 use super::enumerate::solve_prepared;
 use fixplan_core::{report, Counts, FixtureReport, PartialResult, PreparedPart, SolveResult};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -107,7 +108,7 @@ impl SearchOptions {
 }
 
 /// One grid step of a part (`/fixplan/part` field `refine`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct StepSummary {
     /// The step: locators 2 and 3 at multiples of it from locator 1.
     pub grid_step: u32,

@@ -7,6 +7,7 @@ use super::enumerate::solve_prepared;
 use super::search::{solve_search, SearchInfo, SearchOptions};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::{prepare, Kit, Params, PrepareError, PreparedPart, SolveResult, Units};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -28,7 +29,7 @@ pub struct JobContext<'a> {
 
 /// Wall-clock timings: the only fields of a results file that differ from
 /// one run to the next.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 pub struct Timing {
     /// Validating and preparing the part.
     pub prepare_ms: f64,

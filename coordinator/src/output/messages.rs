@@ -5,6 +5,7 @@
 pub use crate::job::Timing;
 use fixplan_catalog::Catalog;
 use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::path::Path;
@@ -27,12 +28,16 @@ pub const SCHEMA_FIXTURES: &str = "fixplan.Fixtures";
 /// Foxglove recognises the scene only under this exact name.
 pub const SCHEMA_SCENE: &str = "foxglove.SceneUpdate";
 
+/// Name of the MCAP metadata record that repeats the run message's kit and
+/// catalogue as strings, for tools that list a file's metadata.
+pub const METADATA_RUN: &str = "fixplan.run";
+
 /// Nanoseconds of log time per part: part `i` is logged at `i` seconds, so
 /// Foxglove's timeline steps through the catalogue one part per second.
 pub const NS_PER_PART: u64 = 1_000_000_000;
 
 /// `/fixplan/run`: what was run, once at the start of the file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct RunMsg {
     /// `fixplan`.
     pub tool: String,
@@ -57,7 +62,7 @@ pub struct RunMsg {
 }
 
 /// The catalogue a run or study read: enough to tell two runs apart.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct CatalogInfo {
     /// The manifest's name (or the directory's).
     pub name: String,
@@ -115,7 +120,7 @@ impl RunMsg {
 }
 
 /// `/fixplan/part`: one per part, in catalogue order.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PartMsg {
     /// Position in the catalogue (0-based).
     pub index: usize,
@@ -170,7 +175,7 @@ pub const STOPPED_GOOD_ENOUGH: &str = "good_enough";
 /// `/fixplan/fixtures`: `{"part": ID, ...}` plus the result format of SPEC
 /// Appendix A (with contacts and plate placement per fixture). Exactly one
 /// line of `fixplan export --json`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct FixturesMsg {
     /// Catalogue id of the part.
     pub part: String,

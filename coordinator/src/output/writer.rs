@@ -5,7 +5,7 @@
 
 use super::messages::*;
 use super::schemas::{fixtures_schema, part_schema, run_schema, scene_schema};
-use mcap::records::MessageHeader;
+use mcap::records::{MessageHeader, Metadata};
 use mcap::{Compression, WriteOptions, Writer};
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -56,8 +56,38 @@ pub fn write_options() -> WriteOptions {
         .library(format!("fixplan {}", env!("CARGO_PKG_VERSION")))
 }
 
+/// The [`METADATA_RUN`] record of `run`: tool, version, kit name, kit and
+/// parameters (JSON), and the catalogue's name, source, unit, part count
+/// and digest.
+pub fn run_metadata(run: &RunMsg) -> Result<Metadata, OutError> {
+    let c = &run.catalog;
+    let mut m = BTreeMap::from([
+        ("tool".to_string(), run.tool.clone()),
+        ("version".to_string(), run.version.clone()),
+        ("kit_name".to_string(), run.kit_name.clone()),
+        ("kit".to_string(), serde_json::to_string(&run.kit)?),
+        ("params".to_string(), serde_json::to_string(&run.params)?),
+        ("catalog_name".to_string(), c.name.clone()),
+        ("catalog_source".to_string(), c.source.clone()),
+        ("catalog_units".to_string(), c.units.label().to_string()),
+        ("catalog_parts".to_string(), c.parts.to_string()),
+        ("catalog_digest".to_string(), c.digest.clone()),
+    ]);
+    if let Some(steps) = &run.grid_steps {
+        m.insert("grid_steps".into(), serde_json::to_string(steps)?);
+    }
+    if let Some(g) = run.good_enough {
+        m.insert("good_enough".into(), g.to_string());
+    }
+    Ok(Metadata {
+        name: METADATA_RUN.to_string(),
+        metadata: m,
+    })
+}
+
 impl ResultsWriter {
-    /// Starts a file: schemas, channels and the `/fixplan/run` message.
+    /// Starts a file: schemas, channels, the `/fixplan/run` message and the
+    /// [`METADATA_RUN`] metadata record.
     pub fn create(file: File, run: &RunMsg) -> Result<ResultsWriter, OutError> {
         let mut w = write_options().create(BufWriter::new(file))?;
         let none = BTreeMap::new();
@@ -79,6 +109,8 @@ impl ResultsWriter {
         let data = serde_json::to_vec(run)?;
         out.message(out.run, 0, 0, &data)?;
         out.w.flush()?;
+        // After the flush: no chunk is open, so the chunks stay as they were.
+        out.w.write_metadata(&run_metadata(run)?)?;
         Ok(out)
     }
 

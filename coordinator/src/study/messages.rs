@@ -4,7 +4,9 @@
 //! are all made from these.
 
 use crate::output::messages::CatalogInfo;
+use crate::output::schemas::schema_of;
 use fixplan_core::{Counts, Kit, Params, SolveResult, Status};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Topic of the per-kit messages: readers look a study file's kits up by it.
@@ -17,7 +19,7 @@ pub const SCHEMA_STUDY: &str = "fixplan.StudyKit";
 pub const SCHEMA_STUDY_SUMMARY: &str = "fixplan.StudySummary";
 
 /// The result of one part with one kit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct StudyPartRow {
     /// The part's id in the catalogue, to find it in a run of that kit.
     pub id: String,
@@ -80,7 +82,7 @@ impl StudyPartRow {
 }
 
 /// `/fixplan/study`: one message per kit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct StudyKitMsg {
     /// Position in the study (listed kits first, then sweep points): the
     /// message's sequence number and time.
@@ -124,7 +126,7 @@ pub struct StudyKitMsg {
 }
 
 /// `/fixplan/study_summary`: once, at the end.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct StudySummaryMsg {
     /// `fixplan`, for readers that meet the file alone.
     pub tool: String,
@@ -163,49 +165,33 @@ pub struct StudyReport {
 
 /// The JSON Schema of [`StudyKitMsg`], stored in the MCAP file.
 pub fn study_schema() -> serde_json::Value {
-    let num_or_null = serde_json::json!({"type": ["number", "null"]});
-    serde_json::json!({
-        "$schema": "https://json-schema.org/draft/2020-12/schema",
-        "title": SCHEMA_STUDY,
-        "description": "One kit of a fixplan study: coverage of the catalogue, best scores over the parts held, time, and every part's outcome.",
-        "type": "object",
-        "required": ["index", "name", "kit", "params", "parts", "held", "held_pct", "held_quantity_pct", "results"],
-        "properties": {
-            "index": {"type": "integer"}, "name": {"type": "string"}, "base": {"type": "string"},
-            "sweep": {"type": ["string", "null"]},
-            "kit": {"type": "object", "description": "SPEC Appendix A kit, catalogue units"},
-            "params": {"type": "object", "description": "SPEC Appendix A params"},
-            "parts": {"type": "integer"}, "held": {"type": "integer"},
-            "held_pct": {"type": "number"},
-            "held_quantity_pct": {"type": "number", "description": "share held weighted by quantity (parts per year)"},
-            "median_score": num_or_null, "p90_score": num_or_null,
-            "no_fixture": {"type": "integer"}, "invalid": {"type": "integer"},
-            "time_ms": {"type": "number"}, "enumerated": {"type": "integer"}, "shared": {"type": "integer"},
-            "results": {"type": "array", "items": {"type": "object", "properties": {
-                "id": {"type": "string"}, "status": {"enum": ["ok", "no_fixture", "invalid"]},
-                "error": {"type": "string"}, "quantity": {"type": "number"},
-                "counts": {"type": ["object", "null"]}, "best_score": num_or_null,
-                "ms": {"type": "number"}, "shared": {"type": "string"}}}}
-        }
-    })
+    schema_of::<StudyKitMsg>(SCHEMA_STUDY)
 }
 
 /// The JSON Schema of [`StudySummaryMsg`], stored in the MCAP file.
 pub fn summary_schema() -> serde_json::Value {
-    serde_json::json!({
-        "$schema": "https://json-schema.org/draft/2020-12/schema",
-        "title": SCHEMA_STUDY_SUMMARY,
-        "description": "A fixplan study: catalogue, kits, parts no kit holds, work shared.",
-        "type": "object",
-        "properties": {
-            "tool": {"type": "string"}, "version": {"type": "string"},
-            "catalog": {"type": "object"},
-            "kits": {"type": "array", "items": {"type": "string"}},
-            "unheld": {"type": "array", "items": {"type": "string"}},
-            "part_runs": {"type": "integer"}, "enumerated": {"type": "integer"},
-            "shared_same_kit": {"type": "integer"}, "shared_larger_plate": {"type": "integer"},
-            "prepares": {"type": "integer"}, "workers": {"type": ["integer", "null"]},
-            "elapsed_ms": {"type": "number"}
+    schema_of::<StudySummaryMsg>(SCHEMA_STUDY_SUMMARY)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::schemas::objects_without_properties;
+
+    #[test]
+    fn study_schemas_are_titled_2020_12_with_properties_everywhere() {
+        for (title, v) in [
+            (SCHEMA_STUDY, study_schema()),
+            (SCHEMA_STUDY_SUMMARY, summary_schema()),
+        ] {
+            assert_eq!(v["title"], title);
+            assert_eq!(v["$schema"], "https://json-schema.org/draft/2020-12/schema");
+            assert_eq!(
+                objects_without_properties(&v),
+                Vec::<String>::new(),
+                "{title}"
+            );
+            assert!(!v.to_string().contains("\"$ref\""), "{title} has a $ref");
         }
-    })
+    }
 }
