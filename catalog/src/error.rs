@@ -4,6 +4,7 @@
 //! that the others go on.
 
 use crate::part::{InvalidPolygon, ReadError};
+use fixplan_core::Part;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -44,6 +45,17 @@ pub struct PartError {
     pub kind: PartErrorKind,
 }
 
+impl PartError {
+    /// The outline and access regions as read, when they were read but are
+    /// not valid: what a picture of the invalid part shows.
+    pub fn read(&self) -> Option<&Part> {
+        match &self.kind {
+            PartErrorKind::Invalid { read, .. } => Some(read),
+            _ => None,
+        }
+    }
+}
+
 /// What is wrong with a catalogue part.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum PartErrorKind {
@@ -74,8 +86,14 @@ pub enum PartErrorKind {
     #[error(transparent)]
     Read(#[from] ReadError),
     /// A polygon of the part is not one SPEC accepts.
-    #[error(transparent)]
-    Invalid(#[from] InvalidPolygon),
+    #[error("{problem}")]
+    Invalid {
+        /// What is wrong, and where.
+        problem: InvalidPolygon,
+        /// The outline and access regions as read (catalogue units), so
+        /// that pictures and scenes can show what the error is about.
+        read: Box<Part>,
+    },
 }
 
 /// A manifest entry that cannot be used as written.

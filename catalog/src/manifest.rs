@@ -198,7 +198,19 @@ fn read_file_part(
     })?;
     let mut raw = read_raw(&bytes, format, ropts)?;
     raw.access.extend(extra_access.iter().cloned());
-    Ok(validate_part(raw, ropts.units)?)
+    validated(raw, ropts.units)
+}
+
+/// [`validate_part`], keeping what was read in the error.
+fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErrorKind> {
+    let read = Part {
+        outline: raw.outline.clone(),
+        access: raw.access.clone(),
+    };
+    validate_part(raw, units).map_err(|problem| PartErrorKind::Invalid {
+        problem,
+        read: Box::new(read),
+    })
 }
 
 /// Validates an entry's inline outline and access polygons, given in the
@@ -215,7 +227,7 @@ fn inline_part(
         access: access.iter().map(|a| sc(a)).collect(),
         warnings: Vec::new(),
     };
-    Ok(validate_part(raw, ropts.units)?)
+    validated(raw, ropts.units)
 }
 
 #[derive(serde::Deserialize)]

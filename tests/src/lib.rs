@@ -65,18 +65,24 @@ pub fn catalog() -> (Catalog, KitSpec) {
             part: Err(PartError {
                 id: "broken".into(),
                 file: None,
-                kind: PartErrorKind::Invalid(InvalidPolygon {
-                    polygon: PolygonRole::Outline,
-                    problem: PolygonProblem::Core {
-                        error: PolygonError::SelfIntersection {
-                            first: 0,
-                            second: 2,
-                            x: 25.0,
-                            y: 25.0,
+                kind: PartErrorKind::Invalid {
+                    problem: InvalidPolygon {
+                        polygon: PolygonRole::Outline,
+                        problem: PolygonProblem::Core {
+                            error: PolygonError::SelfIntersection {
+                                first: 0,
+                                second: 2,
+                                x: 25.0,
+                                y: 25.0,
+                            },
+                            units: Units::Mm,
                         },
-                        units: Units::Mm,
                     },
-                }),
+                    read: Box::new(Part {
+                        outline: vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
+                        access: vec![],
+                    }),
+                },
             }),
             ..part("broken", vec![])
         },

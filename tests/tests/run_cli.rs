@@ -723,3 +723,53 @@ fn a_closed_terminal_pipe_neither_hangs_nor_loses_the_file() {
         );
     }
 }
+
+/// An invalid part's message, scene and picture show the outline that was
+/// read, with the error as caption (a user sees what is wrong, not nothing).
+#[test]
+fn an_invalid_part_shows_what_was_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let (res, _) = run_small(dir.path());
+    let file = ResultsFile::open(&res).unwrap();
+    let mut seen = 0;
+    file.for_each_part(|_, m| {
+        let part: PartMsg = serde_json::from_slice(&m.part).unwrap();
+        if part.id != "bowtie" {
+            return true;
+        }
+        seen += 1;
+        assert_eq!(part.status, fixplan_core::Status::Invalid);
+        assert_eq!(
+            part.outline,
+            vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]]
+        );
+        let error = part.error.clone().unwrap();
+        assert!(error.starts_with("bowtie: "), "{error}");
+        let scene: Value = serde_json::from_slice(&m.scene).unwrap();
+        let part_entity = &scene["entities"][0];
+        assert_eq!(part_entity["texts"][0]["text"], error.as_str());
+        assert_eq!(
+            part_entity["lines"][0]["points"].as_array().unwrap().len(),
+            4
+        );
+        true
+    })
+    .unwrap();
+    assert_eq!(seen, 1);
+    let pics = dir.path().join("pics");
+    ok(fixplan()
+        .arg("render")
+        .arg(&res)
+        .args(["--part", "bowtie", "--out"])
+        .arg(&pics)
+        .output()
+        .unwrap());
+    let svg = std::fs::read_dir(&pics)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .find(|p| p.extension().is_some_and(|x| x == "svg"))
+        .unwrap();
+    let svg = std::fs::read_to_string(svg).unwrap();
+    assert!(svg.contains("<polygon"), "{svg}");
+    assert!(svg.contains("edge 0 crosses edge 2"), "{svg}");
+}

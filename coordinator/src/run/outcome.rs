@@ -45,7 +45,10 @@ pub fn part_outcome(
     } = solved;
     let (outline, access) = match &cp.part {
         Ok(p) => (p.outline.clone(), p.access.clone()),
-        Err(_) => (Vec::new(), Vec::new()),
+        // What was read, if anything: the picture shows what is wrong.
+        Err(e) => e.read().map_or((Vec::new(), Vec::new()), |p| {
+            (p.outline.clone(), p.access.clone())
+        }),
     };
     let best = result.fixtures.first();
     let part_msg = PartMsg {
@@ -67,7 +70,12 @@ pub fn part_outcome(
         stopped: search.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
         stopped_at: search.stopped_at,
     };
-    let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &outline, &access, best);
+    let caption = match &result.error {
+        Some(e) => e.clone(),
+        None => format!("{}: no fixture", cp.id),
+    };
+    let shown = best.ok_or(caption.as_str());
+    let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &outline, &access, shown);
     let part = serde_json::to_vec(&part_msg)?;
     let scene = serde_json::to_vec(&scene)?;
     let (status, error) = (result.status, result.error.clone());

@@ -250,12 +250,17 @@ impl Scene {
     /// Without a fixture: the part's outline and access regions in the part
     /// frame with a "no fixture" label; empty plate and fixture entities
     /// clear the previous part's.
-    fn unplaced(&self, id: &str, outline: &[Point], access: &[Vec<Point>]) -> Vec<Entity<'static>> {
+    fn unplaced(
+        &self,
+        caption: &str,
+        outline: &[Point],
+        access: &[Vec<Point>],
+    ) -> Vec<Entity<'static>> {
         let lines = std::iter::once(self.loop_line(outline, 3.0, PART))
             .chain(access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)))
             .collect();
         let at = bounds(outline).map(|b| b[1]).unwrap_or([0.0, 0.0]);
-        let texts = vec![self.text(at, format!("{id}: no fixture"))];
+        let texts = vec![self.text(at, caption.to_string())];
         vec![
             self.entity(
                 "part",
@@ -361,7 +366,9 @@ impl Scene {
 }
 
 /// The scene of part `index`: with a fixture, the part posed on the plate
-/// with the best fixture; without, the outline alone in the part frame.
+/// with the best fixture; without, the outline alone in the part frame
+/// (for an invalid part, the outline as read) and `best`'s caption: no
+/// fixture, or the error.
 pub fn scene_update(
     index: usize,
     id: &str,
@@ -369,15 +376,15 @@ pub fn scene_update(
     kit: &Kit,
     outline: &[Point],
     access: &[Vec<Point>],
-    best: Option<&FixtureReport>,
+    best: Result<&FixtureReport, &str>,
 ) -> SceneUpdate<'static> {
     let s = Scene {
         m: units.mm_per_unit() / 1000.0,
         ns: index as u64 * NS_PER_PART,
     };
     let entities = match best {
-        None => s.unplaced(id, outline, access),
-        Some(f) => {
+        Err(caption) => s.unplaced(caption, outline, access),
+        Ok(f) => {
             let d = fixture_drawing(kit, outline, access, f);
             let [lo, hi] = d.bounds();
             vec![
