@@ -9,6 +9,7 @@
 pub mod admissibility;
 pub mod clamp;
 pub mod combinations;
+pub mod contact_pose;
 pub mod enumerate;
 pub mod form_closure;
 pub mod geometry;
