@@ -469,8 +469,13 @@ impl Reduced {
         let mut k = 0;
         let det = cross(b1, b2);
         if det.abs() > 1e-14 * n1 * n2 {
-            out[k] = (perp(b2) * r1 - perp(b1) * r2) / det;
-            k += 1;
+            // At a root of F, |w'| = rho0; far from it (a root of D that
+            // is no root of F) this start is far from any solution.
+            let w = (perp(b2) * r1 - perp(b1) * r2) / det;
+            if (w.norm() - self.rho0).abs() <= self.rho0 {
+                out[k] = w;
+                k += 1;
+            }
         }
         if det.abs() <= NEAR_PARALLEL_REL * n1 * n2 && n1.max(n2) > 0.0 {
             let (b, r, nb) = if n1 >= n2 { (b1, r1, n1) } else { (b2, r2, n2) };
@@ -515,9 +520,20 @@ impl Reduced {
     }
 }
 
+/// Starting points whose residual exceeds this (lattice units) are not
+/// near any solution: a root of `D` that is no root of `F`, or an extremum
+/// of `F` that misses zero. Genuine candidates start within about 1e-4.
+const START_RESIDUAL: f64 = 0.1;
+
 /// Newton's method on the three original equations from `(theta, w)`,
 /// keeping the best iterate (at a tangency the Jacobian is singular and the
 /// steps stop improving); the pose if it satisfies every equation to `eps`.
+///
+/// Only converged runs count: quadratic convergence reaches the rounding
+/// floor in a few steps, after which the residual merely fluctuates, so a
+/// run stops after four steps without progress. A run that is still
+/// improving at the iteration cap (60, enough for the linear convergence
+/// at a double root) is dropped rather than reported half-polished.
 fn polish(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
@@ -527,17 +543,24 @@ fn polish(
     let mut x = Vector3::new(theta, w.x, w.y);
     let (mut f, mut j) = system(contacts, locs, x[0], v2(x[1], x[2]));
     let mut best = (x, f.amax());
+    if !(best.1 <= START_RESIDUAL) {
+        return None;
+    }
     let mut stale = 0;
-    for _ in 0..40 {
-        if best.1 <= 1e-16 || stale >= 3 {
+    let mut converged = false;
+    for _ in 0..60 {
+        if best.1 == 0.0 || stale >= 4 {
+            converged = true;
             break;
         }
         let Some(step) = j.lu().solve(&(-f)) else {
+            // Exactly singular: a tangency hit exactly.
+            converged = true;
             break;
         };
         let len = step.norm();
         if !len.is_finite() {
-            break;
+            return None;
         }
         x += if len > 0.5 { step * (0.5 / len) } else { step };
         (f, j) = system(contacts, locs, x[0], v2(x[1], x[2]));
@@ -548,9 +571,13 @@ fn polish(
         } else {
             stale += 1;
         }
-        if len <= 4.0 * f64::EPSILON * (1.0 + x.norm()) {
+        if len <= f64::EPSILON * (1.0 + x.norm()) {
+            converged = true;
             break;
         }
+    }
+    if !converged {
+        return None;
     }
     let mut theta = best.0[0].rem_euclid(TAU);
     if theta >= TAU {
