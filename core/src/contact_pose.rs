@@ -279,23 +279,31 @@ struct Reduced {
     continuum_angle: Option<f64>,
 }
 
-/// Trigonometric polynomials of the reduced system and their magnitudes
-/// (largest absolute value of the terms before cancellation), which scale
-/// every tolerance so that the solver does not depend on units.
+/// Trigonometric polynomials of the reduced system and the scales of
+/// their rounding errors, which scale every tolerance so that the solver
+/// does not depend on units.
 struct Sampled {
     f: Trig,
     d: Trig,
     nx: Trig,
     ny: Trig,
+    /// How far a relative error of 1 in every term would move `F`.
     scale_f: f64,
+    /// Largest `|b1| |b2|`: the scale of `D`.
     max_dhat: f64,
+    /// Largest sum of the magnitudes of the terms of `N`.
     max_nhat: f64,
 }
 
-/// `F` vanishing to this fraction of its terms is a continuum.
+/// `F` within this fraction of `scale_f` of zero is a continuum (exact
+/// continua come out near 2e-16, random setups above 1e-3; see the unit
+/// tests).
 const CONTINUUM_REL: f64 = 1e-10;
-/// Rounding in the sampled polynomials, relative to their terms.
-const ROUNDING_REL: f64 = 1e-12;
+/// Bound on the rounding error of the sampled polynomials' coefficients,
+/// relative to their scales (at most 2e-16 is seen at known solutions; see
+/// the unit tests). Too large a bound would merge distinct close roots
+/// into one zero-within-rounding stretch.
+const ROUNDING_REL: f64 = 1e-14;
 /// Near misses up to this residual (lattice units, with margin over `eps`)
 /// are passed on as candidates so that a tangency is found whichever way
 /// rounding tips it; Newton and the `eps` test then decide.
@@ -417,7 +425,9 @@ impl Reduced {
             (d[m], nx[m], ny[m]) = (det, n.x, n.y);
             let dhat = b1.norm() * b2.norm();
             let nhat = m1 * b2.norm() + m2 * b1.norm();
-            scale_f = scale_f.max(nhat * nhat + r02 * dhat * dhat);
+            // A relative error e in N and D moves F by about
+            // 2 e (|N| nhat + rho0^2 |D| dhat).
+            scale_f = scale_f.max(2.0 * (nhat * n.norm() + r02 * dhat * det.abs()));
             max_dhat = max_dhat.max(dhat);
             max_nhat = max_nhat.max(nhat);
         }
@@ -436,27 +446,57 @@ impl Reduced {
     /// continuum (or a polynomial too degenerate to trust, which is one to
     /// within rounding).
     fn angles(&self, sm: &Sampled, out: &mut Angles) -> bool {
+        if let Some(theta0) = self.continuum_angle {
+            self.congruent_angles(theta0, out);
+            return true;
+        }
         if sm.f.max_abs() <= CONTINUUM_REL * sm.scale_f {
             return false;
         }
         let d_max = sm.d.max_abs();
         if d_max > DEGENERATE_REL * sm.max_dhat {
-            let tol = ROUNDING_REL * sm.scale_f + NEAR_MISS * self.rho0 * sm.max_dhat * sm.max_dhat;
-            trig::roots(&sm.f, tol, out);
-            trig::roots(&sm.d, ROUNDING_REL * sm.max_dhat, out);
+            let tol = NEAR_MISS * self.rho0 * sm.max_dhat * sm.max_dhat;
+            trig::roots(&sm.f, tol, ROUNDING_REL * sm.scale_f, out);
+            trig::roots(&sm.d, 0.0, ROUNDING_REL * sm.max_dhat, out);
         }
         if d_max <= NEAR_PARALLEL_REL * sm.max_dhat {
             // Parallel rows: the angle is where they are compatible,
             // N = 0 (both components vanish there; either will do unless
             // it vanishes identically).
-            let tol = ROUNDING_REL * sm.max_nhat + NEAR_MISS * sm.max_dhat;
+            let tol = NEAR_MISS * sm.max_dhat;
             for n in [&sm.nx, &sm.ny] {
                 if n.max_abs() > ROUNDING_REL * sm.max_nhat {
-                    trig::roots(n, tol, out);
+                    trig::roots(n, tol, ROUNDING_REL * sm.max_nhat, out);
                 }
             }
         }
         !out.overflow
+    }
+
+    /// Three circles congruent to the locator triangle turned by `theta0`
+    /// (see `continuum_angle`). There `F` has a fourfold root at `theta0`
+    /// (`D` and `N` both vanish twice), too flat to isolate in rounding
+    /// noise, so the isolated poses are taken in closed form: turned by
+    /// `delta` from `theta0`, the rows are the locator triangle scaled by
+    /// `2 sin(delta / 2)`, `w'` is its circumcentre, and `|w'| = rho0`
+    /// gives `cos(delta) = 1 - rho0^2 / (2 R^2)` (`R` the circumradius;
+    /// collinear locators leave no isolated pose).
+    fn congruent_angles(&self, theta0: f64, out: &mut Angles) {
+        let [Row::Circle { l: l1, .. }, Row::Circle { l: l2, .. }] = self.rows else {
+            return;
+        };
+        let den = 2.0 * cross(l1, l2);
+        if den.abs() <= EPS {
+            return;
+        }
+        let (n1, n2) = (l1.norm_squared(), l2.norm_squared());
+        let z = v2(l2.y * n1 - l1.y * n2, l1.x * n2 - l2.x * n1) / den;
+        let x = 1.0 - self.rho0 * self.rho0 / (2.0 * z.norm_squared());
+        if x >= -1.0 - EPS {
+            let delta = x.max(-1.0).acos();
+            out.push((theta0 + delta).rem_euclid(TAU));
+            out.push((theta0 - delta).rem_euclid(TAU));
+        }
     }
 
     /// Starting points for `w'` at one angle: Cramer's solution, and where

@@ -655,3 +655,306 @@ fn near_tangent_counts_are_consistent() {
         println!("  {k:?}: {v}");
     }
 }
+
+// -------------------------------------------------------------- continua
+
+/// Plate point `x` and part point `centre` are the centre of a rotation
+/// that keeps every locator on its feature.
+fn rotation_continuum(rng: &mut Rng, lattice: bool) -> (V2, V2, [V2; 3]) {
+    let pick = |rng: &mut Rng| {
+        if lattice {
+            v2(rng.int(-4, 4) as f64, rng.int(-4, 4) as f64)
+        } else {
+            rng.point(4.0)
+        }
+    };
+    loop {
+        let (x, centre) = (pick(rng), pick(rng));
+        let locs = [pick(rng), pick(rng), pick(rng)];
+        let distinct = locs[0] != locs[1] && locs[1] != locs[2] && locs[0] != locs[2];
+        if distinct && locs.iter().all(|&l| (l - x).norm() > 0.2) {
+            return (x, centre, locs);
+        }
+    }
+}
+
+/// Setups whose solutions form a continuum give no pose: three concentric
+/// circles the part can turn in; two concentric circles and a line through
+/// their centre with the third locator at the centre; two crossing lines
+/// and a circle about their crossing traced by the locator triangle's
+/// circumcentre (a trammel); three parallel lines.
+#[test]
+fn continua_give_no_pose() {
+    let mut rng = Rng(0xc0_471_4a0b);
+    for case in 0..400 {
+        let (x, centre, locs) = rotation_continuum(&mut rng, case % 2 == 0);
+        let rho = locs.map(|l| (l - x).norm());
+        let aaa = [0, 1, 2].map(|k| circle(centre, rho[k]));
+        let got = solve_contact_poses(&aaa, &locs);
+        assert!(
+            got.is_empty(),
+            "case {case}: concentric {:?}\n{aaa:?}\n{locs:?}",
+            got.as_slice()
+        );
+        // Same, any order of kinds: the line passes through the centre and
+        // its locator sits at the centre of rotation.
+        let locs2 = [x, locs[1], locs[2]];
+        let n = rng.unit();
+        let mut laa = [
+            line(n, n.dot(&centre)),
+            circle(centre, rho[1]),
+            circle(centre, rho[2]),
+        ];
+        let rot_by = case % 3;
+        laa.rotate_left(rot_by);
+        let mut l2 = locs2;
+        l2.rotate_left(rot_by);
+        let got = solve_contact_poses(&laa, &l2);
+        assert!(
+            got.is_empty(),
+            "case {case}: line + concentric {:?}\n{laa:?}\n{l2:?}",
+            got.as_slice()
+        );
+        let (lla, l3) = trammel(&mut rng);
+        let got = solve_contact_poses(&lla, &l3);
+        assert!(
+            got.is_empty(),
+            "case {case}: trammel {:?}\n{lla:?}\n{l3:?}",
+            got.as_slice()
+        );
+        let n = rng.unit();
+        let parallel = [line(n, 0.5), line(-n, 1.0), line(n, rng.range(-2.0, 2.0))];
+        assert!(solve_contact_poses(&parallel, &locs).is_empty());
+    }
+}
+
+/// Two lines crossing at the part origin and a circle about the crossing
+/// through the circumcentre of (crossing, contact 1, contact 2): as the
+/// two contacts slide along their lines, that circumcentre (fixed in the
+/// part, Cardan's circle) stays on the circle.
+fn trammel(rng: &mut Rng) -> ([Contact; 3], [V2; 3]) {
+    loop {
+        let (n1, n2) = (rng.unit(), rng.unit());
+        let sin = n1.x * n2.y - n1.y * n2.x;
+        if sin.abs() < 0.3 {
+            continue;
+        }
+        // Points on the lines n . p = 0.
+        let p1 = v2(-n1.y, n1.x) * rng.range(-3.0, 3.0);
+        let p2 = v2(-n2.y, n2.x) * rng.range(-3.0, 3.0);
+        let Some(z) = circumcentre(V2::zeros(), p1, p2) else {
+            continue;
+        };
+        if (p1 - p2).norm() < 0.5 || z.norm() > 6.0 {
+            continue;
+        }
+        let (theta, w) = (rng.angle(), rng.point(3.0));
+        let (s, c) = theta.sin_cos();
+        let locs = [p1, p2, z].map(|p| rot(c, s, p + w));
+        let contacts = [line(n1, 0.0), line(n2, 0.0), circle(V2::zeros(), z.norm())];
+        return (contacts, locs);
+    }
+}
+
+fn circumcentre(a: V2, b: V2, c: V2) -> Option<V2> {
+    let (ab, ac) = (b - a, c - a);
+    let d = 2.0 * (ab.x * ac.y - ab.y * ac.x);
+    if d.abs() < 1e-6 {
+        return None;
+    }
+    let (b2, c2) = (ab.norm_squared(), ac.norm_squared());
+    Some(a + v2(ac.y * b2 - ab.y * c2, ab.x * c2 - ac.x * b2) / d)
+}
+
+/// Three equal circles whose centres are the locator triangle turned by
+/// `theta0`: at `theta0` the part slides round a circle without turning (a
+/// continuum at that angle alone), and elsewhere exactly two isolated poses
+/// exist when the radius is below the triangle's circumdiameter (the
+/// locators, seen from the part turned by `delta` from `theta0`, form the
+/// triangle scaled by `2 sin(delta / 2)`, whose circumradius must be the
+/// radius). Reported: the two isolated ones, nothing near `theta0`.
+#[test]
+fn congruent_circles_keep_only_isolated_poses() {
+    let mut rng = Rng(0xc0_4e5e_a7);
+    let (mut with_two, mut with_none) = (0, 0);
+    for case in 0..300 {
+        let locs = [rng.point(4.0), rng.point(4.0), rng.point(4.0)];
+        let Some(cc) = circumcentre(locs[0], locs[1], locs[2]) else {
+            continue;
+        };
+        let big_r = (locs[0] - cc).norm();
+        let (theta0, shift) = (rng.angle(), rng.point(3.0));
+        let (s, c) = theta0.sin_cos();
+        let rho = rng.range(0.2, 5.0);
+        let contacts = locs.map(|l| circle(rot_t(c, s, l) + shift, rho));
+        let got = solve_contact_poses(&contacts, &locs);
+        max_residual(&contacts, &locs, &got);
+        for p in got.iter() {
+            assert!(
+                circ_dist(p.pose.theta, theta0) > 1e-6,
+                "case {case}: pose on the continuum {p:?}"
+            );
+        }
+        let expect = if rho < 2.0 * big_r * 0.999 {
+            with_two += 1;
+            2
+        } else if rho > 2.0 * big_r * 1.001 {
+            with_none += 1;
+            0
+        } else {
+            continue;
+        };
+        assert_eq!(
+            got.len(),
+            expect,
+            "case {case}: {:?}\n{contacts:?}\n{locs:?}",
+            got.as_slice()
+        );
+        for p in got.iter() {
+            let delta = circ_dist(p.pose.theta, theta0);
+            assert!(
+                ((delta / 2.0).sin() * 2.0 * big_r - rho).abs() < 1e-9,
+                "case {case}: {p:?}"
+            );
+        }
+        // One radius off by 1e-7: no longer a continuum (the fourfold
+        // root at theta0 splits in rounding noise); the two isolated poses
+        // far from theta0 must survive, moved by about the perturbation.
+        let mut near = contacts;
+        near[case % 3] = circle(rot_t(c, s, locs[case % 3]) + shift, rho + 1e-7);
+        let moved = solve_contact_poses(&near, &locs);
+        max_residual(&near, &locs, &moved);
+        for p in got.iter() {
+            let kept = moved
+                .iter()
+                .any(|q| circ_dist(q.pose.theta, p.pose.theta) < 1e-4 && (q.w - p.w).norm() < 1e-4);
+            let clear = circ_dist(p.pose.theta, theta0) > 0.05;
+            assert!(
+                kept || !clear,
+                "case {case}: {p:?} lost at 1e-7: {:?}",
+                moved.as_slice()
+            );
+        }
+    }
+    println!("congruent_circles_keep_only_isolated_poses: {with_two} with two poses, {with_none} with none");
+}
+
+// ---------------------------------------------------------- shared angle
+
+/// Two locators on parallel lines (a slot, a step, or the same line) fix
+/// the angle; the third, on a circle, meets it on either side, so the
+/// poses come in pairs with the same `theta` to the last bits, and both
+/// are found (compared with sampling too).
+#[test]
+fn parallel_lines_and_circle_share_theta() {
+    let mut rng = Rng(0x5a4e_d7e7a);
+    let (mut pairs, mut tally) = (0, Tally::default());
+    for case in 0..300 {
+        let (mut contacts, mut locs, theta, w) = with_truth(&mut rng, [false, false, true]);
+        let Contact::Line(l0) = contacts[0] else {
+            unreachable!()
+        };
+        let (s, c) = theta.sin_cos();
+        let part_point = |l: V2| rot_t(c, s, l) - w;
+        if case % 3 == 2 {
+            // Both locators on the same line.
+            let p1 = part_point(locs[0]) + v2(-l0.n.y, l0.n.x) * rng.range(0.5, 4.0);
+            locs[1] = rot(c, s, p1 + w);
+            contacts[1] = contacts[0];
+        } else {
+            // Line 1 parallel to line 0 (same or opposite normal) through
+            // its contact point: a step or a slot.
+            let n = if case % 3 == 0 { l0.n } else { -l0.n };
+            contacts[1] = line(n, n.dot(&part_point(locs[1])));
+        }
+        let got = solve_contact_poses(&contacts, &locs);
+        max_residual(&contacts, &locs, &got);
+        assert_distinct(&got);
+        assert!(
+            got.iter()
+                .any(|p| circ_dist(p.pose.theta, theta) < 1e-9 && (p.w - w).norm() < 1e-9),
+            "case {case}: truth missing from {:?}",
+            got.as_slice()
+        );
+        for p in got.iter().filter(|p| !p.tangential) {
+            let twin = got
+                .iter()
+                .filter(|q| {
+                    (q.w - p.w).norm() > 1e-6 && circ_dist(q.pose.theta, p.pose.theta) <= 1e-12
+                })
+                .count();
+            assert_eq!(
+                twin,
+                1,
+                "case {case}: {p:?} has no twin in {:?}",
+                got.as_slice()
+            );
+            pairs += 1;
+        }
+        if case < 60 {
+            compare_with_sampling(
+                &contacts,
+                &locs,
+                200_000,
+                &mut tally,
+                &format!("case {case}"),
+            );
+        }
+    }
+    report(
+        "parallel_lines_and_circle_share_theta (sampled part)",
+        &tally,
+    );
+    println!("parallel_lines_and_circle_share_theta: {pairs} poses with a twin");
+}
+
+// ------------------------------------------------------------ contact order
+
+/// The order of the contacts only decides which contact each locator
+/// touches: permuting contacts and locators together gives the same poses.
+#[test]
+fn contact_order_does_not_matter() {
+    let mut rng = Rng(0x0bde_4011);
+    const PERMS: [[usize; 3]; 6] = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    for case in 0..3000 {
+        let k = kinds(case);
+        let (contacts, locs) = match case % 3 {
+            0 => random_setup(&mut rng, k),
+            1 => {
+                let (c, l, _, _) = with_truth(&mut rng, k);
+                (c, l)
+            }
+            _ => lattice_setup(&mut rng, k),
+        };
+        let base = solve_contact_poses(&contacts, &locs);
+        for perm in PERMS {
+            let c = perm.map(|i| contacts[i]);
+            let l = perm.map(|i| locs[i]);
+            let got = solve_contact_poses(&c, &l);
+            let same = |a: &ContactPose, b: &ContactPose| {
+                let tol = if a.tangential || b.tangential {
+                    2e-6
+                } else {
+                    1e-9
+                };
+                circ_dist(a.pose.theta, b.pose.theta) <= tol && (a.w - b.w).norm() <= tol.max(1e-8)
+            };
+            let all_in = |x: &[ContactPose], y: &[ContactPose]| {
+                x.iter().all(|a| y.iter().any(|b| same(a, b)))
+            };
+            assert!(
+                all_in(&base, &got) && all_in(&got, &base),
+                "case {case} {perm:?}: {:?} vs {:?}\n{contacts:?}\n{locs:?}",
+                base.as_slice(),
+                got.as_slice()
+            );
+        }
+    }
+}

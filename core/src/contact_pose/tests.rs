@@ -82,7 +82,8 @@ fn eliminant_degree() {
 #[test]
 fn eliminant_vanishes_at_a_known_pose() {
     let mut state = 0x1234_5678_9abc_def1u64;
-    for case in 0..2000 {
+    let mut worst = 0.0f64;
+    for case in 0..20000 {
         let circles = 1 + case % 3;
         let (mut contacts, _) = random_contacts(&mut state, circles);
         let theta = TAU * rnd(&mut state);
@@ -104,6 +105,7 @@ fn eliminant_vanishes_at_a_known_pose() {
         let red = Reduced::new(&contacts, &locs).expect("has a circle");
         let sm = red.sample();
         let (f, _, _) = sm.f.eval3(theta);
+        worst = worst.max(f.abs() / sm.scale_f);
         assert!(
             f.abs() < 1e-11 * sm.scale_f,
             "{case}: {f} vs {}",
@@ -118,4 +120,53 @@ fn eliminant_vanishes_at_a_known_pose() {
             &starts[..k]
         );
     }
+    // The coefficient error the root finder is told to expect
+    // (ROUNDING_REL) must cover this with a wide margin.
+    println!("largest |F| at a solution, relative to its terms: {worst:e}");
+    assert!(worst < ROUNDING_REL / 10.0, "{worst:e}");
+}
+
+/// Continua built exactly (up to rounding of their inputs) have an `F`
+/// within rounding of zero, far below `CONTINUUM_REL`; random setups are
+/// far above it.
+#[test]
+fn continuum_threshold_separates() {
+    let mut state = 0xabcd_ef01_2345_6789u64;
+    let (mut worst_continuum, mut least_genuine) = (0.0f64, f64::INFINITY);
+    for case in 0..5000 {
+        let mut r = |lo: f64, hi: f64| lo + (hi - lo) * rnd(&mut state);
+        // Concentric circles the part turns in, about plate point x.
+        let x = v2(r(-4.0, 4.0), r(-4.0, 4.0));
+        let centre = v2(r(-4.0, 4.0), r(-4.0, 4.0));
+        let locs = [0, 1, 2].map(|_| v2(r(-4.0, 4.0), r(-4.0, 4.0)));
+        let mut contacts = locs.map(|l| {
+            Contact::Circle(Circle {
+                centre,
+                radius: (l - x).norm(),
+            })
+        });
+        if case % 2 == 1 {
+            // A line through the centre, its locator at x.
+            let a = r(0.0, TAU);
+            let n = v2(a.cos(), a.sin());
+            contacts[0] = Contact::Line(Line {
+                n,
+                c: n.dot(&centre),
+            });
+        }
+        let mut l2 = locs;
+        if case % 2 == 1 {
+            l2[0] = x;
+        }
+        let red = Reduced::new(&contacts, &l2).expect("has a circle");
+        let sm = red.sample();
+        worst_continuum = worst_continuum.max(sm.f.max_abs() / sm.scale_f);
+        let (rc, rl) = random_contacts(&mut state, 1 + case % 3);
+        let red = Reduced::new(&rc, &rl).expect("has a circle");
+        let sm = red.sample();
+        least_genuine = least_genuine.min(sm.f.max_abs() / sm.scale_f);
+    }
+    println!("max |F coef| / scale: continua {worst_continuum:e}, random setups at least {least_genuine:e}");
+    assert!(worst_continuum < CONTINUUM_REL / 100.0);
+    assert!(least_genuine > CONTINUUM_REL * 100.0);
 }

@@ -295,19 +295,38 @@ enum Class {
     Monotone,
     /// `f'' != 0` throughout.
     Convex,
+    /// `|f|` is within rounding of zero throughout: roots there cannot be
+    /// told apart, so the interval is one candidate, not split further.
+    Flat,
     /// Nothing yet: split.
     Split,
 }
 
-fn classify(f: &Trig, m3: f64, tol: f64, lo: f64, hi: f64) -> Class {
+/// The Taylor bounds of [`roots`]: `m3` bounds the third derivative, `tol`
+/// is the band counted as zero, `noise1` and `noise2` the errors of the
+/// first two derivatives (a derivative test must beat them, or rounding
+/// could fake monotonicity and turn the noise near a multiple root into a
+/// swarm of sign changes).
+struct Bounds {
+    m3: f64,
+    noise: f64,
+    tol: f64,
+    noise1: f64,
+    noise2: f64,
+}
+
+fn classify(f: &Trig, b: &Bounds, lo: f64, hi: f64) -> Class {
     let h = 0.5 * (hi - lo);
     let (f0, f1, f2) = f.eval3(lo + h);
     let h2 = h * h;
-    if f0.abs() - h * f1.abs() - 0.5 * h2 * f2.abs() - m3 * h2 * h / 6.0 > tol {
+    let spread = h * f1.abs() + 0.5 * h2 * f2.abs() + b.m3 * h2 * h / 6.0;
+    if f0.abs() - spread > b.tol {
         Class::Empty
-    } else if f1.abs() - h * f2.abs() - 0.5 * m3 * h2 > 0.0 {
+    } else if f0.abs() + spread <= b.noise {
+        Class::Flat
+    } else if f1.abs() - h * f2.abs() - 0.5 * b.m3 * h2 > b.noise1 {
         Class::Monotone
-    } else if f2.abs() - m3 * h > 0.0 {
+    } else if f2.abs() - b.m3 * h > b.noise2 {
         Class::Convex
     } else {
         Class::Split
@@ -315,31 +334,80 @@ fn classify(f: &Trig, m3: f64, tol: f64, lo: f64, hi: f64) -> Class {
 }
 
 /// Intervals narrower than this are not split further: what is left there
-/// is a root of multiplicity three or more, reported by its midpoint.
-const LEAF: f64 = 1e-8;
+/// is a root of multiplicity three or more (whose neighbourhood the crude
+/// bound on `f'''` cannot certify at any reasonable depth), reported as the
+/// point of smallest `|f|` of each run of adjacent such intervals.
+const LEAF: f64 = 1e-6;
+
+/// A run of adjacent leaf intervals and its point of smallest `|f|`.
+struct Run {
+    end: f64,
+    best: (f64, f64),
+}
+
+impl Run {
+    fn add(run: &mut Option<Run>, lo: f64, hi: f64, f: &Trig, out: &mut Angles) {
+        let m = 0.5 * (lo + hi);
+        let v = f.value(m).abs();
+        match run {
+            Some(r) if lo <= r.end + 1e-12 => {
+                r.end = hi;
+                if v < r.best.1 {
+                    r.best = (m, v);
+                }
+            }
+            _ => {
+                Run::flush(run, out);
+                *run = Some(Run {
+                    end: hi,
+                    best: (m, v),
+                });
+            }
+        }
+    }
+
+    fn flush(run: &mut Option<Run>, out: &mut Angles) {
+        if let Some(r) = run.take() {
+            out.push(r.best.0);
+        }
+    }
+}
 
 /// Every root of `f` in `[0, 2 pi)`, plus every local extremum where
 /// `|f| <= tol` without a sign change (tangencies and near misses), pushed
-/// onto `out` in increasing order.
+/// onto `out`.
 ///
 /// Why nothing is missed: an interval is dropped only when the third-order
 /// Taylor bound (with `|f'''| <= sum j^3 (|a_j| + |b_j|)`) proves `|f| > tol`
 /// on all of it; a monotone interval has at most one root, found when the
 /// ends differ in sign; a convex or concave one has at most two, one on each
-/// side of its single extremum. `tol` must exceed the rounding error of the
-/// coefficients; this adds the error of evaluating them.
-pub(super) fn roots(f: &Trig, tol: f64, out: &mut Angles) {
+/// side of its single extremum; what is left after splitting down to
+/// `LEAF`, or what is zero to within rounding throughout, is reported by
+/// the point of smallest `|f|` of each connected run. `noise` bounds the error of the coefficients (this
+/// adds the error of evaluating them); `tol` widens the band of values
+/// counted as zero beyond it, to catch near misses. The work is
+/// bounded (`out.overflow` is set if the bound is reached, which takes a
+/// polynomial that is zero to within `tol` almost everywhere).
+pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
     let m3 = f.bound(3);
     if m3 == 0.0 {
         // A constant: no isolated root (zero is a continuum, caught earlier).
         return;
     }
-    let norm1 = f.a[0].abs() + f.bound(0);
-    let tol = tol + 64.0 * f64::EPSILON * norm1;
+    // Evaluation adds a few ulps of the coefficients' sum; a coefficient
+    // error `noise` moves f' by up to sum 2j noise and f'' by sum 2j^2 noise.
+    let noise = noise + 64.0 * f64::EPSILON * (f.a[0].abs() + f.bound(0));
+    let b = Bounds {
+        m3,
+        noise,
+        tol: tol + noise,
+        noise1: 20.0 * noise + 64.0 * f64::EPSILON * f.bound(1),
+        noise2: 60.0 * noise + 64.0 * f64::EPSILON * f.bound(2),
+    };
     const START: usize = 32;
     let step = TAU / START as f64;
-    let mut budget = 4000usize;
-    let mut last_leaf = f64::NEG_INFINITY;
+    let mut budget = 20_000usize;
+    let mut run = None;
     for i in 0..START {
         let mut stack = [(0.0, 0.0); 48];
         stack[0] = (i as f64 * step, (i + 1) as f64 * step);
@@ -348,29 +416,24 @@ pub(super) fn roots(f: &Trig, tol: f64, out: &mut Angles) {
             n -= 1;
             let (lo, hi) = stack[n];
             budget = budget.saturating_sub(1);
-            match classify(f, m3, tol, lo, hi) {
+            match classify(f, &b, lo, hi) {
                 Class::Empty => {}
                 Class::Monotone => monotone_root(f, lo, hi, out),
-                Class::Convex => convex_roots(f, tol, lo, hi, out),
+                Class::Convex => convex_roots(f, b.tol, lo, hi, out),
                 Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
                     let m = 0.5 * (lo + hi);
                     stack[n] = (m, hi);
                     stack[n + 1] = (lo, m);
                     n += 2;
                 }
-                Class::Split => {
-                    if budget == 0 {
-                        out.overflow = true;
-                    }
-                    let m = 0.5 * (lo + hi);
-                    if m - last_leaf > 4.0 * LEAF {
-                        out.push(m);
-                    }
-                    last_leaf = m;
+                Class::Split | Class::Flat => {
+                    out.overflow |= budget == 0;
+                    Run::add(&mut run, lo, hi, f, out);
                 }
             }
         }
     }
+    Run::flush(&mut run, out);
 }
 
 #[cfg(test)]
@@ -409,7 +472,7 @@ mod tests {
 
     fn found(f: &Trig, tol: f64) -> Vec<f64> {
         let mut out = Angles::new();
-        roots(f, tol, &mut out);
+        roots(f, tol, 0.0, &mut out);
         assert!(!out.overflow);
         out.as_slice().to_vec()
     }
