@@ -457,7 +457,8 @@ impl Reduced {
         if d_max > DEGENERATE_REL * sm.max_dhat {
             let tol = NEAR_MISS * self.rho0 * sm.max_dhat * sm.max_dhat;
             trig::roots(&sm.f, tol, ROUNDING_REL * sm.scale_f, out);
-            trig::roots(&sm.d, 0.0, ROUNDING_REL * sm.max_dhat, out);
+            // D has degree <= 1 (the rotation cancels from b1 x b2).
+            trig::linear_roots(&sm.d, out);
         }
         if d_max <= NEAR_PARALLEL_REL * sm.max_dhat {
             // Parallel rows: the angle is where they are compatible,
@@ -583,7 +584,7 @@ fn polish(
     let mut x = Vector3::new(theta, w.x, w.y);
     let (mut f, mut j) = system(contacts, locs, x[0], v2(x[1], x[2]));
     let mut best = (x, f.amax());
-    if !(best.1 <= START_RESIDUAL) {
+    if best.1.is_nan() || best.1 > START_RESIDUAL {
         return None;
     }
     let mut stale = 0;
@@ -626,7 +627,7 @@ fn polish(
     let (sin, cos) = theta.sin_cos();
     let w = v2(best.0[1], best.0[2]);
     let res = max_residual(contacts, locs, cos, sin, w);
-    if !(res <= EPS) {
+    if res.is_nan() || res > EPS {
         return None;
     }
     let det = scaled_jacobian_det(contacts, locs, cos, sin, w);

@@ -146,6 +146,24 @@ impl Trig {
     }
 }
 
+/// The roots of a polynomial of degree <= 1 (`a[0] + a[1] cos t + b[1] sin
+/// t`; higher harmonics, rounding noise for the callers, are ignored), in
+/// closed form; a double root when the line only touches the circle.
+pub(super) fn linear_roots(f: &Trig, out: &mut Angles) {
+    let r = f.a[1].hypot(f.b[1]);
+    if r == 0.0 {
+        return;
+    }
+    let x = -f.a[0] / r;
+    if x.abs() > 1.0 + 1e-12 {
+        return;
+    }
+    let phi = f.b[1].atan2(f.a[1]);
+    let delta = x.clamp(-1.0, 1.0).acos();
+    out.push((phi - delta).rem_euclid(TAU));
+    out.push((phi + delta).rem_euclid(TAU));
+}
+
 /// Up to this many angles are kept; more means a degenerate (near-constant
 /// or near-continuum) polynomial, reported through `overflow`.
 pub(super) const ANGLE_CAP: usize = 32;
@@ -291,8 +309,9 @@ fn convex_roots(f: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
 enum Class {
     /// `|f| > tol` throughout.
     Empty,
-    /// `f' != 0` throughout.
-    Monotone,
+    /// `f' != 0` throughout; carries `f(lo)` and `f(hi)` as far as the
+    /// Taylor bound tells them (`None` when their sign is uncertain).
+    Monotone(Option<(f64, f64)>),
     /// `f'' != 0` throughout.
     Convex,
     /// `|f|` is within rounding of zero throughout: roots there cannot be
@@ -325,7 +344,12 @@ fn classify(f: &Trig, b: &Bounds, lo: f64, hi: f64) -> Class {
     } else if f0.abs() + spread <= b.noise {
         Class::Flat
     } else if f1.abs() - h * f2.abs() - 0.5 * b.m3 * h2 > b.noise1 {
-        Class::Monotone
+        // Most monotone intervals hold no root, which the Taylor values at
+        // the ends show without evaluating there.
+        let err = b.m3 * h2 * h / 6.0 + b.noise;
+        let (flo, fhi) = (f0 - h * f1 + 0.5 * h2 * f2, f0 + h * f1 + 0.5 * h2 * f2);
+        let sure = flo.abs() > err && fhi.abs() > err;
+        Class::Monotone(sure.then_some((flo, fhi)))
     } else if f2.abs() - b.m3 * h > b.noise2 {
         Class::Convex
     } else {
@@ -404,12 +428,12 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
         noise1: 20.0 * noise + 64.0 * f64::EPSILON * f.bound(1),
         noise2: 60.0 * noise + 64.0 * f64::EPSILON * f.bound(2),
     };
-    const START: usize = 32;
+    const START: usize = 16;
     let step = TAU / START as f64;
     let mut budget = 20_000usize;
     let mut run = None;
+    let mut stack = [(0.0, 0.0); 48];
     for i in 0..START {
-        let mut stack = [(0.0, 0.0); 48];
         stack[0] = (i as f64 * step, (i + 1) as f64 * step);
         let mut n = 1;
         while n > 0 {
@@ -418,7 +442,8 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
             budget = budget.saturating_sub(1);
             match classify(f, &b, lo, hi) {
                 Class::Empty => {}
-                Class::Monotone => monotone_root(f, lo, hi, out),
+                Class::Monotone(Some((flo, fhi))) if (flo < 0.0) == (fhi < 0.0) => {}
+                Class::Monotone(_) => monotone_root(f, lo, hi, out),
                 Class::Convex => convex_roots(f, b.tol, lo, hi, out),
                 Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
                     let m = 0.5 * (lo + hi);
