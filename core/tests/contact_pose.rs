@@ -634,7 +634,8 @@ fn perturbed(contacts: &[Contact; 3], k: usize, delta: f64) -> [Contact; 3] {
 /// 0: at 0 one tangential pose; at 1e-5 two (not tangential) on one side
 /// and none on the other; smaller, the same side has two poses or one
 /// tangential pose and the other none or one tangential pose (a miss by
-/// less than eps); never two poses within 1e-6 of each other.
+/// less than eps; at 1e-12 always the latter); never two poses within
+/// 1e-8 of each other (nor two that SPEC 8.4 calls one).
 #[test]
 fn near_tangent_counts_are_consistent() {
     let mut rng = Rng(0x7a46_e471_a1c0_ffee);
@@ -688,7 +689,9 @@ fn near_tangent_counts_are_consistent() {
         for delta in [1e-8, 1e-12] {
             let (hit, miss) = (at(two_side * delta), at(-two_side * delta));
             let ok_hit = hit.0 == 2 || (hit.0 == 1 && hit.1 == 1);
-            let ok_miss = miss.0 == 0 || (miss.0 == 1 && miss.1 == 1);
+            // A miss by 1e-12 leaves a pose satisfying every equation to
+            // 1e-12 (the unperturbed one): it is reported, once, tangential.
+            let ok_miss = (miss.0 == 1 && miss.1 == 1) || (miss.0 == 0 && delta > 1e-10);
             assert!(
                 ok_hit && ok_miss,
                 "case {case}: {delta:e} gives {hit:?} / {miss:?}"
