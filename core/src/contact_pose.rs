@@ -16,6 +16,16 @@
 //! method on the three original equations and kept only if it satisfies
 //! them to `eps`, so the elimination only has to find candidates, never to
 //! be accurate.
+//!
+//! Why no pose is missed: the reduction is an equivalence (`w = N / D`
+//! wherever `D != 0`), so every isolated pose has its angle among the
+//! roots of `F`, of `D`, or (when `D` vanishes identically) of `N`; the
+//! root finder in `trig` discards an interval of angles only when a Taylor
+//! bound proves the polynomial nonzero there, and at each candidate angle
+//! every `w` the reduced system allows is tried. Continua are recognised
+//! structurally: `F` vanishing identically (every angle has a solution),
+//! or three circles congruent to the locator triangle (a continuum at one
+//! angle, whose fourfold root of `F` is handled in closed form).
 
 mod trig;
 
