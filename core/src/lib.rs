@@ -10,6 +10,7 @@ pub mod admissibility;
 pub mod arc;
 pub mod clamp;
 pub mod combinations;
+pub mod contact_pose;
 pub mod enumerate;
 pub mod form_closure;
 pub mod geometry;

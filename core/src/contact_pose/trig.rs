@@ -1,0 +1,579 @@
+//! Real trigonometric polynomials of degree at most 4 and a root finder that
+//! proves every interval it discards root-free.
+//!
+//! The pose solver reduces three contact equations to one such polynomial in
+//! `theta`. Companion-matrix eigenvalues would do too, but nalgebra's Schur
+//! iteration has no exceptional shifts (it can stall on the very symmetric
+//! polynomials rectilinear parts produce) and a double root comes back as a
+//! complex pair whose distance from the unit circle needs its own threshold.
+//! Subdivision with Taylor bounds has neither problem, reports the near-zero
+//! minimum of a near-tangent configuration directly, and allocates nothing.
+
+use std::f64::consts::{FRAC_1_SQRT_2, TAU};
+
+/// Highest harmonic kept: the eliminant of SPEC 8.4 has degree <= 4.
+pub(super) const DEG: usize = 4;
+
+/// Samples per turn; 16 > 2 * DEG, so harmonics up to 7 do not alias.
+pub(super) const SAMPLES: usize = 16;
+
+const C8: f64 = 0.923_879_532_511_286_7; // cos(pi / 8)
+const S8: f64 = 0.382_683_432_365_089_8; // sin(pi / 8)
+
+/// `cos(2 pi m / 16)`, exact to the last bit so that the samples and the
+/// transform use the same angles.
+pub(super) const COS16: [f64; SAMPLES] = [
+    1.0,
+    C8,
+    FRAC_1_SQRT_2,
+    S8,
+    0.0,
+    -S8,
+    -FRAC_1_SQRT_2,
+    -C8,
+    -1.0,
+    -C8,
+    -FRAC_1_SQRT_2,
+    -S8,
+    0.0,
+    S8,
+    FRAC_1_SQRT_2,
+    C8,
+];
+
+/// `sin(2 pi m / 16)`.
+pub(super) const SIN16: [f64; SAMPLES] = [
+    0.0,
+    S8,
+    FRAC_1_SQRT_2,
+    C8,
+    1.0,
+    C8,
+    FRAC_1_SQRT_2,
+    S8,
+    0.0,
+    -S8,
+    -FRAC_1_SQRT_2,
+    -C8,
+    -1.0,
+    -C8,
+    -FRAC_1_SQRT_2,
+    -S8,
+];
+
+/// `a[0] + sum_j a[j] cos(j t) + b[j] sin(j t)`; `b[0]` is unused (zero).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct Trig {
+    pub a: [f64; DEG + 1],
+    pub b: [f64; DEG + 1],
+}
+
+/// Fourier coefficient `j` (cosine and sine parts) of 16 equispaced samples.
+fn harmonic(v: &[f64; SAMPLES], j: usize) -> (f64, f64) {
+    let (mut ca, mut sb) = (0.0, 0.0);
+    for (m, &x) in v.iter().enumerate() {
+        let k = (j * m) % SAMPLES;
+        ca += x * COS16[k];
+        sb += x * SIN16[k];
+    }
+    let n = SAMPLES as f64;
+    if j == 0 || 2 * j == SAMPLES {
+        (ca / n, sb / n)
+    } else {
+        (2.0 * ca / n, 2.0 * sb / n)
+    }
+}
+
+impl Trig {
+    /// The polynomial through samples at `2 pi m / 16`, exact when the
+    /// sampled function has degree <= 4 (up to rounding).
+    pub fn from_samples(v: &[f64; SAMPLES]) -> Trig {
+        let mut t = Trig::default();
+        for j in 0..=DEG {
+            let (a, b) = harmonic(v, j);
+            t.a[j] = a;
+            t.b[j] = if j == 0 { 0.0 } else { b };
+        }
+        t
+    }
+
+    /// Largest coefficient of harmonics 5..=8 of the samples: zero (up to
+    /// rounding) exactly when the sampled function has degree <= 4, which
+    /// the tests use to check the elimination's degree claim.
+    #[cfg(test)]
+    pub fn alias(v: &[f64; SAMPLES]) -> f64 {
+        (DEG + 1..=SAMPLES / 2)
+            .map(|j| {
+                let (a, b) = harmonic(v, j);
+                a.abs().max(b.abs())
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Largest coefficient in absolute value.
+    pub fn max_abs(&self) -> f64 {
+        self.a
+            .iter()
+            .chain(self.b.iter())
+            .fold(0.0, |m, x| m.max(x.abs()))
+    }
+
+    /// `sum_j j^p (|a_j| + |b_j|)`: bounds `|f^(p)|` everywhere.
+    fn bound(&self, p: i32) -> f64 {
+        (1..=DEG)
+            .map(|j| (j as f64).powi(p) * (self.a[j].abs() + self.b[j].abs()))
+            .sum()
+    }
+
+    /// Value and first two derivatives at `t`.
+    pub fn eval3(&self, t: f64) -> (f64, f64, f64) {
+        let (s1, c1) = t.sin_cos();
+        let (mut c, mut s) = (1.0, 0.0);
+        let (mut f, mut d1, mut d2) = (self.a[0], 0.0, 0.0);
+        for j in 1..=DEG {
+            (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+            let jf = j as f64;
+            let (cc, ss) = (self.a[j] * c, self.b[j] * s);
+            f += cc + ss;
+            d1 += jf * (self.b[j] * c - self.a[j] * s);
+            d2 -= jf * jf * (cc + ss);
+        }
+        (f, d1, d2)
+    }
+
+    fn value(&self, t: f64) -> f64 {
+        self.eval3(t).0
+    }
+}
+
+/// The roots of a polynomial of degree <= 1 (`a[0] + a[1] cos t + b[1] sin
+/// t`; higher harmonics, rounding noise for the callers, are ignored), in
+/// closed form; a double root when the line only touches the circle.
+pub(super) fn linear_roots(f: &Trig, out: &mut Angles) {
+    let r = f.a[1].hypot(f.b[1]);
+    if r == 0.0 {
+        return;
+    }
+    let x = -f.a[0] / r;
+    if x.abs() > 1.0 + 1e-12 {
+        return;
+    }
+    let phi = f.b[1].atan2(f.a[1]);
+    let delta = x.clamp(-1.0, 1.0).acos();
+    out.push((phi - delta).rem_euclid(TAU));
+    out.push((phi + delta).rem_euclid(TAU));
+}
+
+/// Up to this many angles are kept; more means a degenerate (near-constant
+/// or near-continuum) polynomial, reported through `overflow`.
+pub(super) const ANGLE_CAP: usize = 32;
+
+/// A fixed-capacity list of angles, so that the hot path never allocates.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Angles {
+    pub v: [f64; ANGLE_CAP],
+    pub n: usize,
+    /// Set when an angle had to be dropped: callers must not trust the list.
+    pub overflow: bool,
+}
+
+impl Angles {
+    pub fn new() -> Angles {
+        Angles {
+            v: [0.0; ANGLE_CAP],
+            n: 0,
+            overflow: false,
+        }
+    }
+
+    /// Adds `t` unless an angle within 1e-12 (around the circle) is listed.
+    pub fn push(&mut self, t: f64) {
+        if !t.is_finite() {
+            return;
+        }
+        if self.v[..self.n].iter().any(|&u| circ_dist(u, t) <= 1e-12) {
+            return;
+        }
+        if self.n == ANGLE_CAP {
+            self.overflow = true;
+            return;
+        }
+        self.v[self.n] = t;
+        self.n += 1;
+    }
+
+    pub fn as_slice(&self) -> &[f64] {
+        &self.v[..self.n]
+    }
+}
+
+/// Distance between two angles around the circle.
+pub(super) fn circ_dist(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(TAU);
+    d.min(TAU - d)
+}
+
+/// Root of `g` (value, derivative) in `[lo, hi]`, given that `g` changes
+/// sign there and `glo` is its value at `lo`: Newton steps, falling back to
+/// bisection whenever a step would leave the shrinking bracket.
+fn bracketed_root(g: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, glo: f64) -> f64 {
+    let neg_lo = glo < 0.0;
+    let mut x = 0.5 * (lo + hi);
+    for _ in 0..100 {
+        let (v, d) = g(x);
+        if v == 0.0 {
+            return x;
+        }
+        if (v < 0.0) == neg_lo {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - v / d;
+        let next = if newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        let done = (next - x).abs() <= 4.0 * f64::EPSILON * (1.0 + x.abs())
+            || hi - lo <= 4.0 * f64::EPSILON * (1.0 + x.abs());
+        x = next;
+        if done {
+            break;
+        }
+    }
+    x
+}
+
+/// The sign-change root of `f` in `[lo, hi]`, if any (the caller knows `f`
+/// is monotone there, so there is at most one).
+fn monotone_root(f: &Trig, lo: f64, hi: f64, out: &mut Angles) {
+    let (flo, fhi) = (f.value(lo), f.value(hi));
+    if flo == 0.0 {
+        out.push(lo);
+    } else if fhi == 0.0 {
+        out.push(hi);
+    } else if (flo < 0.0) != (fhi < 0.0) {
+        let g = |t: f64| {
+            let (v, d, _) = f.eval3(t);
+            (v, d)
+        };
+        out.push(bracketed_root(g, lo, hi, flo));
+    }
+}
+
+/// `f` is strictly convex or concave on `[lo, hi]`: at most two roots, one
+/// on each side of the extremum, and when there is none the extremum itself
+/// is a candidate if `|f| <= tol` there (a tangency or a near miss).
+fn convex_roots(f: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
+    let (flo, dlo, _) = f.eval3(lo);
+    let (fhi, dhi, _) = f.eval3(hi);
+    if dlo != 0.0 && dhi != 0.0 && (dlo < 0.0) == (dhi < 0.0) {
+        monotone_root(f, lo, hi, out);
+        return;
+    }
+    let tc = if dlo == 0.0 {
+        lo
+    } else if dhi == 0.0 {
+        hi
+    } else {
+        let g = |t: f64| {
+            let (_, d, dd) = f.eval3(t);
+            (d, dd)
+        };
+        bracketed_root(g, lo, hi, dlo)
+    };
+    let fc = f.value(tc);
+    let before = out.n;
+    let mut side = |a: f64, b: f64, fa: f64, fb: f64| {
+        if fa == 0.0 {
+            out.push(a);
+        } else if fb == 0.0 {
+            out.push(b);
+        } else if (fa < 0.0) != (fb < 0.0) {
+            let g = |t: f64| {
+                let (v, d, _) = f.eval3(t);
+                (v, d)
+            };
+            out.push(bracketed_root(g, a, b, fa));
+        }
+    };
+    side(lo, tc, flo, fc);
+    side(tc, hi, fc, fhi);
+    if out.n == before && fc.abs() <= tol {
+        out.push(tc);
+    }
+}
+
+/// What the Taylor bounds at the midpoint of an interval prove about it.
+enum Class {
+    /// `|f| > tol` throughout.
+    Empty,
+    /// `f' != 0` throughout; carries `f(lo)` and `f(hi)` as far as the
+    /// Taylor bound tells them (`None` when their sign is uncertain).
+    Monotone(Option<(f64, f64)>),
+    /// `f'' != 0` throughout.
+    Convex,
+    /// `|f|` is within rounding of zero throughout: roots there cannot be
+    /// told apart, so the interval is one candidate, not split further.
+    Flat,
+    /// Nothing yet: split.
+    Split,
+}
+
+/// The Taylor bounds of [`roots`]: `m3` bounds the third derivative, `tol`
+/// is the band counted as zero, `noise1` and `noise2` the errors of the
+/// first two derivatives (a derivative test must beat them, or rounding
+/// could fake monotonicity and turn the noise near a multiple root into a
+/// swarm of sign changes).
+struct Bounds {
+    m3: f64,
+    noise: f64,
+    tol: f64,
+    noise1: f64,
+    noise2: f64,
+}
+
+fn classify(f: &Trig, b: &Bounds, lo: f64, hi: f64) -> Class {
+    let h = 0.5 * (hi - lo);
+    let (f0, f1, f2) = f.eval3(lo + h);
+    let h2 = h * h;
+    let spread = h * f1.abs() + 0.5 * h2 * f2.abs() + b.m3 * h2 * h / 6.0;
+    if f0.abs() - spread > b.tol {
+        Class::Empty
+    } else if f0.abs() + spread <= b.noise {
+        Class::Flat
+    } else if f1.abs() - h * f2.abs() - 0.5 * b.m3 * h2 > b.noise1 {
+        // Most monotone intervals hold no root, which the Taylor values at
+        // the ends show without evaluating there.
+        let err = b.m3 * h2 * h / 6.0 + b.noise;
+        let (flo, fhi) = (f0 - h * f1 + 0.5 * h2 * f2, f0 + h * f1 + 0.5 * h2 * f2);
+        let sure = flo.abs() > err && fhi.abs() > err;
+        Class::Monotone(sure.then_some((flo, fhi)))
+    } else if f2.abs() - b.m3 * h > b.noise2 {
+        Class::Convex
+    } else {
+        Class::Split
+    }
+}
+
+/// Intervals narrower than this are not split further: what is left there
+/// is a root of multiplicity three or more (whose neighbourhood the crude
+/// bound on `f'''` cannot certify at any reasonable depth), reported as the
+/// point of smallest `|f|` of each run of adjacent such intervals.
+const LEAF: f64 = 1e-6;
+
+/// A run of adjacent leaf intervals and its point of smallest `|f|`.
+struct Run {
+    end: f64,
+    best: (f64, f64),
+}
+
+impl Run {
+    fn add(run: &mut Option<Run>, lo: f64, hi: f64, f: &Trig, out: &mut Angles) {
+        let m = 0.5 * (lo + hi);
+        let v = f.value(m).abs();
+        match run {
+            Some(r) if lo <= r.end + 1e-12 => {
+                r.end = hi;
+                if v < r.best.1 {
+                    r.best = (m, v);
+                }
+            }
+            _ => {
+                Run::flush(run, out);
+                *run = Some(Run {
+                    end: hi,
+                    best: (m, v),
+                });
+            }
+        }
+    }
+
+    fn flush(run: &mut Option<Run>, out: &mut Angles) {
+        if let Some(r) = run.take() {
+            out.push(r.best.0);
+        }
+    }
+}
+
+/// Every root of `f` in `[0, 2 pi)`, plus every local extremum where
+/// `|f| <= tol` without a sign change (tangencies and near misses), pushed
+/// onto `out`.
+///
+/// Why nothing is missed: an interval is dropped only when the third-order
+/// Taylor bound (with `|f'''| <= sum j^3 (|a_j| + |b_j|)`) proves `|f| > tol`
+/// on all of it; a monotone interval has at most one root, found when the
+/// ends differ in sign; a convex or concave one has at most two, one on each
+/// side of its single extremum; what is left after splitting down to
+/// `LEAF`, or what is zero to within rounding throughout, is reported by
+/// the point of smallest `|f|` of each connected run. `noise` bounds the error of the coefficients (this
+/// adds the error of evaluating them); `tol` widens the band of values
+/// counted as zero beyond it, to catch near misses. The work is
+/// bounded (`out.overflow` is set if the bound is reached, which takes a
+/// polynomial that is zero to within `tol` almost everywhere).
+pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
+    let m3 = f.bound(3);
+    if m3 == 0.0 {
+        // A constant: no isolated root (zero is a continuum, caught earlier).
+        return;
+    }
+    // Evaluation adds a few ulps of the coefficients' sum; a coefficient
+    // error `noise` moves f' by up to sum 2j noise and f'' by sum 2j^2 noise.
+    let noise = noise + 64.0 * f64::EPSILON * (f.a[0].abs() + f.bound(0));
+    let b = Bounds {
+        m3,
+        noise,
+        tol: tol + noise,
+        noise1: 20.0 * noise + 64.0 * f64::EPSILON * f.bound(1),
+        noise2: 60.0 * noise + 64.0 * f64::EPSILON * f.bound(2),
+    };
+    const START: usize = 16;
+    let step = TAU / START as f64;
+    let mut budget = 20_000usize;
+    let mut run = None;
+    let mut stack = [(0.0, 0.0); 48];
+    for i in 0..START {
+        stack[0] = (i as f64 * step, (i + 1) as f64 * step);
+        let mut n = 1;
+        while n > 0 {
+            n -= 1;
+            let (lo, hi) = stack[n];
+            budget = budget.saturating_sub(1);
+            match classify(f, &b, lo, hi) {
+                Class::Empty => {}
+                Class::Monotone(Some((flo, fhi))) if (flo < 0.0) == (fhi < 0.0) => {}
+                Class::Monotone(_) => monotone_root(f, lo, hi, out),
+                Class::Convex => convex_roots(f, b.tol, lo, hi, out),
+                Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
+                    let m = 0.5 * (lo + hi);
+                    stack[n] = (m, hi);
+                    stack[n + 1] = (lo, m);
+                    n += 2;
+                }
+                Class::Split | Class::Flat => {
+                    out.overflow |= budget == 0;
+                    Run::add(&mut run, lo, hi, f, out);
+                }
+            }
+        }
+    }
+    Run::flush(&mut run, out);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sampled(f: impl Fn(f64) -> f64) -> [f64; SAMPLES] {
+        std::array::from_fn(|m| f(TAU * m as f64 / SAMPLES as f64))
+    }
+
+    #[test]
+    fn table_matches_libm() {
+        for m in 0..SAMPLES {
+            let t = TAU * m as f64 / SAMPLES as f64;
+            assert!((COS16[m] - t.cos()).abs() < 1e-15);
+            assert!((SIN16[m] - t.sin()).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn transform_recovers_coefficients() {
+        let g = |t: f64| 0.5 - 2.0 * t.cos() + 0.25 * (3.0 * t).sin() + 1.5 * (4.0 * t).cos();
+        let f = Trig::from_samples(&sampled(g));
+        let want_a = [0.5, -2.0, 0.0, 0.0, 1.5];
+        let want_b = [0.0, 0.0, 0.0, 0.25, 0.0];
+        for j in 0..=DEG {
+            assert!((f.a[j] - want_a[j]).abs() < 1e-14, "{f:?}");
+            assert!((f.b[j] - want_b[j]).abs() < 1e-14, "{f:?}");
+        }
+        for t in [0.1, 1.0, 2.5, 6.0] {
+            assert!((f.value(t) - g(t)).abs() < 1e-13);
+        }
+        assert!(Trig::alias(&sampled(g)) < 1e-14);
+        assert!(Trig::alias(&sampled(|t| (5.0 * t).cos())) > 0.9);
+    }
+
+    fn found(f: &Trig, tol: f64) -> Vec<f64> {
+        let mut out = Angles::new();
+        roots(f, tol, 0.0, &mut out);
+        assert!(!out.overflow);
+        out.as_slice().to_vec()
+    }
+
+    #[test]
+    fn simple_roots_to_machine_precision() {
+        // cos(4t): eight equispaced roots, the symmetric case that stalls
+        // unshifted QR on its companion matrix.
+        let mut f = Trig::default();
+        f.a[4] = 1.0;
+        let r = found(&f, 0.0);
+        assert_eq!(r.len(), 8, "{r:?}");
+        for (k, t) in r.iter().enumerate() {
+            let want = (std::f64::consts::PI / 8.0) * (2 * k + 1) as f64;
+            assert!((t - want).abs() < 1e-14, "{t} vs {want}");
+        }
+    }
+
+    #[test]
+    fn double_root_and_near_miss_are_one_candidate() {
+        // 1 - cos(t - 1) + delta: double root at t = 1 when delta = 0.
+        for delta in [0.0, 1e-16, 1e-13, -1e-16] {
+            let mut f = Trig::default();
+            f.a[0] = 1.0 + delta;
+            f.a[1] = -(1.0f64).cos();
+            f.b[1] = -(1.0f64).sin();
+            let r = found(&f, 1e-12);
+            assert!(!r.is_empty() && r.len() <= 2, "{delta}: {r:?}");
+            for t in r {
+                assert!((t - 1.0).abs() < 2e-6, "{delta}: {t}");
+            }
+        }
+        // Clearly positive minimum: nothing.
+        let mut f = Trig::default();
+        f.a[0] = 1.0 + 1e-6;
+        f.a[1] = -1.0;
+        assert!(found(&f, 1e-12).is_empty());
+    }
+
+    #[test]
+    fn random_polynomials_agree_with_dense_sign_changes() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for _ in 0..300 {
+            let mut f = Trig::default();
+            for j in 0..=DEG {
+                f.a[j] = rnd();
+                if j > 0 {
+                    f.b[j] = rnd();
+                }
+            }
+            let r = found(&f, 1e-13);
+            let n = 100_000;
+            let mut changes = 0;
+            let mut prev = f.value(0.0);
+            for m in 1..=n {
+                let t = TAU * m as f64 / n as f64;
+                let v = f.value(t);
+                if (v < 0.0) != (prev < 0.0) {
+                    changes += 1;
+                    assert!(
+                        r.iter().any(|&u| circ_dist(u, t) <= TAU / n as f64),
+                        "missed a root near {t}: {r:?}"
+                    );
+                }
+                prev = v;
+            }
+            assert!(r.len() >= changes);
+            for &t in &r {
+                assert!(f.value(t).abs() < 1e-12, "{t}");
+            }
+        }
+    }
+}
