@@ -176,7 +176,7 @@ pub fn summary_schema() -> serde_json::Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::schemas::objects_without_properties;
+    use crate::output::schemas::tests::assert_viewer_ready;
 
     #[test]
     fn study_schemas_are_titled_2020_12_with_properties_everywhere() {
@@ -184,14 +184,7 @@ mod tests {
             (SCHEMA_STUDY, study_schema()),
             (SCHEMA_STUDY_SUMMARY, summary_schema()),
         ] {
-            assert_eq!(v["title"], title);
-            assert_eq!(v["$schema"], "https://json-schema.org/draft/2020-12/schema");
-            assert_eq!(
-                objects_without_properties(&v),
-                Vec::<String>::new(),
-                "{title}"
-            );
-            assert!(!v.to_string().contains("\"$ref\""), "{title} has a $ref");
+            assert_viewer_ready(title, &v);
         }
     }
 }
