@@ -20,19 +20,16 @@ pub enum Backend {
     Cluster(ClusterOptions),
 }
 
-impl Default for Backend {
-    fn default() -> Self {
-        Backend::Embedded { threads: None }
-    }
-}
-
 impl Backend {
-    /// Threads of the embedded pool, or of the whole cluster's local
-    /// workers; what progress lines report.
+    /// Threads of the embedded pool, or the worker threads a cluster
+    /// expects (a coordinator's setting, else its local workers'); what
+    /// the run's first log line reports.
     pub fn threads(&self) -> usize {
         match self {
             Backend::Embedded { threads } => threads.unwrap_or_else(fixplan_worker::host::cores),
-            Backend::Cluster(c) => c.worker_threads.unwrap_or(1) * c.local_workers.max(1),
+            Backend::Cluster(c) => c
+                .expected_threads
+                .unwrap_or(c.worker_threads.unwrap_or(1) * c.local_workers.max(1)),
         }
     }
 }
