@@ -204,7 +204,7 @@ fn read_file_part(
 /// [`validate_part`], keeping what was read in the error.
 fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErrorKind> {
     let read = Part {
-        outline: raw.outline.clone(),
+        outline: raw.outline.iter().map(|&p| p.into()).collect(),
         access: raw.access.clone(),
     };
     validate_part(raw, units).map_err(|problem| PartErrorKind::Invalid {

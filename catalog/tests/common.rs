@@ -33,7 +33,7 @@ pub fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-pub fn bbox(pts: &[[f64; 2]]) -> [f64; 4] {
+pub fn bbox<P: std::ops::Index<usize, Output = f64>>(pts: &[P]) -> [f64; 4] {
     let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
     for p in pts {
         b[0] = b[0].min(p[0]);
@@ -44,7 +44,7 @@ pub fn bbox(pts: &[[f64; 2]]) -> [f64; 4] {
     b
 }
 
-pub fn area(p: &[[f64; 2]]) -> f64 {
+pub fn area<P: std::ops::Index<usize, Output = f64>>(p: &[P]) -> f64 {
     let n = p.len();
     (0..n)
         .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])

@@ -48,6 +48,8 @@ pub struct Scratch {
     access_box: Vec<Aabb>,
     body: Vec<V2>,
     plunger: Vec<V2>,
+    /// A clamp polygon moved into the part frame (parts with arcs).
+    local: Vec<V2>,
     pts: Vec<[i64; 2]>,
 }
 
@@ -98,9 +100,16 @@ impl Scratch {
         let need = prep.setting.min_clearance;
         let locs = setup.locators.map(lattice_point);
         let mut margin = f64::INFINITY;
+        let curved = prep.outline.has_arcs();
         for poly in [&self.body, &self.plunger] {
             let bb = Aabb::of(poly);
-            let obstacles = std::iter::once((&self.part, self.part_box.as_ref()?))
+            if curved {
+                let d = curved_part_clearance(prep, &setup.pose, poly, &mut self.local, need)?;
+                margin = margin.min(d);
+            }
+            let part = (!curved).then_some((&self.part, self.part_box.as_ref()?));
+            let obstacles = part
+                .into_iter()
                 .chain(self.access.iter().zip(self.access_box.iter()));
             for (obst, obox) in obstacles {
                 let gap = bb.gap(obox);
@@ -141,4 +150,29 @@ impl Scratch {
         }));
         &self.pts
     }
+}
+
+/// The clearance margin of a clamp polygon (plate frame) against a part
+/// with arcs, or `None` when it is closer than `need` or overlaps. The
+/// polygon is moved into the part frame, where the exact curves are, rather
+/// than the part onto the plate: distances do not change under a rigid
+/// motion, and the few polygon vertices are cheaper to move than the arcs.
+fn curved_part_clearance(
+    prep: &PreparedPart,
+    pose: &crate::pose::Pose,
+    poly: &[V2],
+    local: &mut Vec<V2>,
+    need: f64,
+) -> Option<f64> {
+    local.clear();
+    local.extend(poly.iter().map(|&p| pose.inverse_apply(p)));
+    let gap = Aabb::of(local).gap(&prep.outline_box);
+    if gap - need > BORDERLINE {
+        return Some(gap - need);
+    }
+    let d = prep.outline.polygon_clearance(local)?;
+    if d < need - EPS {
+        return None;
+    }
+    Some((d - need).abs())
 }

@@ -3,14 +3,17 @@
 //! increasing extension with every admissibility test.
 
 use crate::admissibility::{lap, Scratch};
+use crate::arc::GrownArc;
 use crate::form_closure::{wrench, LocatorWrenches};
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::Pattern;
 use crate::metric::PartContact;
 use crate::plate::Placement;
+use crate::pose::Pose;
 use crate::prepare::PreparedPart;
 use crate::ranking::{Fixture, TopK};
 use crate::report::Counts;
+use crate::segments::{arc_inward_normal, Feature, LineFeature, Segment};
 use crate::setups::{lattice_point, Setup};
 
 /// Counts and best fixtures of one piece of work: one per thread, merged
@@ -51,6 +54,18 @@ pub(crate) struct Candidate {
     pub f: V2,
     /// Smallest decision margin so far (segment, lambda, angle).
     pub margin: f64,
+}
+
+/// What every candidate of one setup shares.
+struct SetupContext<'a> {
+    setup: &'a Setup,
+    /// Inward normals of the three locator contacts, plate frame.
+    normals: [V2; 3],
+    lw: LocatorWrenches,
+    /// Smallest decision margin of the setup itself (contacts, `det W`).
+    base_margin: f64,
+    /// Only this clamp rotation (re-deriving one fixture).
+    only_rotation: Option<u8>,
 }
 
 /// The clamp mount the search settled on.
@@ -100,74 +115,191 @@ impl PreparedPart {
         acc.counts.setups += 1;
         let pose = setup.pose;
         let locs = setup.locators.map(lattice_point);
-        let normals = setup.combo.map(|i| -pose.rotate(self.segments[i].n));
+        let normals = [0, 1, 2].map(|k| self.plate_normal(setup.combo[k], &pose, locs[k]));
         let ws = [0, 1, 2].map(|k| wrench(locs[k], normals[k]));
         let Some(lw) = LocatorWrenches::new(ws) else {
             return;
         };
-        let base_margin = setup.margin.min(lw.det.abs() - EPS);
+        let ctx = SetupContext {
+            setup,
+            normals,
+            lw,
+            base_margin: setup.margin.min(lw.det.abs() - EPS),
+            only_rotation: only.map(|o| o.1),
+        };
         scratch.reset_pose();
         for (j, seg) in self.segments.iter().enumerate() {
             if only.is_some_and(|(oj, _)| oj != j) {
                 continue;
             }
-            let f = -pose.rotate(seg.n);
-            let mut cos_ok = [None; 4];
-            for (k, slot) in cos_ok.iter_mut().enumerate() {
-                let c = rot90(k as u8, v2(1.0, 0.0)).dot(&f);
-                if c > EPS && c >= self.setting.cos_max_angle - EPS {
-                    *slot = Some((c - self.setting.cos_max_angle.max(0.0)).abs().min(c - EPS));
-                }
+            match &seg.feature {
+                Feature::Line(line) => self.line_candidates(&ctx, j, seg, line, acc, scratch),
+                Feature::Arc(arc) => self.arc_candidates(&ctx, j, seg, arc, acc, scratch),
             }
-            if cos_ok.iter().all(Option::is_none) {
-                continue;
-            }
-            let q0 = pose.apply(seg.origin);
-            let dq = pose.rotate(seg.u);
-            let Some((lo, hi)) = lw.clamp_interval(q0, dq, f, seg.s0 + EPS, seg.s1 - EPS) else {
+        }
+    }
+
+    /// Inward normal in the plate frame of a contact centred at `q` on
+    /// segment `seg` of the posed part (SPEC 4 and 8.3).
+    #[inline]
+    fn plate_normal(&self, seg: usize, pose: &Pose, q: V2) -> V2 {
+        match &self.segments[seg].feature {
+            Feature::Line(l) => -pose.rotate(l.n),
+            Feature::Arc(a) => arc_inward_normal(pose.apply(a.center), a.radius, a.is_convex(), q),
+        }
+    }
+
+    /// Candidates on a straight segment: the form-closure interval is exact
+    /// (SPEC 4), and the normal is the same all along, so the angle test
+    /// is made once per rotation.
+    fn line_candidates(
+        &self,
+        ctx: &SetupContext,
+        j: usize,
+        seg: &Segment,
+        line: &LineFeature,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        let pose = ctx.setup.pose;
+        let f = -pose.rotate(line.n);
+        let angle_margins = [0, 1, 2, 3].map(|k| {
+            let wanted = ctx.only_rotation.is_none_or(|ok| ok == k);
+            wanted.then(|| self.angle_margin(k, f)).flatten()
+        });
+        if angle_margins.iter().all(Option::is_none) {
+            return;
+        }
+        let q0 = pose.apply(line.origin);
+        let dq = pose.rotate(line.u);
+        let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, seg.s0 + EPS, seg.s1 - EPS) else {
+            return;
+        };
+        for (k, angle_margin) in (0..4u8).zip(angle_margins) {
+            let Some(angle_margin) = angle_margin else {
                 continue;
             };
-            for (k, angle_margin) in cos_ok.iter().enumerate() {
-                if only.is_some_and(|(_, ok)| ok as usize != k) {
-                    continue;
+            let e = rot90(k, v2(0.0, 1.0));
+            let g0 = e.dot(&q0) - self.setting.clamp.y0;
+            let g1 = e.dot(&dq);
+            let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
+            let (gmin, gmax) = (ga.min(gb), ga.max(gb));
+            let mut line = gmin.ceil() as i64;
+            while (line as f64) <= gmax {
+                let s = (line as f64 - g0) / g1;
+                if s > lo && s < hi {
+                    let q = q0 + dq * s;
+                    let lam = ctx.lw.lambda(&wrench(q, f));
+                    let cand = Candidate {
+                        segment: j,
+                        rotation: k,
+                        line,
+                        q,
+                        f,
+                        margin: ctx
+                            .base_margin
+                            .min(seg.inner_margin(s))
+                            .min(lam.min() - EPS)
+                            .min(angle_margin),
+                    };
+                    self.offer(ctx, &cand, acc, scratch);
                 }
-                let Some(angle_margin) = *angle_margin else {
-                    continue;
-                };
-                let k = k as u8;
-                let e = rot90(k, v2(0.0, 1.0));
-                let g0 = e.dot(&q0) - self.setting.clamp.y0;
-                let g1 = e.dot(&dq);
-                let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
-                let (gmin, gmax) = (ga.min(gb), ga.max(gb));
-                let mut line = gmin.ceil() as i64;
-                while (line as f64) <= gmax {
-                    let s = (line as f64 - g0) / g1;
-                    if s > lo && s < hi {
-                        let q = q0 + dq * s;
-                        let lam = lw.lambda(&wrench(q, f));
-                        let lam_margin = lam.min() - EPS;
-                        acc.counts.candidates += 1;
+                line += 1;
+            }
+        }
+    }
+
+    /// Candidates on an arc segment (SPEC 8.5): the points where each
+    /// plunger axis line crosses the posed grown circle, each tested for
+    /// span, angle and form closure on its own normal.
+    fn arc_candidates(
+        &self,
+        ctx: &SetupContext,
+        j: usize,
+        seg: &Segment,
+        arc: &GrownArc,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        let pose = ctx.setup.pose;
+        let centre = pose.apply(arc.center);
+        let rho = arc.radius;
+        for k in 0..4u8 {
+            if ctx.only_rotation.is_some_and(|ok| ok != k) {
+                continue;
+            }
+            let d = rot90(k, v2(1.0, 0.0));
+            let e = rot90(k, v2(0.0, 1.0));
+            // Axis line `line`: e . q - y0 = line.
+            let gc = e.dot(&centre) - self.setting.clamp.y0;
+            let mut line = (gc - rho).ceil() as i64;
+            while (line as f64) <= gc + rho {
+                let h = line as f64 - gc;
+                let w2 = (rho - h.abs()) * (rho + h.abs());
+                if w2 >= 0.0 {
+                    let half = w2.sqrt();
+                    // Near tangency the two points merge: borderline.
+                    let tangency = rho - h.abs();
+                    let sides: &[f64] = if half == 0.0 { &[0.0] } else { &[-1.0, 1.0] };
+                    for &side in sides {
+                        let q = centre + e * h + d * (side * half);
+                        let f = arc_inward_normal(centre, rho, arc.is_convex(), q);
+                        let Some(angle_margin) = self.angle_margin(k, f) else {
+                            continue;
+                        };
+                        let inner = seg.inner_margin(seg.param_of(pose.inverse_apply(q)));
+                        if inner <= 0.0 {
+                            continue;
+                        }
+                        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
+                        if lam <= 0.0 {
+                            continue;
+                        }
                         let cand = Candidate {
                             segment: j,
                             rotation: k,
                             line,
                             q,
                             f,
-                            margin: base_margin
-                                .min(seg.inner_margin(s))
-                                .min(lam_margin)
-                                .min(angle_margin),
+                            margin: ctx
+                                .base_margin
+                                .min(inner)
+                                .min(lam)
+                                .min(angle_margin)
+                                .min(tangency),
                         };
-                        if let Some(fx) = self.admit(setup, &normals, &cand, scratch) {
-                            acc.counts.admissible += 1;
-                            acc.best_score = acc.best_score.min(fx.score);
-                            acc.top.push(fx);
-                        }
+                        self.offer(ctx, &cand, acc, scratch);
                     }
-                    line += 1;
                 }
+                line += 1;
             }
+        }
+    }
+
+    /// SPEC 4 (c): the push direction of rotation `k` against the inward
+    /// normal `f`. `None` when the angle is too large, otherwise how far
+    /// the cosine is from the limits (the decision margin).
+    #[inline]
+    fn angle_margin(&self, k: u8, f: V2) -> Option<f64> {
+        let c = rot90(k, v2(1.0, 0.0)).dot(&f);
+        let limit = self.setting.cos_max_angle;
+        (c > EPS && c >= limit - EPS).then(|| (c - limit.max(0.0)).abs().min(c - EPS))
+    }
+
+    /// Counts a candidate, and the fixture if it is admissible.
+    #[inline]
+    fn offer(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        acc.counts.candidates += 1;
+        if let Some(fx) = self.admit(ctx.setup, &ctx.normals, cand, scratch) {
+            acc.counts.admissible += 1;
+            acc.best_score = acc.best_score.min(fx.score);
+            acc.top.push(fx);
         }
     }
 
@@ -291,9 +423,10 @@ impl PreparedPart {
             } else {
                 (cand.q, cand.segment)
             };
+            let q = pose.inverse_apply(q);
             PartContact {
-                q: pose.inverse_apply(q),
-                f: -self.segments[seg].n,
+                q,
+                f: self.segments[seg].inward_normal(q),
             }
         });
         let clock = scratch.timing.is_some().then(std::time::Instant::now);

@@ -217,7 +217,7 @@ fn probes_inside(p: &[V2], q: &[V2]) -> bool {
 }
 
 /// Segments cross at a single point interior to both.
-fn proper_crossing(a: V2, b: V2, c: V2, d: V2) -> bool {
+pub(crate) fn proper_crossing(a: V2, b: V2, c: V2, d: V2) -> bool {
     let d1 = cross(b - a, c - a);
     let d2 = cross(b - a, d - a);
     let d3 = cross(d - c, a - c);

@@ -4,6 +4,7 @@
 //! enumeration: everything is in the catalogue's length unit here; the
 //! enumeration converts to lattice units itself (see [`crate::prepare()`]).
 
+use crate::outline::Vertex;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -260,11 +261,22 @@ impl Params {
 /// A part: its outline and access constraints, in the catalogue unit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 pub struct Part {
-    /// Simple polygon, either orientation (normalised to CCW).
-    pub outline: Vec<Point>,
+    /// Simple closed outline of lines and circular arcs (SPEC 8.1), either
+    /// orientation (normalised to CCW).
+    pub outline: Vec<Vertex>,
     /// Regions no fixture component may touch (machining, markings).
     #[serde(default)]
     pub access: Vec<Vec<Point>>,
+}
+
+impl Part {
+    /// A part with a straight-edged outline and no access constraints.
+    pub fn polygon(points: &[Point]) -> Part {
+        Part {
+            outline: points.iter().map(|&p| p.into()).collect(),
+            access: Vec::new(),
+        }
+    }
 }
 
 /// A single-part case file (SPEC Appendix A).
@@ -274,8 +286,9 @@ pub struct Case {
     /// Unit of every length in the file.
     #[serde(default)]
     pub units: Units,
-    /// The part's outline (flat in the file, as Appendix A writes it).
-    pub part: Vec<Point>,
+    /// The part's outline (flat in the file, as Appendix A writes it);
+    /// a vertex may carry a bulge (SPEC 8.1).
+    pub part: Vec<Vertex>,
     /// The part's access constraints.
     #[serde(default)]
     pub access: Vec<Vec<Point>>,

@@ -2,11 +2,12 @@
 //! segments and per-pair bounds computed once. A prepared part is what a
 //! worker caches (by digest) and what every shard of the part shares.
 
-use crate::geometry::{centroid_and_polar_moment, segment_segment_dist2, v2, V2};
+use crate::geometry::{v2, Aabb, V2};
 use crate::input::{HoleKind, Kit, MountHole, Params, Part, Pattern, Units};
 use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
+use crate::outline::{Outline, OutlineError, Vertex};
 use crate::polygon::{validate_polygon, PolygonError};
-use crate::segments::{usable_segments, Segment};
+use crate::segments::{distance_range, usable_segments, Segment};
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -14,9 +15,10 @@ use thiserror::Error;
 /// catalogue report can point at the offending input.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum PrepareError {
-    /// The outline breaks SPEC section 1 (too few points, self-crossing...).
+    /// The outline breaks SPEC sections 1 and 8.1 (too few points,
+    /// self-crossing...).
     #[error("part outline: {0}")]
-    Outline(PolygonError),
+    Outline(OutlineError),
     /// Access constraint `index` breaks SPEC section 1.
     #[error("access constraint {index}: {source}")]
     Access {
@@ -158,7 +160,12 @@ pub struct PreparedPart {
     /// `params.wrenches` (kept to check [`Self::with_kit`]).
     pub(crate) wrenches: Option<Vec<[f64; 3]>>,
     /// CCW outline, lattice units.
+    pub(crate) outline: Outline,
+    /// Its vertices: the polygon itself when the outline has no arcs,
+    /// which the clearance tests of polygons use as before arcs.
     pub(crate) part: Vec<V2>,
+    /// Bounding box of the outline (part frame), arcs included.
+    pub(crate) outline_box: Aabb,
     pub(crate) access: Vec<Vec<V2>>,
     pub(crate) segments: Vec<Segment>,
     pub(crate) metric: Arc<dyn Metric>,
@@ -302,7 +309,9 @@ pub fn prepare(
         r,
         trim,
         wrenches: params.wrenches.clone(),
-        part: outline,
+        part: outline.points().to_vec(),
+        outline_box: outline.aabb(),
+        outline,
         access,
         segments,
         metric,
@@ -312,10 +321,16 @@ pub fn prepare(
 }
 
 /// The outline and access regions, validated and CCW in lattice units.
-fn lattice_polygons(part: &Part, l: f64) -> Result<(Vec<V2>, Vec<Vec<V2>>), PrepareError> {
+fn lattice_polygons(part: &Part, l: f64) -> Result<(Outline, Vec<Vec<V2>>), PrepareError> {
     // Validate in the user's unit so error coordinates are the user's.
-    validate_polygon(&part.outline).map_err(PrepareError::Outline)?;
-    let outline = validate_polygon(&scale(&part.outline, l)).map_err(PrepareError::Outline)?;
+    Outline::new(&part.outline).map_err(PrepareError::Outline)?;
+    // A bulge is an angle: scaling leaves it as it is.
+    let scaled: Vec<Vertex> = part
+        .outline
+        .iter()
+        .map(|v| Vertex::new(v.x / l, v.y / l, v.bulge))
+        .collect();
+    let outline = Outline::new(&scaled).map_err(PrepareError::Outline)?;
     let mut access = Vec::with_capacity(part.access.len());
     for (index, a) in part.access.iter().enumerate() {
         let at = |source| PrepareError::Access { index, source };
@@ -325,6 +340,7 @@ fn lattice_polygons(part: &Part, l: f64) -> Result<(Vec<V2>, Vec<Vec<V2>>), Prep
     // Lattice coordinates are enumerated as integers: keep them far from
     // overflow (a part 10^6 spacings across is 25 km on a 25 mm plate).
     let extent = outline
+        .points()
         .iter()
         .chain(access.iter().flatten())
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
@@ -342,29 +358,24 @@ fn pair_bounds(segments: &[Segment]) -> Vec<PairBounds> {
     let mut pair = Vec::with_capacity(segments.len() * segments.len());
     for a in segments {
         for b in segments {
-            let dmin = segment_segment_dist2(a.start(), a.end(), b.start(), b.end()).sqrt();
-            let dmax = [
-                (a.start() - b.start()).norm(),
-                (a.start() - b.end()).norm(),
-                (a.end() - b.start()).norm(),
-                (a.end() - b.end()).norm(),
-            ]
-            .into_iter()
-            .fold(0.0, f64::max);
+            let (dmin, dmax) = distance_range(a, b);
             pair.push(PairBounds { dmin, dmax });
         }
     }
     pair
 }
 
-/// The user's wrenches, or SPEC 6's default about the outline's centroid.
-fn metric(wrenches: Option<&[[f64; 3]]>, outline: &[V2], l: f64) -> Arc<dyn Metric> {
+/// The user's wrenches, or SPEC 6's default about the true region's
+/// centroid (SPEC 8.1: arcs included).
+fn metric(wrenches: Option<&[[f64; 3]]>, outline: &Outline, l: f64) -> Arc<dyn Metric> {
     match wrenches {
         Some(ws) => Arc::new(WrenchListMetric::new(ws, l)),
         None => {
-            let (centroid, j) = centroid_and_polar_moment(outline);
-            let area = crate::geometry::signed_area(outline).abs();
-            Arc::new(MaxForceMetric::new(centroid, (j / area).sqrt()))
+            let mass = outline.mass_properties();
+            Arc::new(MaxForceMetric::new(
+                mass.centroid,
+                mass.radius_of_gyration(),
+            ))
         }
     }
 }
@@ -450,8 +461,8 @@ impl PreparedPart {
     /// The CCW outline in lattice units, the frame of the segments and of
     /// the part contacts a metric scores.
     #[inline]
-    pub fn outline(&self) -> &[V2] {
-        &self.part
+    pub fn outline(&self) -> &Outline {
+        &self.outline
     }
 
     /// Locator (and clamp tip) radius in lattice units: the distance from

@@ -1,6 +1,7 @@
 //! The result format of SPEC Appendix A (plus the per-contact details and the
 //! plate placement that section 5 asks for), in the catalogue's unit.
 
+use crate::segments::SegmentKind;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -130,6 +131,11 @@ pub struct SolveResult {
     /// Counts; absent for an invalid part.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub counts: Option<Counts>,
+    /// The kind of every segment, in segment order (SPEC 8.6), so that a
+    /// fixture's segment indices say whether it touches lines or arcs;
+    /// absent for an invalid part.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub segment_kinds: Vec<SegmentKind>,
     /// The top-k, best first.
     #[serde(default)]
     pub fixtures: Vec<FixtureReport>,
@@ -143,6 +149,7 @@ impl SolveResult {
             status: Status::Invalid,
             error: Some(message.into()),
             counts: None,
+            segment_kinds: Vec::new(),
             fixtures: Vec::new(),
         }
     }

@@ -6,10 +6,12 @@
 //! lattice points that cannot give a setup are skipped, so the set found is
 //! exactly SPEC's; the brute-force test enumerates without pruning.
 
+use crate::contact_pose::solve_contact_poses;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
 use crate::pose::{solve_poses, Line, Pose};
 use crate::prepare::{PairBounds, PreparedPart};
+use crate::segments::Feature;
 
 /// Slack on annulus bounds, far above rounding and far below a lattice step.
 const ANNULUS_SLACK: f64 = 1e-7;
@@ -56,40 +58,61 @@ impl PreparedPart {
             return 0;
         }
         let segs = combo.map(|i| &self.segments[i]);
-        let lines = segs.map(|s| Line { n: s.n, c: s.c });
         let locs_i = [[0, 0], l2, l3];
         let locs = locs_i.map(|p| v2(p[0] as f64, p[1] as f64));
-        let (poses, count) = solve_poses(&lines, &locs);
-        for pose in &poses[..count] {
-            let mut s = [0.0; 3];
-            let mut margin = f64::INFINITY;
-            let mut ok = true;
-            for k in 0..3 {
-                let p = pose.inverse_apply(locs[k]);
-                s[k] = segs[k].u.dot(&(p - segs[k].origin));
-                let m = segs[k].inner_margin(s[k]);
-                if m <= 0.0 {
-                    ok = false;
-                    break;
-                }
-                margin = margin.min(m);
+        let lines = segs.map(|s| match s.feature {
+            Feature::Line(l) => Some(Line { n: l.n, c: l.c }),
+            Feature::Arc(_) => None,
+        });
+        if let [Some(a), Some(b), Some(c)] = lines {
+            // Polygons: SPEC 3's closed form, as before arcs.
+            let (poses, count) = solve_poses(&[a, b, c], &locs);
+            for pose in &poses[..count] {
+                self.visit_pose(combo, locs_i, pose, false, &mut visit);
             }
-            // Locators on one segment are numbered along it.
-            if !ok
-                || (combo[0] == combo[1] && s[0] >= s[1])
-                || (combo[1] == combo[2] && s[1] >= s[2])
-            {
-                continue;
-            }
-            visit(&Setup {
-                combo,
-                locators: locs_i,
-                pose: *pose,
-                s,
-                margin,
-            });
+            return count;
         }
-        count
+        let poses = solve_contact_poses(&segs.map(|s| s.contact()), &locs);
+        for p in poses.iter() {
+            self.visit_pose(combo, locs_i, &p.pose, p.tangential, &mut visit);
+        }
+        poses.len()
+    }
+
+    /// Keeps a pose whose contacts lie strictly inside their segments, in
+    /// canonical order on a shared segment. A tangential pose (SPEC 8.4)
+    /// counts once and is borderline: its margin is zero.
+    fn visit_pose(
+        &self,
+        combo: [usize; 3],
+        locators: [[i64; 2]; 3],
+        pose: &Pose,
+        tangential: bool,
+        visit: &mut impl FnMut(&Setup),
+    ) {
+        let mut s = [0.0; 3];
+        let mut margin = if tangential { 0.0 } else { f64::INFINITY };
+        for k in 0..3 {
+            let seg = &self.segments[combo[k]];
+            let p = pose.inverse_apply(lattice_point(locators[k]));
+            s[k] = seg.param_of(p);
+            let m = seg.inner_margin(s[k]);
+            if m <= 0.0 {
+                return;
+            }
+            margin = margin.min(m);
+        }
+        // Locators on one segment are numbered along it.
+        if (combo[0] == combo[1] && s[0] >= s[1]) || (combo[1] == combo[2] && s[1] >= s[2]) {
+            return;
+        }
+        visit(&Setup {
+            combo,
+            locators,
+            pose: *pose,
+            s,
+            margin,
+        });
     }
 
     /// Every setup of one combination, pruned by annuli.

@@ -41,6 +41,7 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
         },
         error: None,
         counts: Some(res.counts),
+        segment_kinds: prep.segments.iter().map(|s| s.kind()).collect(),
         fixtures,
     }
 }

@@ -10,6 +10,7 @@ use fixplan_core::geometry::{cross, v2, V2};
 use fixplan_core::input::Pattern;
 use fixplan_core::metric::fibonacci_sphere;
 use fixplan_core::pose::Pose;
+use fixplan_core::segments::Feature;
 use fixplan_core::{merge, Fixture, PreparedPart};
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
@@ -190,23 +191,34 @@ fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
     points.push(v2(f.contact[0], f.contact[1]));
     let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
     let mut w = [Vector3::zeros(); 4];
+    let mut normals = [V2::zeros(); 4];
     for i in 0..4 {
         let seg = &p.segments()[segs[i]];
         let local = pose.inverse_apply(points[i]);
-        // On the grown edge line, strictly inside the segment.
-        assert!(
-            (seg.n.dot(&local) - seg.c).abs() < 1e-7,
-            "contact {i} off its line"
-        );
-        let s = seg.u.dot(&(local - seg.origin));
+        // On the grown edge line or circle, strictly inside the segment.
+        let (off, s, inward) = match seg.feature {
+            Feature::Line(l) => (l.n.dot(&local) - l.c, l.u.dot(&(local - l.origin)), -l.n),
+            Feature::Arc(a) => {
+                let r = local - a.center;
+                let angle = (r.y.atan2(r.x) - a.start_angle) * a.sweep.signum();
+                let s = angle.rem_euclid(std::f64::consts::TAU) * a.radius;
+                let out = r / a.radius;
+                (
+                    r.norm() - a.radius,
+                    s,
+                    if a.sweep > 0.0 { -out } else { out },
+                )
+            }
+        };
+        assert!(off.abs() < 1e-7, "contact {i} off its line or arc");
         assert!(s > seg.s0 && s < seg.s1, "contact {i} outside its segment");
-        let normal = pose.rotate(-seg.n);
-        w[i] = wrench(points[i], normal);
+        normals[i] = pose.rotate(inward);
+        w[i] = wrench(points[i], normals[i]);
     }
     assert!(positively_spanning(&w, 1e-12), "not in form closure: {f:?}");
     // The clamp tip pushes within the allowed angle.
     let d = fixplan_core::geometry::rot90(f.rotation, v2(1.0, 0.0));
-    assert!(d.dot(&pose.rotate(-p.segments()[f.clamp_segment].n)) >= p.cos_max_angle() - 1e-9);
+    assert!(d.dot(&normals[3]) >= p.cos_max_angle() - 1e-9);
     // Locators are distinct lattice points, L1 at the origin, L2 in Q.
     assert_eq!(f.locators[0], [0, 0]);
     assert!(f.locators[1][0] > 0 && f.locators[1][1] >= 0);
@@ -253,8 +265,8 @@ fn metric_closed_form_equals_direct_min_max() {
     let mut checked = 0;
     for shape in [l_shape(), notched()] {
         let p = prep(&part(&shape, &[]), &kit(Pattern::Square), &params(90.0, 1));
-        let (c, j) = fixplan_core::geometry::centroid_and_polar_moment(p.outline());
-        let rho = (j / fixplan_core::geometry::signed_area(p.outline())).sqrt();
+        let (c, j) = fixplan_core::geometry::centroid_and_polar_moment(p.outline().points());
+        let rho = (j / fixplan_core::geometry::signed_area(p.outline().points())).sqrt();
         let dirs = fibonacci_sphere(256);
         for f in p.enumerate_all().fixtures.iter().step_by(7) {
             let pose = Pose {
@@ -272,7 +284,10 @@ fn metric_closed_form_equals_direct_min_max() {
             let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
             let w = [0, 1, 2, 3].map(|i| {
                 let q = pose.inverse_apply(pts[i]);
-                let n = -p.segments()[segs[i]].n;
+                let Feature::Line(l) = p.segments()[segs[i]].feature else {
+                    panic!("polygon parts have line segments only");
+                };
+                let n = -l.n;
                 Vector3::new(n.x, n.y, cross(q - c, n) / rho)
             });
             let direct = direct_score(&w, &dirs);

@@ -167,7 +167,7 @@ fn accessors_report_the_inputs() {
     assert_eq!(p.grid_step(), 2);
     assert_eq!(p.locator_radius(), k.locator_radius / k.spacing);
     assert_eq!(p.cos_max_angle(), 60f64.to_radians().cos());
-    assert_eq!(p.outline().len(), notched().len());
+    assert_eq!(p.outline().points().len(), notched().len());
     let res = p.enumerate_all();
     assert_eq!(res.counts.segments, p.segments().len() as u64);
     assert!(res.fixtures.len() <= 4);

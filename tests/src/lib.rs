@@ -27,10 +27,7 @@ pub fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
     CatalogPart {
         id: id.into(),
         file: None,
-        part: Ok(Part {
-            outline,
-            access: vec![],
-        }),
+        part: Ok(Part::polygon(&outline)),
         warnings: vec![],
         quantity: 1.0,
         top_k: None,
@@ -42,7 +39,7 @@ pub fn part(id: &str, outline: Vec<[f64; 2]>) -> CatalogPart {
 /// one invalid polygon, one too small to hold.
 pub fn catalog() -> (Catalog, KitSpec) {
     let c = case("rectangle-mm.json");
-    let mut rect = part("rect", c.part.clone());
+    let mut rect = part("rect", vec![]);
     rect.part = Ok(c.part());
     let parts = vec![
         rect,
@@ -79,7 +76,9 @@ pub fn catalog() -> (Catalog, KitSpec) {
                         },
                     },
                     read: Box::new(Part {
-                        outline: vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]],
+                        outline: [[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]]
+                            .map(Into::into)
+                            .to_vec(),
                         access: vec![],
                     }),
                 },

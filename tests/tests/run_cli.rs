@@ -741,7 +741,8 @@ fn an_invalid_part_shows_what_was_read() {
         assert_eq!(part.status, fixplan_core::Status::Invalid);
         assert_eq!(
             part.outline,
-            vec![[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]]
+            fixplan_core::Part::polygon(&[[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]])
+                .outline
         );
         let error = part.error.clone().unwrap();
         assert!(error.starts_with("bowtie: "), "{error}");

@@ -442,8 +442,9 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
     pair(0, "ENDSEC");
     pair(0, "SECTION");
     pair(2, "ENTITIES");
+    let outline: Vec<[f64; 2]> = part.outline.iter().map(|v| [v.x, v.y]).collect();
     let polys =
-        std::iter::once(("PART", &part.outline)).chain(part.access.iter().map(|a| ("ACCESS", a)));
+        std::iter::once(("PART", &outline)).chain(part.access.iter().map(|a| ("ACCESS", a)));
     for (handle, (layer, pts)) in (0x100..).zip(polys) {
         pair(0, "LWPOLYLINE");
         pair(5, &format!("{handle:X}"));

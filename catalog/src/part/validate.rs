@@ -64,6 +64,7 @@ pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), 
             &mut warnings,
         )?);
     }
+    let outline = outline.into_iter().map(Into::into).collect();
     Ok((Part { outline, access }, warnings))
 }
 

@@ -431,10 +431,7 @@ mod tests {
     #[test]
     fn a_stop_must_match_the_scores() {
         let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
-        let part = Part {
-            outline: vec![[0.0, 0.0], [120.0, 0.0], [120.0, 70.0], [0.0, 70.0]],
-            access: vec![],
-        };
+        let part = Part::polygon(&[[0.0, 0.0], [120.0, 0.0], [120.0, 70.0], [0.0, 70.0]]);
         let params = Params {
             top_k: 0,
             ..Params::default()

@@ -4,6 +4,7 @@
 
 pub use crate::job::Timing;
 use fixplan_catalog::Catalog;
+use fixplan_core::outline::Vertex;
 use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -142,7 +143,7 @@ pub struct PartMsg {
     /// Parts per year, for kit studies.
     pub quantity: f64,
     /// Part frame, catalogue units, as given (empty if it could not be read).
-    pub outline: Vec<Point>,
+    pub outline: Vec<Vertex>,
     /// Access regions (part frame, catalogue units).
     #[serde(default)]
     pub access: Vec<Vec<Point>>,

@@ -102,7 +102,8 @@ fn caption(out: &mut String, v: &View, lines: &[String]) {
 /// numbers a machinist sets the fixture up by.
 pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
     let kit = &run.kit;
-    let d: FixtureDrawing = fixture_drawing(kit, &rec.part.outline, &rec.part.access, f);
+    let outline = vertex_points(&rec.part.outline);
+    let d: FixtureDrawing = fixture_drawing(kit, &outline, &rec.part.access, f);
     let l = kit.spacing;
     let [lo, hi] = d.bounds();
     let b = [
@@ -258,7 +259,8 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
 /// The SVG of a part without a fixture: its outline and the reason.
 pub fn part_svg(rec: &PartRecord) -> String {
     let p = &rec.part;
-    let mut pts = p.outline.clone();
+    let outline = vertex_points(&p.outline);
+    let mut pts = outline.clone();
     for a in &p.access {
         pts.extend(a.iter().copied());
     }
@@ -280,7 +282,7 @@ pub fn part_svg(rec: &PartRecord) -> String {
     if p.outline.len() >= 2 {
         v.polygon(
             &mut s,
-            &p.outline,
+            &outline,
             r##"fill="#cfe3f7" stroke="#1f5fa8" stroke-width="2""##,
         );
     }
@@ -302,4 +304,9 @@ pub fn part_svg(rec: &PartRecord) -> String {
     );
     s.push_str("</svg>\n");
     s
+}
+
+/// The vertex positions of an outline (arcs drawn as their chords).
+fn vertex_points(outline: &[fixplan_core::outline::Vertex]) -> Vec<[f64; 2]> {
+    outline.iter().map(|v| [v.x, v.y]).collect()
 }

@@ -12,6 +12,7 @@
 //! Green's theorem edge by edge; point location is the polygon's even-odd
 //! test toggled once per circular segment containing the point.
 
+mod clearance;
 mod edge;
 mod mass;
 mod validate;
@@ -33,6 +34,9 @@ use crate::geometry::{point_in_polygon, V2};
 pub struct Outline {
     vertices: Vec<Vertex>,
     edges: Vec<Edge>,
+    /// The vertex positions, kept because point location runs in the
+    /// clearance tests of every candidate fixture.
+    points: Vec<V2>,
 }
 
 impl Outline {
@@ -41,7 +45,12 @@ impl Outline {
     pub fn new(vertices: &[Vertex]) -> Result<Outline, OutlineError> {
         let vertices = validate_outline(vertices)?;
         let edges = edges_of(&vertices);
-        Ok(Outline { vertices, edges })
+        let points = vertices.iter().map(Vertex::point).collect();
+        Ok(Outline {
+            vertices,
+            edges,
+            points,
+        })
     }
 
     /// An outline from polygon points (all edges straight).
@@ -61,8 +70,8 @@ impl Outline {
     }
 
     /// The vertex positions: the polygon itself when there are no arcs.
-    pub fn points(&self) -> Vec<V2> {
-        self.vertices.iter().map(Vertex::point).collect()
+    pub fn points(&self) -> &[V2] {
+        &self.points
     }
 
     /// Whether any edge is an arc.
@@ -79,7 +88,7 @@ impl Outline {
     /// either way; combine with [`Outline::boundary_distance`] where the
     /// boundary matters).
     pub fn contains(&self, p: V2) -> bool {
-        let mut inside = point_in_polygon(p, &self.points());
+        let mut inside = point_in_polygon(p, &self.points);
         for e in &self.edges {
             if let Edge::Arc(arc) = e {
                 inside ^= arc.segment_contains(p);

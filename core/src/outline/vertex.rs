@@ -39,6 +39,29 @@ impl Vertex {
     }
 }
 
+/// `v[0]` and `v[1]` are the coordinates and `v[2]` the bulge, as in the
+/// `[x, y, bulge]` a file writes: code written for `[x, y]` points reads
+/// vertices unchanged.
+impl std::ops::Index<usize> for Vertex {
+    type Output = f64;
+
+    fn index(&self, i: usize) -> &f64 {
+        match i {
+            0 => &self.x,
+            1 => &self.y,
+            2 => &self.bulge,
+            _ => panic!("vertex index {i} out of range (0 = x, 1 = y, 2 = bulge)"),
+        }
+    }
+}
+
+/// A vertex equals a point when it is that point with a straight edge.
+impl PartialEq<[f64; 2]> for Vertex {
+    fn eq(&self, p: &[f64; 2]) -> bool {
+        self.x == p[0] && self.y == p[1] && self.bulge == 0.0
+    }
+}
+
 impl From<[f64; 2]> for Vertex {
     fn from(p: [f64; 2]) -> Vertex {
         Vertex::new(p[0], p[1], 0.0)
@@ -61,6 +84,24 @@ impl Serialize for Vertex {
             t.serialize_element(&self.bulge)?;
         }
         t.end()
+    }
+}
+
+/// The schema of the form a [`Vertex`] is written in: `[x, y]` or
+/// `[x, y, bulge]`.
+impl schemars::JsonSchema for Vertex {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Vertex".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "description": "An outline vertex [x, y], or [x, y, bulge] when the edge to the next vertex is a circular arc of included angle 4 atan(bulge), counter-clockwise when positive",
+            "type": "array",
+            "items": {"type": "number"},
+            "minItems": 2,
+            "maxItems": 3
+        })
     }
 }
 

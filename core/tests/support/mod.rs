@@ -5,6 +5,7 @@
 use fixplan_core::admissibility::Scratch;
 use fixplan_core::clamp::Accumulator;
 use fixplan_core::combinations::combinations_in;
+use fixplan_core::geometry::v2;
 use fixplan_core::input::{Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, Units};
 use fixplan_core::{prepare, PartialResult, PreparedPart};
 
@@ -50,7 +51,7 @@ pub fn params(max_angle: f64, grid_step: u32) -> Params {
 
 pub fn part(outline: &[[f64; 2]], access: &[Vec<[f64; 2]>]) -> Part {
     Part {
-        outline: outline.to_vec(),
+        outline: outline.iter().map(|&p| p.into()).collect(),
         access: access.to_vec(),
     }
 }
@@ -110,8 +111,10 @@ pub fn notched() -> Vec<[f64; 2]> {
 /// No pruning: every canonical `L2` and every `L3` within the grown part's
 /// diameter, for every combination.
 pub fn brute_force(p: &PreparedPart) -> PartialResult {
-    let mut pts: Vec<_> = p.outline().to_vec();
-    pts.extend(p.segments().iter().flat_map(|s| [s.start(), s.end()]));
+    // The part lies in its box (arcs included) and every segment within
+    // the locator radius of the part.
+    let b = p.outline().aabb();
+    let pts = [b.min, b.max, v2(b.min.x, b.max.y), v2(b.max.x, b.min.y)];
     let mut diam: f64 = 0.0;
     for a in &pts {
         for b in &pts {

@@ -399,7 +399,8 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
 /// the outline is `<path id="outline">`, access constraints are paths of
 /// class `access`, and part y is written as SVG `-y`.
 pub fn write_svg(part: &Part, units: Units) -> String {
-    let all = part.outline.iter().chain(part.access.iter().flatten());
+    let outline: Vec<[f64; 2]> = part.outline.iter().map(|v| [v.x, v.y]).collect();
+    let all = outline.iter().chain(part.access.iter().flatten());
     let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
     for p in all {
         if p[0].is_finite() && p[1].is_finite() {
@@ -428,7 +429,7 @@ pub fn write_svg(part: &Part, units: Units) -> String {
     );
     s.push_str(&format!(
         "  <path id=\"outline\" fill=\"#ddd\" stroke=\"black\" d=\"{}\"/>\n",
-        path(&part.outline)
+        path(&outline)
     ));
     for a in &part.access {
         s.push_str(&format!(

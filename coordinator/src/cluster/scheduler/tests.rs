@@ -23,10 +23,7 @@ fn core_rx(parts: usize, shard: u64, verify: VerifyPolicy) -> (Scheduler, Receiv
     let planned = (0..parts)
         .map(|i| {
             let w = 100.0 + 10.0 * i as f64;
-            let part = Part {
-                outline: vec![[0.0, 0.0], [w, 0.0], [w, 60.0], [0.0, 60.0]],
-                access: vec![],
-            };
+            let part = Part::polygon(&[[0.0, 0.0], [w, 0.0], [w, 60.0], [0.0, 60.0]]);
             let source = PartInput {
                 part,
                 kit: kit.clone(),

@@ -1,56 +1,15 @@
-//! Usable segments: the straight pieces of the grown part's true boundary
-//! (SPEC section 2), where a locator or the clamp tip can touch the part.
+//! The segments of a polygon (SPEC section 2): grown edges cut by
+//! capsules around the other edges and by the access regions. Outlines
+//! without arcs take this path, the one fixplan had before arcs, so their
+//! segments stay bit for bit what they were.
 
+use super::{Feature, LineFeature, Segment};
 use crate::geometry::{cross, point_in_polygon, v2, EPS, V2};
 
-/// One usable segment in the part frame (lattice units).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Segment {
-    /// Index of the part edge it comes from.
-    pub edge: usize,
-    /// Start of the grown edge (`v_i + r n`): the origin of `s`.
-    pub origin: V2,
-    /// Unit direction of the edge (CCW).
-    pub u: V2,
-    /// Outward unit normal.
-    pub n: V2,
-    /// Contact parameters of the segment's ends; contacts lie strictly inside.
-    pub s0: f64,
-    /// See `s0`.
-    pub s1: f64,
-    /// Right-hand side of the grown edge line `n . p = c`.
-    pub c: f64,
-}
-
-impl Segment {
-    /// The contact centre at parameter `s` (on the grown edge line).
-    #[inline]
-    pub fn point(&self, s: f64) -> V2 {
-        self.origin + self.u * s
-    }
-
-    /// Whether `s` lies strictly inside (by more than eps), and by how much.
-    #[inline]
-    pub fn inner_margin(&self, s: f64) -> f64 {
-        (s - self.s0).min(self.s1 - s) - EPS
-    }
-
-    /// First end (parameter `s0`); with [`Self::end`] it bounds the
-    /// distances that prune locator positions.
-    pub fn start(&self) -> V2 {
-        self.point(self.s0)
-    }
-
-    /// Last end (parameter `s1`).
-    pub fn end(&self) -> V2 {
-        self.point(self.s1)
-    }
-}
-
-/// Computes the segments of a CCW part with access constraints, all in
-/// lattice units: grow by `r`, keep the true boundary, keep away from access
+/// The segments of a CCW polygon with access constraints, all in lattice
+/// units: grow by `r`, keep the true boundary, keep away from access
 /// regions, trim `trim` at both ends.
-pub fn usable_segments(part: &[V2], access: &[Vec<V2>], r: f64, trim: f64) -> Vec<Segment> {
+pub(super) fn polygon_segments(part: &[V2], access: &[Vec<V2>], r: f64, trim: f64) -> Vec<Segment> {
     let n = part.len();
     let mut out = Vec::new();
     for i in 0..n {
@@ -80,12 +39,14 @@ pub fn usable_segments(part: &[V2], access: &[Vec<V2>], r: f64, trim: f64) -> Ve
             if s1 - s0 > EPS {
                 out.push(Segment {
                     edge: i,
-                    origin,
-                    u,
-                    n: nrm,
                     s0,
                     s1,
-                    c: nrm.dot(&origin),
+                    feature: Feature::Line(LineFeature {
+                        origin,
+                        u,
+                        n: nrm,
+                        c: nrm.dot(&origin),
+                    }),
                 });
             }
         }
@@ -95,7 +56,7 @@ pub fn usable_segments(part: &[V2], access: &[Vec<V2>], r: f64, trim: f64) -> Ve
 
 /// Open parameter interval of the line `o + s u` (|u| = 1) that lies within
 /// distance `rho` of the segment `[a, b]` (a capsule, hence one interval).
-pub fn capsule_interval(o: V2, u: V2, a: V2, b: V2, rho: f64) -> Option<(f64, f64)> {
+pub(super) fn capsule_interval(o: V2, u: V2, a: V2, b: V2, rho: f64) -> Option<(f64, f64)> {
     if rho <= 0.0 {
         return None;
     }
@@ -148,7 +109,7 @@ fn disk_interval(o: V2, u: V2, c: V2, rho: f64) -> Option<(f64, f64)> {
 }
 
 /// Parameter intervals of the line within distance `rho` of a filled polygon.
-pub fn polygon_interval(o: V2, u: V2, poly: &[V2], rho: f64) -> Vec<(f64, f64)> {
+pub(super) fn polygon_interval(o: V2, u: V2, poly: &[V2], rho: f64) -> Vec<(f64, f64)> {
     let m = poly.len();
     let mut out = Vec::new();
     let mut crossings = Vec::new();
@@ -178,7 +139,7 @@ pub fn polygon_interval(o: V2, u: V2, poly: &[V2], rho: f64) -> Vec<(f64, f64)> 
 }
 
 /// The closed pieces of `[0, len]` not covered by the open intervals.
-fn complement(removed: &mut [(f64, f64)], start: f64, len: f64) -> Vec<(f64, f64)> {
+pub(super) fn complement(removed: &mut [(f64, f64)], start: f64, len: f64) -> Vec<(f64, f64)> {
     removed.sort_by(|x, y| x.0.total_cmp(&y.0));
     let mut pieces = Vec::new();
     let mut cur = start;
@@ -209,14 +170,17 @@ mod tests {
     #[test]
     fn square_gives_four_trimmed_segments() {
         let sq = pts(&[[0., 0.], [4., 0.], [4., 4.], [0., 4.]]);
-        let s = usable_segments(&sq, &[], 0.25, 0.1);
+        let s = polygon_segments(&sq, &[], 0.25, 0.1);
         assert_eq!(s.len(), 4);
         for (i, seg) in s.iter().enumerate() {
             assert_eq!(seg.edge, i);
             assert!((seg.s0 - 0.1).abs() < 1e-12 && (seg.s1 - 3.9).abs() < 1e-12);
         }
-        assert!((s[0].origin - v2(0., -0.25)).norm() < 1e-12);
-        assert!((s[0].c - 0.25).abs() < 1e-12);
+        let Feature::Line(line) = s[0].feature else {
+            panic!("a polygon has line segments only");
+        };
+        assert!((line.origin - v2(0., -0.25)).norm() < 1e-12);
+        assert!((line.c - 0.25).abs() < 1e-12);
     }
 
     #[test]
@@ -224,7 +188,7 @@ mod tests {
         // L shape: concave vertex at (2, 2).
         let l = pts(&[[0., 0.], [4., 0.], [4., 2.], [2., 2.], [2., 4.], [0., 4.]]);
         let r = 0.5;
-        let s = usable_segments(&l, &[], r, 0.0);
+        let s = polygon_segments(&l, &[], r, 0.0);
         // Edge 2 runs (4,2)->(2,2); its grown line y = 2.5 meets edge 3's
         // grown line x = 2.5 at s = 1.5 from its start (4, 2.5).
         let e2 = s.iter().find(|g| g.edge == 2).unwrap();
@@ -246,7 +210,7 @@ mod tests {
             [2.8, 4.],
             [0., 4.],
         ]);
-        let s = usable_segments(&p, &[], 0.25, 0.0);
+        let s = polygon_segments(&p, &[], 0.25, 0.0);
         assert!(
             s.iter().all(|g| g.edge != 3 && g.edge != 4 && g.edge != 5),
             "{s:?}"
@@ -259,9 +223,9 @@ mod tests {
         let acc = vec![pts(&[[2., -2.], [3., -2.], [3., -1.], [2., -1.]])];
         // The grown bottom edge y = -0.25 passes 0.75 from the region: r = 0.25
         // keeps it whole; with r = 1.0 it touches it and is cut on (1, 4).
-        let s = usable_segments(&sq, &acc, 0.25, 0.0);
+        let s = polygon_segments(&sq, &acc, 0.25, 0.0);
         assert_eq!(s.iter().filter(|g| g.edge == 0).count(), 1);
-        let s = usable_segments(&sq, &acc, 1.0, 0.0);
+        let s = polygon_segments(&sq, &acc, 1.0, 0.0);
         let bottom: Vec<_> = s.iter().filter(|g| g.edge == 0).collect();
         assert_eq!(bottom.len(), 2);
         assert!((bottom[0].s1 - 1.0).abs() < 1e-6 && (bottom[1].s0 - 4.0).abs() < 1e-6);
@@ -271,7 +235,7 @@ mod tests {
     fn large_access_region_containing_the_line_removes_it() {
         let sq = pts(&[[0., 0.], [6., 0.], [6., 4.], [0., 4.]]);
         let acc = vec![pts(&[[-10., -5.], [10., -5.], [10., -0.1], [-10., -0.1]])];
-        let s = usable_segments(&sq, &acc, 0.25, 0.0);
+        let s = polygon_segments(&sq, &acc, 0.25, 0.0);
         assert!(s.iter().all(|g| g.edge != 0));
     }
 }
