@@ -101,6 +101,15 @@ fn assert_distinct(poses: &[ContactPose]) -> f64 {
 /// those points carried to the plate.
 fn with_truth(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3], f64, V2) {
     let theta = rng.angle();
+    with_truth_at(rng, circles, theta)
+}
+
+/// [`with_truth`] with the pose's angle given.
+fn with_truth_at(
+    rng: &mut Rng,
+    circles: [bool; 3],
+    theta: f64,
+) -> ([Contact; 3], [V2; 3], f64, V2) {
     let w = rng.point(3.0);
     let (s, c) = theta.sin_cos();
     let mut contacts = [line(v2(1.0, 0.0), 0.0); 3];
@@ -292,6 +301,61 @@ fn known_pose_is_found() {
         "known_pose_is_found: {cases} cases, {total} poses, max residual {worst_res:e}, \
          max error {worst_err:e} (det >= 1e-4), {near_tangent} with det < 1e-4"
     );
+}
+
+/// Poses at exactly `theta = 0` (and at the nearest doubles to the other
+/// quarter turns): an axis-aligned part on the lattice poses there all the
+/// time, and `theta = 0` is where the angle search wraps round, so a root
+/// there was once missed (`sin(TAU)` is not `0`). Parallel lines and a
+/// circle, the case that showed it, are among the kinds.
+#[test]
+fn quarter_turn_poses_are_found() {
+    let mut rng = Rng(0x0000_0a11_9ed0_0001);
+    let quarter = [0.0, PI / 2.0, PI, 1.5 * PI];
+    for case in 0..8_000 {
+        let theta = quarter[case % 4];
+        let circles = kinds(case / 4);
+        let (mut contacts, locs, theta, w) = with_truth_at(&mut rng, circles, theta);
+        if case % 3 == 0 && !circles[0] && !circles[1] {
+            // Locators 1 and 2 on parallel lines (the rows' determinant
+            // vanishes at every angle: the angle comes from N = 0).
+            let Contact::Line(l) = contacts[0] else {
+                unreachable!()
+            };
+            let p = rot_t(theta.cos(), theta.sin(), locs[1]) - w;
+            contacts[1] = line(l.n, l.n.dot(&p));
+        }
+        let poses = solve_contact_poses(&contacts, &locs);
+        max_residual(&contacts, &locs, &poses);
+        let (s, c) = theta.sin_cos();
+        let det = scaled_jacobian_det(&contacts, &locs, c, s, w).abs();
+        let tol = if det < 1e-4 { 1e-6 } else { 1e-9 };
+        let err = poses
+            .iter()
+            .map(|p| circ_dist(p.pose.theta, theta).max((p.w - w).norm()))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            err <= tol,
+            "case {case}: truth {theta} {w:?} (det {det}) not found: {:?}\n{contacts:?}\n{locs:?}",
+            poses.as_slice()
+        );
+    }
+}
+
+#[test]
+fn two_locators_on_one_line_and_a_circle_at_theta_zero() {
+    // A boss on an axis-aligned part: locators (0,0) and (2,0) on the
+    // bottom edge, (2,4) on the boss; two poses, both at theta = 0.
+    let bottom = line(v2(0.0, -1.0), 1.0 / 3.0);
+    let boss = circle(v2(2.5, 2.5), 4.0 / 3.0);
+    let locs = [v2(0.0, 0.0), v2(2.0, 0.0), v2(2.0, 4.0)];
+    let poses = solve_contact_poses(&[bottom, bottom, boss], &locs);
+    assert_eq!(poses.len(), 2, "{:?}", poses.as_slice());
+    for p in poses.iter() {
+        assert_eq!(p.pose.theta, 0.0);
+        let dx = (5.0f64 / 12.0).sqrt();
+        assert!((p.w.x + 0.5).abs() - dx < 1e-12 && (p.w.y - 1.0 / 3.0).abs() < 1e-12);
+    }
 }
 
 // ------------------------------------------------------- dense sampling

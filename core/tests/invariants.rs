@@ -5,13 +5,12 @@
 mod support;
 
 use fixplan_core::combinations::combination_count;
-use fixplan_core::form_closure::{positively_spanning, wrench};
 use fixplan_core::geometry::{cross, v2, V2};
 use fixplan_core::input::Pattern;
 use fixplan_core::metric::fibonacci_sphere;
 use fixplan_core::pose::Pose;
 use fixplan_core::segments::Feature;
-use fixplan_core::{merge, Fixture, PreparedPart};
+use fixplan_core::{merge, Fixture};
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
@@ -171,57 +170,6 @@ proptest! {
         // And the parallel whole run equals the serial one.
         prop_assert_eq!(&p.enumerate_all().fixtures, &whole.fixtures);
     }
-}
-
-/// Recomputes a fixture's contacts from its pose and the part's segments,
-/// and checks form closure without `W^-1`: the origin strictly inside the
-/// hull of the four wrenches.
-fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
-    let pose = Pose {
-        theta: f.theta,
-        cos: f.theta.cos(),
-        sin: f.theta.sin(),
-        t: v2(f.t[0], f.t[1]),
-    };
-    let mut points: Vec<V2> = f
-        .locators
-        .iter()
-        .map(|l| v2(l[0] as f64, l[1] as f64))
-        .collect();
-    points.push(v2(f.contact[0], f.contact[1]));
-    let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
-    let mut w = [Vector3::zeros(); 4];
-    let mut normals = [V2::zeros(); 4];
-    for i in 0..4 {
-        let seg = &p.segments()[segs[i]];
-        let local = pose.inverse_apply(points[i]);
-        // On the grown edge line or circle, strictly inside the segment.
-        let (off, s, inward) = match seg.feature {
-            Feature::Line(l) => (l.n.dot(&local) - l.c, l.u.dot(&(local - l.origin)), -l.n),
-            Feature::Arc(a) => {
-                let r = local - a.center;
-                let angle = (r.y.atan2(r.x) - a.start_angle) * a.sweep.signum();
-                let s = angle.rem_euclid(std::f64::consts::TAU) * a.radius;
-                let out = r / a.radius;
-                (
-                    r.norm() - a.radius,
-                    s,
-                    if a.sweep > 0.0 { -out } else { out },
-                )
-            }
-        };
-        assert!(off.abs() < 1e-7, "contact {i} off its line or arc");
-        assert!(s > seg.s0 && s < seg.s1, "contact {i} outside its segment");
-        normals[i] = pose.rotate(inward);
-        w[i] = wrench(points[i], normals[i]);
-    }
-    assert!(positively_spanning(&w, 1e-12), "not in form closure: {f:?}");
-    // The clamp tip pushes within the allowed angle.
-    let d = fixplan_core::geometry::rot90(f.rotation, v2(1.0, 0.0));
-    assert!(d.dot(&normals[3]) >= p.cos_max_angle() - 1e-9);
-    // Locators are distinct lattice points, L1 at the origin, L2 in Q.
-    assert_eq!(f.locators[0], [0, 0]);
-    assert!(f.locators[1][0] > 0 && f.locators[1][1] >= 0);
 }
 
 #[test]

@@ -126,7 +126,14 @@ impl Trig {
     }
 
     /// Value and first two derivatives at `t`.
+    ///
+    /// `t = TAU` is evaluated as `t = 0`: the root search's last interval
+    /// ends where its first begins, and `sin(TAU)` is `-2.4e-16`, not `0`,
+    /// so a root at exactly `theta = 0` (common: an axis-aligned part on
+    /// the lattice) would otherwise read as a tiny value of the same sign
+    /// as its neighbour at both ends of the circle and be missed.
     pub fn eval3(&self, t: f64) -> (f64, f64, f64) {
+        let t = if t == TAU { 0.0 } else { t };
         let (s1, c1) = t.sin_cos();
         let (mut c, mut s) = (1.0, 0.0);
         let (mut f, mut d1, mut d2) = (self.a[0], 0.0, 0.0);

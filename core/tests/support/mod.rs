@@ -5,9 +5,14 @@
 use fixplan_core::admissibility::Scratch;
 use fixplan_core::clamp::Accumulator;
 use fixplan_core::combinations::combinations_in;
-use fixplan_core::geometry::v2;
+use fixplan_core::form_closure::{positively_spanning, wrench};
+use fixplan_core::geometry::{v2, V2};
 use fixplan_core::input::{Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, Units};
+use fixplan_core::pose::Pose;
+use fixplan_core::segments::Feature;
+use fixplan_core::Fixture;
 use fixplan_core::{prepare, PartialResult, PreparedPart};
+use nalgebra::Vector3;
 
 /// The paper-like kit in lattice units (spacing 1): 0.25 locators, toggle clamp.
 pub fn kit(pattern: Pattern) -> Kit {
@@ -155,4 +160,148 @@ pub fn brute_force(p: &PreparedPart) -> PartialResult {
         counts: acc.counts,
         fixtures: acc.top.into_sorted(),
     }
+}
+
+/// Recomputes a fixture's contacts from its pose and the part's segments,
+/// and checks form closure without `W^-1`: the origin strictly inside the
+/// hull of the four wrenches.
+pub fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
+    let pose = Pose {
+        theta: f.theta,
+        cos: f.theta.cos(),
+        sin: f.theta.sin(),
+        t: v2(f.t[0], f.t[1]),
+    };
+    let mut points: Vec<V2> = f
+        .locators
+        .iter()
+        .map(|l| v2(l[0] as f64, l[1] as f64))
+        .collect();
+    points.push(v2(f.contact[0], f.contact[1]));
+    let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
+    let mut w = [Vector3::zeros(); 4];
+    let mut normals = [V2::zeros(); 4];
+    for i in 0..4 {
+        let seg = &p.segments()[segs[i]];
+        let local = pose.inverse_apply(points[i]);
+        // On the grown edge line or circle, strictly inside the segment.
+        let (off, s, inward) = match seg.feature {
+            Feature::Line(l) => (l.n.dot(&local) - l.c, l.u.dot(&(local - l.origin)), -l.n),
+            Feature::Arc(a) => {
+                let r = local - a.center;
+                let angle = (r.y.atan2(r.x) - a.start_angle) * a.sweep.signum();
+                let s = angle.rem_euclid(std::f64::consts::TAU) * a.radius;
+                let out = r / a.radius;
+                (
+                    r.norm() - a.radius,
+                    s,
+                    if a.sweep > 0.0 { -out } else { out },
+                )
+            }
+        };
+        assert!(off.abs() < 1e-7, "contact {i} off its line or arc");
+        assert!(s > seg.s0 && s < seg.s1, "contact {i} outside its segment");
+        normals[i] = pose.rotate(inward);
+        w[i] = wrench(points[i], normals[i]);
+    }
+    assert!(positively_spanning(&w, 1e-12), "not in form closure: {f:?}");
+    // The clamp tip pushes within the allowed angle.
+    let d = fixplan_core::geometry::rot90(f.rotation, v2(1.0, 0.0));
+    assert!(d.dot(&normals[3]) >= p.cos_max_angle() - 1e-9);
+    // Locators are distinct lattice points, L1 at the origin, L2 in Q.
+    assert_eq!(f.locators[0], [0, 0]);
+    assert!(f.locators[1][0] > 0 && f.locators[1][1] >= 0);
+}
+
+/// A part from `[x, y, bulge]` vertices (SPEC 8.1).
+pub fn arc_part(outline: &[[f64; 3]], access: &[Vec<[f64; 2]>]) -> Part {
+    Part {
+        outline: outline.iter().map(|&v| v.into()).collect(),
+        access: access.to_vec(),
+    }
+}
+
+/// `tan(sweep / 4)`: the bulge of an arc of `sweep` radians.
+pub fn bulge(sweep_deg: f64) -> f64 {
+    (sweep_deg.to_radians() / 4.0).tan()
+}
+
+/// Hand-made outlines with arcs, lattice units for [`kit`] (locator radius
+/// 1/3): what plants draw, each exercising one rule of SPEC 8.
+pub fn arc_shapes() -> Vec<(&'static str, Vec<[f64; 3]>)> {
+    let q = bulge(90.0);
+    vec![
+        // Convex fillets at every corner: smooth joints, untrimmed.
+        (
+            "fillet",
+            vec![
+                [0.8, 0., 0.],
+                [3.8, 0., q],
+                [4.6, 0.8, 0.],
+                [4.6, 2.4, q],
+                [3.8, 3.2, 0.],
+                [0.8, 3.2, q],
+                [0., 2.4, 0.],
+                [0., 0.8, q],
+            ],
+        ),
+        // A round-ended slot cut from the top: a concave half circle
+        // (R = 0.6 > r) between tangent walls.
+        (
+            "slot",
+            vec![
+                [0., 0., 0.],
+                [5., 0., 0.],
+                [5., 3.4, 0.],
+                [3.1, 3.4, 0.],
+                [3.1, 1.6, -1.],
+                [1.9, 1.6, 0.],
+                [1.9, 3.4, 0.],
+                [0., 3.4, 0.],
+            ],
+        ),
+        // A convex half-round boss on the top edge, meeting it at corners.
+        (
+            "boss",
+            vec![
+                [0., 0., 0.],
+                [5., 0., 0.],
+                [5., 2.5, 0.],
+                [3.5, 2.5, 1.],
+                [1.5, 2.5, 0.],
+                [0., 2.5, 0.],
+            ],
+        ),
+        // A round flange with a flat: a D, one arc of 253.7 degrees.
+        ("D", vec![[-1.6, -1.2, 0.], [1.6, -1.2, 2.0]]),
+        // A concave half-circle notch in the bottom edge.
+        (
+            "notch",
+            vec![
+                [0., 0., 0.],
+                [2., 0., -1.],
+                [3.2, 0., 0.],
+                [5., 0., 0.],
+                [5., 3., 0.],
+                [0., 3., 0.],
+            ],
+        ),
+        // An L with a concave inner fillet (R = 0.8) and a convex outer
+        // one, and a second inner corner rounded below the locator radius
+        // (R = 0.2 < r: no contact there).
+        (
+            "L-fillets",
+            vec![
+                [0., 0., 0.],
+                [4.3, 0., 0.],
+                [4.3, 1.7, 0.],
+                [2.4, 1.7, -q],
+                [1.6, 2.5, 0.],
+                [1.6, 3.3, q],
+                [0.8, 4.1, 0.],
+                [0.2, 4.1, -q],
+                [0., 4.3, 0.],
+            ],
+        ),
+    ]
 }
