@@ -8,7 +8,7 @@
 
 mod cluster_support;
 
-use cluster_support::{serial, unique, Proc, EXE};
+use cluster_support::{free_port, serial, unique, Proc, EXE};
 use fixplan_coordinator::cluster::certs::{
     Authority, Issued, Validity, COORDINATOR_CN, ROUTER_CN, WORKER_CN,
 };
@@ -18,13 +18,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, SystemTime};
 use zenoh::Wait;
-
-/// A free TCP port on loopback (free when asked; the tests of this file
-/// run one at a time).
-fn free_port() -> u16 {
-    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-    l.local_addr().unwrap().port()
-}
 
 fn repo(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(rel)
