@@ -106,31 +106,83 @@ fn worker(endpoint: &str, prefix: &str, tls: Vec<String>) -> Proc {
     spawn(&a)
 }
 
+/// Waits until something listens on the loopback `port` (a plain TCP
+/// connection, which a TLS listener logs as a failed handshake).
+fn wait_listening(port: u16) {
+    let until = std::time::Instant::now() + Duration::from_secs(60);
+    while std::net::TcpStream::connect(("127.0.0.1", port)).is_err() {
+        assert!(std::time::Instant::now() < until, "nothing on {port}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
 /// Lines of `log` that contain `what`.
 fn lines_with<'a>(log: &'a str, what: &str) -> Vec<&'a str> {
     log.lines().filter(|l| l.contains(what)).collect()
+}
+
+/// The certificates of the run: (certificate, key) files.
+struct Identities {
+    coordinator: (PathBuf, PathBuf),
+    good: Vec<(PathBuf, PathBuf)>,
+    /// A worker's, signed by another CA.
+    stranger: (PathBuf, PathBuf),
+    /// A worker's, of the right CA, that expired yesterday.
+    expired: (PathBuf, PathBuf),
+}
+
+fn identities(pki: &Pki) -> Identities {
+    let other_ca = Authority::new("another-ca", Validity::days(1)).unwrap();
+    let day = Duration::from_secs(86_400);
+    let past = Validity {
+        not_before: SystemTime::now() - 10 * day,
+        not_after: SystemTime::now() - day,
+    };
+    Identities {
+        coordinator: pki.issue("coordinator", COORDINATOR_CN),
+        good: (1..=2)
+            .map(|n| pki.issue(&format!("worker-{n}"), WORKER_CN))
+            .collect(),
+        stranger: pki.write(
+            "stranger",
+            &other_ca.issue(WORKER_CN, &[], Validity::days(1)).unwrap(),
+        ),
+        expired: pki.write("expired", &pki.ca.issue(WORKER_CN, &[], past).unwrap()),
+    }
+}
+
+/// `fixplan coordinator` on `endpoint` for the catalogue into `out`,
+/// waiting for two workers.
+fn coordinator_args(
+    endpoint: &str,
+    prefix: &str,
+    tls: Vec<String>,
+    catalog: &Path,
+    out: &Path,
+) -> Vec<String> {
+    let mut args: Vec<String> = ["coordinator", "--listen", endpoint, "--key-prefix", prefix]
+        .map(String::from)
+        .to_vec();
+    args.extend(tls);
+    args.extend(["--catalog".into(), catalog.display().to_string()]);
+    args.extend(["-o".into(), out.display().to_string()]);
+    let rest = [
+        "--min-workers",
+        "2",
+        "--transport",
+        "zenoh",
+        "--expected-threads",
+        "2",
+    ];
+    args.extend(rest.map(String::from));
+    args
 }
 
 #[test]
 fn mutual_tls_run_equals_embedded_and_bad_certificates_are_refused() {
     let _g = serial();
     let pki = Pki::new();
-    let coordinator = pki.issue("coordinator", COORDINATOR_CN);
-    let good: Vec<_> = (1..=2)
-        .map(|n| pki.issue(&format!("worker-{n}"), WORKER_CN))
-        .collect();
-    let other_ca = Authority::new("another-ca", Validity::days(1)).unwrap();
-    let stranger = pki.write(
-        "stranger",
-        &other_ca.issue(WORKER_CN, &[], Validity::days(1)).unwrap(),
-    );
-    let day = Duration::from_secs(86_400);
-    let past = Validity {
-        not_before: SystemTime::now() - 10 * day,
-        not_after: SystemTime::now() - day,
-    };
-    let expired = pki.write("expired", &pki.ca.issue(WORKER_CN, &[], past).unwrap());
-
+    let ids = identities(&pki);
     let catalog = repo("examples/catalog");
     let emb = pki.dir.path().join("emb.mcap");
     let dist = pki.dir.path().join("dist.mcap");
@@ -143,50 +195,27 @@ fn mutual_tls_run_equals_embedded_and_bad_certificates_are_refused() {
         .unwrap();
     assert!(status.success());
 
-    let endpoint = format!("tls/127.0.0.1:{}", free_port());
+    let port = free_port();
+    let endpoint = format!("tls/127.0.0.1:{port}");
     let prefix = format!("fxtest/{}", unique("tls"));
-    let mut args: Vec<String> = [
-        "coordinator",
-        "--listen",
-        &endpoint,
-        "--key-prefix",
-        &prefix,
-    ]
-    .map(String::from)
-    .to_vec();
-    args.extend(tls_args(&pki.ca(), Some(&coordinator)));
-    args.extend(["--catalog".into(), catalog.display().to_string()]);
-    args.extend(["-o".into(), dist.display().to_string()]);
-    args.extend(
-        [
-            "--min-workers",
-            "2",
-            "--transport",
-            "zenoh",
-            "--expected-threads",
-            "2",
-        ]
-        .map(String::from),
-    );
+    let tls = tls_args(&pki.ca(), Some(&ids.coordinator));
+    let args = coordinator_args(&endpoint, &prefix, tls, &catalog, &dist);
     let mut coord = spawn(&args);
 
-    // The refused ones first: the run can only start with the good ones.
+    // The refused ones first, once the coordinator listens (their first
+    // try then reaches it); the run can only start with the good ones.
+    wait_listening(port);
+    let refused_worker = |identity: Option<&(PathBuf, PathBuf)>| {
+        worker(&endpoint, &prefix, tls_args(&pki.ca(), identity))
+    };
     let mut refused = vec![
-        (
-            "no client certificate",
-            worker(&endpoint, &prefix, tls_args(&pki.ca(), None)),
-        ),
-        (
-            "another CA",
-            worker(&endpoint, &prefix, tls_args(&pki.ca(), Some(&stranger))),
-        ),
-        (
-            "expired",
-            worker(&endpoint, &prefix, tls_args(&pki.ca(), Some(&expired))),
-        ),
+        ("CertificateRequired", refused_worker(None)),
+        ("UnknownCA", refused_worker(Some(&ids.stranger))),
+        ("CertificateExpired", refused_worker(Some(&ids.expired))),
     ];
     std::thread::sleep(Duration::from_millis(1500));
-    let mut workers: Vec<Proc> = good
+    let mut workers: Vec<Proc> = ids
+        .good
         .iter()
         .map(|id| worker(&endpoint, &prefix, tls_args(&pki.ca(), Some(id))))
         .collect();
@@ -206,15 +235,15 @@ fn mutual_tls_run_equals_embedded_and_bad_certificates_are_refused() {
     }
 
     // Each refused worker says why, and the coordinator says it refused.
-    for (why, w) in &mut refused {
+    for (alert, w) in &mut refused {
         let (_, log) = w.wait_output(Duration::ZERO);
-        eprintln!("--- worker with {why}\n{log}");
-        assert!(!log.contains("joined run"), "{why}: {log}");
-        let refusals = lines_with(
-            &log,
-            &format!("Unable to connect to configured peer {endpoint}"),
+        eprintln!("--- worker refused with {alert}\n{log}");
+        assert!(!log.contains("joined run"), "{log}");
+        let refusal = format!(
+            "WARN zenoh::net::runtime::orchestrator] Unable to connect to configured \
+             peer {endpoint}! received fatal alert: {alert}"
         );
-        assert!(!refusals.is_empty(), "{why}: {log}");
+        assert!(!lines_with(&log, &refusal).is_empty(), "{refusal}: {log}");
     }
     for what in [
         "TLS handshake refused: peer sent no certificates",

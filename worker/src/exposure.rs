@@ -103,6 +103,17 @@ pub fn check_listen(
     Ok(open)
 }
 
+/// The strings of a JSON list (none for anything else).
+fn strings(v: &serde_json::Value) -> Vec<String> {
+    v.as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|e| e.as_str().map(str::to_owned))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 /// The endpoints a configuration listens on in its mode (zenoh's default
 /// mode is `peer`; a mode-dependent value lists them per mode).
 fn listen_endpoints(c: &zenoh::Config) -> Vec<String> {
@@ -114,18 +125,9 @@ fn listen_endpoints(c: &zenoh::Config) -> Vec<String> {
     let mode = json("mode")
         .and_then(|m| m.as_str().map(str::to_owned))
         .unwrap_or_else(|| "peer".into());
-    let strings = |v: &serde_json::Value| -> Vec<String> {
-        v.as_array()
-            .map(|a| {
-                a.iter()
-                    .filter_map(|e| e.as_str().map(str::to_owned))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
     match json("listen/endpoints") {
         Some(serde_json::Value::Object(per_mode)) => {
-            per_mode.get(&mode).map(|v| strings(v)).unwrap_or_default()
+            per_mode.get(&mode).map(strings).unwrap_or_default()
         }
         Some(v) => strings(&v),
         None => Vec::new(),
