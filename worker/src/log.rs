@@ -48,7 +48,7 @@ const OURS: [&str; 4] = [
 /// CertificateRequired ...`), shown as a warning; the second a listener's
 /// warnings (`peer sent no certificates`, `invalid peer certificate:
 /// UnknownIssuer`...), which zenoh ends with a hint about open files that
-/// fits only the other failure of that path (see [`tidy_message`]).
+/// fits only the other failure of that path (the log says `TLS handshake refused: ...` instead).
 pub const LINK_REFUSALS: [(&str, &str, &str); 2] = [
     (
         "zenoh::net::runtime::orchestrator",
