@@ -287,6 +287,23 @@ fn alive(s: &zenoh::Session, key: &str) -> Vec<String> {
     got
 }
 
+fn token(s: &zenoh::Session, key: &str) -> zenoh::liveliness::LivelinessToken {
+    s.liveliness().declare_token(key).wait().unwrap()
+}
+
+/// What `f` gives once it is not empty (declarations take a moment to
+/// reach the router), within 20 s.
+fn eventually(f: impl Fn() -> Vec<String>) -> Vec<String> {
+    let until = std::time::Instant::now() + Duration::from_secs(20);
+    loop {
+        let v = f();
+        if !v.is_empty() || std::time::Instant::now() > until {
+            return v;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
 fn declare_join(s: &zenoh::Session, answer: &'static str) -> zenoh::query::Queryable<()> {
     s.declare_queryable("fixplan/join")
         .callback(move |q| {
@@ -334,42 +351,28 @@ fn router_access_control_keeps_workers_off_the_coordinators_keys() {
     let observer = session("coordinator", "observer", COORDINATOR_CN);
     let worker = session("worker", "worker-1", WORKER_CN);
     let rogue = session("worker", "worker-2", WORKER_CN);
-    let settle = || std::thread::sleep(Duration::from_millis(500));
 
-    // The rogue worker tries to be the coordinator.
+    // The rogue worker tries to be the coordinator, before the worker
+    // holds its token (seen by then, the rogue's would be too).
     let _rq = declare_join(&rogue, "rogue");
-    let _rt = rogue
-        .liveliness()
-        .declare_token("fixplan/coordinator")
-        .wait()
-        .unwrap();
-    let _wt = worker
-        .liveliness()
-        .declare_token("fixplan/alive/worker-1")
-        .wait()
-        .unwrap();
-    settle();
-    assert_eq!(ask(&worker, "fixplan/join"), Vec::<String>::new());
+    let _rt = token(&rogue, "fixplan/coordinator");
+    let _wt = token(&worker, "fixplan/alive/worker-1");
+    let workers = eventually(|| alive(&observer, "fixplan/alive/*"));
+    assert_eq!(workers, vec!["fixplan/alive/worker-1"]);
     assert_eq!(
         alive(&observer, "fixplan/coordinator"),
         Vec::<String>::new()
     );
-    assert_eq!(
-        alive(&observer, "fixplan/alive/*"),
-        vec!["fixplan/alive/worker-1"]
-    );
 
-    // The coordinator's certificate may.
+    // The coordinator's certificate may; only it answers.
     let _cq = declare_join(&coordinator, "coordinator");
-    let _ct = coordinator
-        .liveliness()
-        .declare_token("fixplan/coordinator")
-        .wait()
-        .unwrap();
-    settle();
-    assert_eq!(ask(&worker, "fixplan/join"), vec!["coordinator"]);
+    let _ct = token(&coordinator, "fixplan/coordinator");
     assert_eq!(
-        alive(&observer, "fixplan/coordinator"),
+        eventually(|| ask(&worker, "fixplan/join")),
+        vec!["coordinator"]
+    );
+    assert_eq!(
+        eventually(|| alive(&observer, "fixplan/coordinator")),
         vec!["fixplan/coordinator"]
     );
 }
