@@ -105,6 +105,8 @@ fn workers_in_separate_network_namespaces() {
             .iter()
             .map(|(_, h)| format!("tcp/{h}:{port}"))
             .collect(),
+        // Plain TCP between "hosts": refused without it.
+        insecure: true,
         ..ZenohOptions::default()
     };
     opts.min_workers = 2;

@@ -1,6 +1,7 @@
 //! Coordinator plus two worker processes on this host, over zenoh and over
 //! iceoryx2: the results file equals the embedded run's in the fixture
-//! channel, and no shared memory is left behind.
+//! channel, and no shared memory is left behind. Listening without TLS
+//! where other hosts can reach it needs `--insecure`.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 mod cluster_support;
@@ -90,4 +91,55 @@ fn workers_beyond_the_shared_memory_limit_use_zenoh() {
     assert_eq!(over("iceoryx2"), n - 1, "{logs:#?}");
     assert_eq!(over("zenoh"), 1, "{logs:#?}");
     assert!(shm_left().is_empty(), "{:?}", shm_left());
+}
+
+/// Safe default: `fixplan coordinator` would listen on plain TCP on every
+/// interface; it refuses before writing anything, and says what to do.
+/// With `--insecure` it runs, with a warning.
+#[test]
+fn plain_listening_off_loopback_needs_insecure() {
+    let _g = serial();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.mcap");
+    let catalog = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/catalog");
+    let prefix = format!("fxtest/{}", unique("insecure"));
+    let run = |extra: &[&str]| {
+        std::process::Command::new(EXE)
+            .args(["coordinator", "--catalog", catalog, "--key-prefix", &prefix])
+            .arg("-o")
+            .arg(&out)
+            .args(extra)
+            .env_remove("RUST_LOG")
+            .stdin(std::process::Stdio::null())
+            .output()
+            .unwrap()
+    };
+    let refused = run(&[]);
+    let err = String::from_utf8_lossy(&refused.stderr);
+    eprintln!("{err}");
+    assert_eq!(refused.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "fixplan: refusing to listen on tcp/0.0.0.0:7447 without TLS: \
+             any host that reaches it could join the run and send results. Listen on \
+             tls/HOST:PORT with --tls-ca, --tls-cert and --tls-key"
+        ),
+        "{err}"
+    );
+    assert!(
+        err.contains("or give --insecure on a trusted network"),
+        "{err}"
+    );
+    assert!(!dir.path().join("r.mcap.partial").exists());
+
+    let listen = format!("tcp/0.0.0.0:{}", free_port());
+    let ok = run(&["--listen", &listen, "--insecure", "--workers", "1"]);
+    let err = String::from_utf8_lossy(&ok.stderr);
+    eprintln!("{err}");
+    assert_eq!(ok.status.code(), Some(0), "{err}");
+    let warning = format!(
+        "WARN zenoh] listening on {listen} without TLS (--insecure): any host that reaches it can join"
+    );
+    assert!(err.contains(&warning), "{err}");
+    assert!(out.exists());
 }

@@ -5,7 +5,10 @@
 //! The distributed side:
 //! - [`protocol`]: versioned messages and their framing;
 //! - [`part_input`]: a part's inputs on the wire, and its digest;
-//! - [`zenoh_link`]: zenoh configuration, key expressions, request/reply;
+//! - [`zenoh_link`]: zenoh configuration (TLS files), key expressions,
+//!   request/reply;
+//! - [`exposure`]: which listen endpoints let other hosts join, refused
+//!   without TLS unless `--insecure`;
 //! - [`iox`]: iceoryx2 request/reply through shared memory on one host;
 //! - [`agent`]: the `fixplan worker` loop;
 //! - [`host`]: host ids and unique names;
@@ -13,6 +16,7 @@
 //!   (library code only emits `tracing` events).
 
 pub mod agent;
+pub mod exposure;
 pub mod host;
 pub mod iox;
 pub mod log;

@@ -14,15 +14,21 @@
 //! fixplan makes on purpose (gossip off) and about routine link retries. A
 //! `RUST_LOG` filter (`RUST_LOG=info,zenoh=warn`) replaces that default
 //! entirely.
+//!
+//! Links that TLS refused are the exception: zenoh tells them at debug
+//! level among much routine, and they are what an operator must see (a
+//! worker without a valid certificate, one presenting a wrong one). With
+//! the default filter these events ([`LINK_REFUSALS`]) are shown as
+//! warnings, and the rest of their targets' debug events are not.
 
 use std::fmt::{self, Write as _};
 use std::time::Instant;
 use tracing::field::{Field, Visit};
-use tracing::{Event, Subscriber};
+use tracing::{Event, Level, Subscriber};
 use tracing_subscriber::filter::ParseError;
 use tracing_subscriber::fmt::format::Writer;
 use tracing_subscriber::fmt::{FmtContext, FormatEvent, FormatFields, MakeWriter};
-use tracing_subscriber::layer::SubscriberExt;
+use tracing_subscriber::layer::{Context, Layer, SubscriberExt};
 use tracing_subscriber::registry::LookupSpan;
 use tracing_subscriber::EnvFilter;
 
@@ -35,6 +41,26 @@ const OURS: [&str; 4] = [
     "fixplan_coordinator",
 ];
 
+/// zenoh's events that tell of a link refused by TLS, shown with the
+/// default filter: (target, start of the message, level zenoh gives it).
+/// The first is a connecting side's, at debug among routine retries
+/// (`Unable to connect to configured peer tls/...! received fatal alert:
+/// CertificateRequired ...`), shown as a warning; the second a listener's
+/// warnings (`peer sent no certificates`, `invalid peer certificate:
+/// UnknownIssuer`...), which zenoh ends with a hint about open files that
+/// fits only the other failure of that path (the log says `TLS handshake refused: ...` instead).
+pub const LINK_REFUSALS: [(&str, &str, &str); 2] = [
+    (
+        "zenoh::net::runtime::orchestrator",
+        "Unable to connect",
+        "debug",
+    ),
+    ("zenoh_link_tls", "", "warn"),
+];
+
+/// The hint zenoh's TLS listener adds to every failed accept.
+const OPEN_FILES_HINT: &str = ". Hint: increase the system open file limit.";
+
 /// The filter directives used when `RUST_LOG` is unset or empty.
 pub fn default_directives(quiet: bool) -> String {
     let level = if quiet { "warn" } else { "info" };
@@ -42,7 +68,56 @@ pub fn default_directives(quiet: bool) -> String {
     for c in OURS {
         d.push_str(&format!(",{c}={level}"));
     }
+    for (target, _, level) in LINK_REFUSALS {
+        d.push_str(&format!(",{target}={level}"));
+    }
     d
+}
+
+/// Whether `target` is `module` or inside it.
+fn within(target: &str, module: &str) -> bool {
+    target
+        .strip_prefix(module)
+        .is_some_and(|rest| rest.is_empty() || rest.starts_with("::"))
+}
+
+/// For an event below error level from a target of [`LINK_REFUSALS`]:
+/// the start of the messages shown (as warnings).
+fn refusal_target(event: &Event<'_>) -> Option<&'static str> {
+    let m = event.metadata();
+    if *m.level() <= Level::ERROR {
+        return None;
+    }
+    LINK_REFUSALS
+        .iter()
+        .find(|(t, _, _)| within(m.target(), t))
+        .map(|(_, start, _)| *start)
+}
+
+/// A TLS listener's failed accept says so, instead of zenoh's hint about
+/// open files, unless that is the cause.
+fn tidy_message<'a>(target: &str, message: &'a str) -> std::borrow::Cow<'a, str> {
+    match message.strip_suffix(OPEN_FILES_HINT) {
+        Some(m) if within(target, "zenoh_link_tls") && !m.contains("open files") => {
+            format!("TLS handshake refused: {m}").into()
+        }
+        _ => message.into(),
+    }
+}
+
+/// Lets through, of the [`LINK_REFUSALS`] targets' events below error, only
+/// the refusals.
+struct LinkRefusals;
+
+impl<S: Subscriber> Layer<S> for LinkRefusals {
+    fn event_enabled(&self, event: &Event<'_>, _ctx: Context<'_, S>) -> bool {
+        let Some(start) = refusal_target(event) else {
+            return true;
+        };
+        let mut f = Fields::default();
+        event.record(&mut f);
+        f.message.starts_with(start)
+    }
 }
 
 /// The filter of a process: `rust_log` when it is set and valid, else the
@@ -65,6 +140,8 @@ pub fn filter(quiet: bool, rust_log: Option<&str>) -> (EnvFilter, Option<ParseEr
 #[derive(Debug, Clone, Copy)]
 pub struct LineFormat {
     start: Instant,
+    /// [`LINK_REFUSALS`] events are written as warnings.
+    refusals_as_warnings: bool,
 }
 
 impl LineFormat {
@@ -72,6 +149,7 @@ impl LineFormat {
     pub fn new() -> LineFormat {
         LineFormat {
             start: Instant::now(),
+            refusals_as_warnings: false,
         }
     }
 }
@@ -142,29 +220,42 @@ where
         let meta = event.metadata();
         let role = f.role.as_deref().unwrap_or(meta.target());
         let t = self.start.elapsed().as_secs_f64();
-        write!(w, "[{t:9.3}s {} ", meta.level())?;
+        let level = match refusal_target(event) {
+            Some(_) if self.refusals_as_warnings => Level::WARN,
+            _ => *meta.level(),
+        };
+        write!(w, "[{t:9.3}s {level} ")?;
         write_one_line(&mut w, role)?;
         w.write_str("] ")?;
-        write_one_line(&mut w, &f.message)?;
+        write_one_line(&mut w, &tidy_message(meta.target(), &f.message))?;
         write_one_line(&mut w, &f.rest)?;
         w.write_char('\n')
     }
 }
 
 /// The subscriber of a process: `filter` and [`LineFormat`] lines on
-/// `writer`. Write errors are dropped, not reported: a closed standard
+/// `writer`; with `default` (the filter is [`default_directives`]), link
+/// refusals are sorted out of their targets' debug events and shown as
+/// warnings. Write errors are dropped, not reported: a closed standard
 /// error (`fixplan run 2>&1 | head`) must neither panic nor stop a worker
 /// or the coordinator in the middle of a run.
-pub fn subscriber<W>(filter: EnvFilter, writer: W) -> impl Subscriber + Send + Sync
+pub fn subscriber<W>(filter: EnvFilter, default: bool, writer: W) -> impl Subscriber + Send + Sync
 where
     W: for<'a> MakeWriter<'a> + Send + Sync + 'static,
 {
+    let format = LineFormat {
+        refusals_as_warnings: default,
+        ..LineFormat::new()
+    };
     let lines = tracing_subscriber::fmt::layer()
-        .event_format(LineFormat::new())
+        .event_format(format)
         .with_ansi(false)
         .with_writer(writer)
         .log_internal_errors(false);
-    tracing_subscriber::registry().with(filter).with(lines)
+    tracing_subscriber::registry()
+        .with(filter)
+        .with(default.then_some(LinkRefusals))
+        .with(lines)
 }
 
 /// Installs the process's subscriber: lines on standard error, filtered by
@@ -173,7 +264,9 @@ where
 pub fn init(quiet: bool) {
     let rust_log = std::env::var("RUST_LOG").ok();
     let (filter, bad) = filter(quiet, rust_log.as_deref());
-    let installed = tracing::subscriber::set_global_default(subscriber(filter, std::io::stderr));
+    let default = bad.is_some() || rust_log.as_deref().is_none_or(|s| s.trim().is_empty());
+    let installed =
+        tracing::subscriber::set_global_default(subscriber(filter, default, std::io::stderr));
     if let (Ok(()), Some(e)) = (installed, bad) {
         tracing::warn!(
             role = "fixplan",
@@ -218,7 +311,8 @@ mod tests {
     fn logged(quiet: bool, rust_log: Option<&str>, emit: impl FnOnce()) -> String {
         let cap = Capture::default();
         let (f, _) = filter(quiet, rust_log);
-        tracing::subscriber::with_default(subscriber(f, cap.clone()), emit);
+        let s = subscriber(f, rust_log.is_none(), cap.clone());
+        tracing::subscriber::with_default(s, emit);
         cap.text()
     }
 
@@ -275,6 +369,42 @@ mod tests {
     }
 
     #[test]
+    fn link_refusals_are_warnings_and_other_link_debug_is_not_shown() {
+        let emit = || {
+            tracing::debug!(
+                target: "zenoh::net::runtime::orchestrator",
+                "Unable to connect to configured peer tls/127.0.0.1:7447! received fatal alert: CertificateRequired"
+            );
+            tracing::debug!(target: "zenoh::net::runtime::orchestrator", "Try to connect");
+            tracing::warn!(
+                target: "zenoh::net::runtime::orchestrator",
+                "Scouting delay elapsed before start conditions are met."
+            );
+            tracing::warn!(
+                target: "zenoh_link_tls::unicast",
+                "peer sent no certificates. Hint: increase the system open file limit."
+            );
+            tracing::debug!(target: "zenoh_link_tls::utils", "Loading user-generated certificates.");
+        };
+        let out = logged(true, None, emit);
+        assert_eq!(out.lines().count(), 2, "{out}");
+        assert!(
+            out.contains("s WARN zenoh::net::runtime::orchestrator] Unable to connect"),
+            "{out}"
+        );
+        assert!(
+            out.contains("s WARN zenoh_link_tls::unicast] TLS handshake refused: peer sent no certificates\n"),
+            "{out}"
+        );
+        let raw = logged(false, Some("zenoh_link_tls=debug"), emit);
+        assert_eq!(raw.lines().count(), 2, "{raw}");
+        assert!(
+            raw.contains("DEBUG zenoh_link_tls::utils] Loading"),
+            "{raw}"
+        );
+    }
+
+    #[test]
     fn quiet_keeps_warnings_and_rust_log_overrides_it() {
         let emit = || {
             tracing::info!(role = "coordinator", "joined");
@@ -322,7 +452,7 @@ mod tests {
     #[test]
     fn a_closed_writer_neither_panics_nor_stops_the_caller() {
         let (f, _) = filter(false, None);
-        let s = subscriber(f, || Closed);
+        let s = subscriber(f, true, || Closed);
         let mut reached = false;
         tracing::subscriber::with_default(s, || {
             for i in 0..3 {

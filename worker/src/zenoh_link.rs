@@ -17,6 +17,12 @@ use zenoh::Wait;
 /// How to reach the others.
 #[derive(Debug, Clone, Default)]
 pub struct ZenohOptions {
+    /// Mutual TLS: the certificate files for `tls/...` endpoints (they
+    /// fill `transport/link/tls` of the configuration, over a file's).
+    pub tls: Option<TlsFiles>,
+    /// Listen without TLS on addresses other hosts can reach (a trusted
+    /// network): allowed, with a warning, instead of refused.
+    pub insecure: bool,
     /// `peer` (default) or `client` (through a zenoh router).
     pub mode: Option<String>,
     /// Endpoints to listen on (`tcp/0.0.0.0:7447`): how the others reach a
@@ -27,6 +33,17 @@ pub struct ZenohOptions {
     /// A zenoh configuration file (JSON5): TLS, access control, routers.
     /// `listen`/`connect` given on the command line override its endpoints.
     pub config_file: Option<PathBuf>,
+}
+
+/// The files of mutual TLS, PEM encoded.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TlsFiles {
+    /// The certificate authority whose certificates are accepted.
+    pub ca: PathBuf,
+    /// This process's certificate and private key, shown on both sides of
+    /// a link (listening and connecting). Without them a process can only
+    /// connect to a listener that does not ask for client certificates.
+    pub identity: Option<(PathBuf, PathBuf)>,
 }
 
 /// Why a request, or the link for it, failed. A worker keeps trying on
@@ -45,6 +62,20 @@ pub enum LinkError {
         /// zenoh's reason.
         detail: zenoh::Error,
     },
+    /// A TLS file that cannot be read.
+    #[error("TLS {what} {}: {source}", path.display())]
+    TlsFile {
+        /// `CA certificate`, `certificate` or `private key`.
+        what: &'static str,
+        /// The file given.
+        path: PathBuf,
+        /// Why it cannot be read.
+        source: std::io::Error,
+    },
+    /// Listening where other hosts can join without TLS, and no
+    /// `--insecure` (see [`crate::exposure`]).
+    #[error(transparent)]
+    Exposed(#[from] crate::exposure::Exposed),
     /// A zenoh session, query or token failed.
     #[error("zenoh: {0}")]
     Zenoh(zenoh::Error),
@@ -106,13 +137,69 @@ pub fn zenoh_config(o: &ZenohOptions) -> Result<zenoh::Config, LinkError> {
         c.insert_json5("connect/endpoints", &json_list(&o.connect))
             .map_err(cfg_err)?;
     }
+    if let Some(t) = &o.tls {
+        insert_tls(&mut c, t)?;
+    }
     Ok(c)
 }
 
+/// A path as a JSON5 string.
+fn json_path(p: &std::path::Path) -> String {
+    serde_json::Value::String(p.display().to_string()).to_string()
+}
+
+/// Fills `transport/link/tls` from `t`, after checking the files can be
+/// read (zenoh would only say so when a link is made).
+fn insert_tls(c: &mut zenoh::Config, t: &TlsFiles) -> Result<(), LinkError> {
+    let readable = |what: &'static str, path: &PathBuf| {
+        std::fs::File::open(path)
+            .map(drop)
+            .map_err(|source| LinkError::TlsFile {
+                what,
+                path: path.clone(),
+                source,
+            })
+    };
+    readable("CA certificate", &t.ca)?;
+    let mut keys = vec![("root_ca_certificate", json_path(&t.ca))];
+    if let Some((cert, key)) = &t.identity {
+        readable("certificate", cert)?;
+        readable("private key", key)?;
+        for (k, path) in [
+            ("listen_certificate", cert),
+            ("listen_private_key", key),
+            ("connect_certificate", cert),
+            ("connect_private_key", key),
+        ] {
+            keys.push((k, json_path(path)));
+        }
+    }
+    let mtls = if t.identity.is_some() {
+        "true"
+    } else {
+        "false"
+    };
+    keys.push(("enable_mtls", mtls.into()));
+    keys.push(("verify_name_on_connect", "true".into()));
+    for (k, v) in keys {
+        c.insert_json5(&format!("transport/link/tls/{k}"), &v)
+            .map_err(LinkError::Config)?;
+    }
+    Ok(())
+}
+
 /// Opens a session with [`zenoh_config`]: blocking, no async runtime
-/// needed (zenoh runs its own).
+/// needed (zenoh runs its own). Listening where other hosts can join
+/// without TLS is refused unless `o.insecure` (then a warning).
 pub fn open(o: &ZenohOptions) -> Result<zenoh::Session, LinkError> {
     let c = zenoh_config(o)?;
+    let exposed = crate::exposure::check_config(&c, o.insecure)?;
+    for e in exposed {
+        tracing::warn!(
+            role = "zenoh",
+            "listening on {e} without TLS (--insecure): any host that reaches it can join"
+        );
+    }
     zenoh::open(c).wait().map_err(LinkError::Zenoh)
 }
 

@@ -12,15 +12,18 @@ use clap::Args;
 use fixplan_catalog::{load_catalog, load_kit};
 use fixplan_worker::agent::{run_worker, Fault, WorkerError, WorkerOptions};
 use fixplan_worker::protocol::PROTOCOL_VERSION;
-use fixplan_worker::zenoh_link::ZenohOptions;
+use fixplan_worker::zenoh_link::{zenoh_config, TlsFiles, ZenohOptions};
 use std::path::PathBuf;
 use std::time::Duration;
 
 /// How to reach the other processes (zenoh).
 #[derive(Args, Debug, Clone, Default)]
 pub struct NetArgs {
-    /// zenoh endpoint to listen on, e.g. `tcp/0.0.0.0:7447`,
-    /// `tls/0.0.0.0:7447`, `unixsock-stream//tmp/fixplan.sock` (repeatable).
+    /// zenoh endpoint to listen on, e.g. `tls/0.0.0.0:7447` (with the
+    /// --tls-* files), `tcp/127.0.0.1:7447`, `unixsock-stream//tmp/fixplan.sock`
+    /// (repeatable). Without TLS only loopback addresses and unix sockets
+    /// are allowed, unless --insecure. `fixplan coordinator` default:
+    /// `tls/0.0.0.0:7447` with --tls-cert, else `tcp/0.0.0.0:7447`.
     #[arg(long, value_name = "ENDPOINT")]
     pub listen: Vec<String>,
     /// zenoh endpoint to connect to: the coordinator or a zenoh router,
@@ -42,6 +45,21 @@ pub struct NetArgs {
     /// `zenoh` or `iceoryx2` (forced, for tests and benchmarks).
     #[arg(long, value_name = "auto|zenoh|iceoryx2", default_value = "auto")]
     pub transport: TransportChoice,
+    /// Mutual TLS: the CA certificate (PEM) whose certificates are
+    /// accepted, for `tls/...` endpoints. Alone (without --tls-cert), only
+    /// the other side is checked. `fixplan certs` makes the files.
+    #[arg(long, value_name = "FILE")]
+    pub tls_ca: Option<PathBuf>,
+    /// Mutual TLS: this process's certificate (PEM), signed by the CA.
+    #[arg(long, value_name = "FILE", requires_all = ["tls_ca", "tls_key"])]
+    pub tls_cert: Option<PathBuf>,
+    /// Mutual TLS: the private key (PEM) of --tls-cert.
+    #[arg(long, value_name = "FILE", requires = "tls_cert")]
+    pub tls_key: Option<PathBuf>,
+    /// Listen without TLS on an address other hosts can reach (a trusted
+    /// network only: any host that reaches it can join and send results).
+    #[arg(long)]
+    pub insecure: bool,
 }
 
 impl NetArgs {
@@ -51,6 +69,11 @@ impl NetArgs {
             listen: self.listen.clone(),
             connect: self.connect.clone(),
             config_file: self.zenoh_config.clone(),
+            tls: self.tls_ca.clone().map(|ca| TlsFiles {
+                ca,
+                identity: self.tls_cert.clone().zip(self.tls_key.clone()),
+            }),
+            insecure: self.insecure,
         }
     }
 }
@@ -131,6 +154,43 @@ pub struct WorkerArgs {
     pub fault: Option<Fault>,
 }
 
+/// `fixplan certs`.
+#[cfg(feature = "tls")]
+#[derive(Args, Debug, Clone)]
+pub struct CertsArgs {
+    /// Directory for the files (created if needed; one that already holds
+    /// a `ca.pem` is refused).
+    #[arg(long, value_name = "DIR")]
+    pub dir: PathBuf,
+    /// Worker certificates to make.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub workers: usize,
+    /// A name or address of the coordinator's (or router's) host that
+    /// workers connect to, besides localhost, 127.0.0.1 and ::1
+    /// (repeatable).
+    #[arg(long, value_name = "NAME")]
+    pub host: Vec<String>,
+    /// Days the certificates are valid.
+    #[arg(long, value_name = "N", default_value_t = 365)]
+    pub days: u64,
+}
+
+/// `fixplan certs`: writes the files and lists them.
+#[cfg(feature = "tls")]
+pub fn certs_main(a: &CertsArgs) -> Result<()> {
+    use crate::cluster::certs::{write_certs, CertsOptions};
+    let files = write_certs(&CertsOptions {
+        dir: a.dir.clone(),
+        workers: a.workers,
+        hosts: a.host.clone(),
+        days: a.days,
+    })?;
+    for f in files {
+        println!("{}", f.display());
+    }
+    Ok(())
+}
+
 /// `--workers` and `--transport` of `fixplan run`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct RunClusterArgs {
@@ -169,8 +229,12 @@ impl RunClusterArgs {
 pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result<Totals> {
     let mut zenoh = a.net.zenoh();
     if zenoh.listen.is_empty() && zenoh.connect.is_empty() && zenoh.config_file.is_none() {
-        zenoh.listen = vec!["tcp/0.0.0.0:7447".into()];
+        // Refused without --insecure unless TLS files were given.
+        let proto = if zenoh.tls.is_some() { "tls" } else { "tcp" };
+        zenoh.listen = vec![format!("{proto}/0.0.0.0:7447")];
     }
+    // Before anything is read or written (zenoh_link::open checks again).
+    fixplan_worker::exposure::check_config(&zenoh_config(&zenoh)?, zenoh.insecure)?;
     let catalog_path = a.catalog.clone().unwrap_or(default_catalog);
     let catalog = load_catalog(&catalog_path)?;
     let spec = load_kit(&a.kit, catalog.units)?;

@@ -101,6 +101,19 @@ enum Cmd {
     /// on this host), may join or leave at any time, and a lost worker's
     /// shards are handed out again. See deploy/README.md.
     Coordinator(cluster::CoordinatorArgs),
+    /// Make the certificates of mutual TLS: a CA (`ca.pem`, `ca-key.pem`),
+    /// the coordinator's and a zenoh router's (`coordinator.pem`,
+    /// `router.pem`), and N workers' (`worker-1.pem`...), each with its
+    /// `-key.pem`, in DIR.
+    ///
+    /// Then: `fixplan coordinator --listen tls/0.0.0.0:7447 --tls-ca
+    /// DIR/ca.pem --tls-cert DIR/coordinator.pem --tls-key
+    /// DIR/coordinator-key.pem ...` and on each worker host `fixplan worker
+    /// --connect tls/COORDINATOR-HOST:7447 --tls-ca ca.pem --tls-cert
+    /// worker-1.pem --tls-key worker-1-key.pem`. Keep `ca-key.pem` off the
+    /// cluster: it signs new certificates.
+    #[cfg(feature = "tls")]
+    Certs(cluster::CertsArgs),
     /// Work for a coordinator: `fixplan worker --connect tcp/HOST:7447`.
     ///
     /// Exits when the run is over (or stays with --stay); exit code 3 when
@@ -216,6 +229,8 @@ fn quiet_logs(cmd: &Cmd) -> bool {
         Cmd::Study(a) => a.quiet,
         Cmd::Coordinator(a) => a.quiet,
         Cmd::Worker(a) => a.quiet,
+        #[cfg(feature = "tls")]
+        Cmd::Certs(_) => false,
         Cmd::BenchCluster(_) => true,
         Cmd::Solve { .. }
         | Cmd::Bench { .. }
@@ -269,6 +284,8 @@ fn real_main() -> Result<()> {
             cluster::coordinator_main(&a, default_catalog())?;
         }
         Cmd::Worker(a) => cluster::worker_main(&a)?,
+        #[cfg(feature = "tls")]
+        Cmd::Certs(a) => cluster::certs_main(&a)?,
         Cmd::BenchCluster(a) => crate::bench::cluster::bench_main(&a)?,
         Cmd::Bench {
             cases,

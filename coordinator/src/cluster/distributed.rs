@@ -307,6 +307,7 @@ fn start_local_workers(
         transport: &opts.transport.to_string(),
         threads,
         quiet: opts.quiet,
+        tls: zopts.tls.as_ref(),
     };
     rt.spawn_local(&spec, opts.local_workers)
 }

@@ -2,6 +2,7 @@
 //! (`fixplan run --workers N`), stopped when the run ends, killed if they
 //! outstay it.
 
+use fixplan_worker::zenoh_link::TlsFiles;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -25,6 +26,8 @@ pub struct LocalSpec<'a> {
     pub threads: usize,
     /// `--quiet`: the run's logging, for the workers too.
     pub quiet: bool,
+    /// The coordinator's TLS files, for workers connecting over TLS.
+    pub tls: Option<&'a TlsFiles>,
 }
 
 impl LocalWorkers {
@@ -52,6 +55,12 @@ impl LocalWorkers {
             .stdin(Stdio::null());
             if spec.quiet {
                 c.arg("--quiet");
+            }
+            if let Some(t) = spec.tls {
+                c.arg("--tls-ca").arg(&t.ca);
+                if let Some((cert, key)) = &t.identity {
+                    c.arg("--tls-cert").arg(cert).arg("--tls-key").arg(key);
+                }
             }
             w.children.push(c.spawn()?);
         }

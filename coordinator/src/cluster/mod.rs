@@ -11,8 +11,12 @@
 //! - [`verify`]: the checks of a shard result and how many are re-derived;
 //! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
 //! - [`local`]: worker processes on this host (`fixplan run --workers N`);
-//! - [`options`]: how a cluster run is set up; [`cpu_time`]: CPU clocks.
+//! - [`options`]: how a cluster run is set up; [`cpu_time`]: CPU clocks;
+//! - `certs` (feature `tls`): the certificates of mutual TLS
+//!   (`fixplan certs`).
 
+#[cfg(feature = "tls")]
+pub mod certs;
 pub mod cpu_time;
 pub mod distributed;
 pub mod local;

@@ -71,6 +71,13 @@ impl Drop for Proc {
     }
 }
 
+/// A free TCP port on loopback (free when asked: tests that use one hold
+/// [`serial`]).
+pub fn free_port() -> u16 {
+    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    l.local_addr().unwrap().port()
+}
+
 static N: AtomicUsize = AtomicUsize::new(0);
 
 /// A unique name for this test process and call.
