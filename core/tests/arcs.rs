@@ -225,3 +225,66 @@ fn grid_step_two_is_a_subset_of_step_one_with_arcs() {
         }
     }
 }
+
+/// Fraction of the non-borderline fixtures of `a` that `b` has too, by
+/// lattice points, clamp rotation and mount, with a pose angle within
+/// `dtheta` (segment indices differ: a flattened arc is many segments).
+fn matched(a: &[Fixture], b: &[Fixture], dtheta: f64) -> (usize, usize) {
+    let firm: Vec<&Fixture> = a.iter().filter(|f| !f.borderline).collect();
+    let hits = firm
+        .iter()
+        .filter(|f| {
+            b.iter().any(|g| {
+                let d = (g.theta - f.theta).rem_euclid(std::f64::consts::TAU);
+                g.locators == f.locators
+                    && g.rotation == f.rotation
+                    && g.mount == f.mount
+                    && d.min(std::f64::consts::TAU - d) < dtheta
+            })
+        })
+        .count();
+    (hits, firm.len())
+}
+
+/// An arc part and the same part flattened very finely, both with
+/// `edge_trim` 0, give corresponding fixtures: the flattened part's are
+/// (almost all) the exact part's, and the exact part finds most of the
+/// flattened part's and more (its contacts are not lost in the gaps that a
+/// flattened convex arc leaves between the grown chords, about r / R of
+/// its length).
+#[test]
+fn fine_flattening_converges_to_the_exact_arcs() {
+    let shape = [[0., 0., 0.], [4.5, 0., 1.], [4.5, 3., 0.], [0., 3., 0.]];
+    let vs: Vec<Vertex> = shape.iter().map(|&x| x.into()).collect();
+    let flat = fixplan_core::outline::Outline::new(&vs)
+        .unwrap()
+        .flatten(2e-4);
+    let flat: Vec<[f64; 2]> = flat.iter().map(|p| [p.x, p.y]).collect();
+    let mut pr = params(60.0, 1);
+    pr.edge_trim = Some(0.0);
+    let k = kit(Pattern::Square);
+    let exact = prep(&arc_part(&shape, &[]), &k, &pr);
+    let fine = prep(&part(&flat, &[]), &k, &pr);
+    assert!(
+        fine.segments().len() > 60,
+        "{} segments",
+        fine.segments().len()
+    );
+    let (e, f) = (exact.enumerate_all(), fine.enumerate_all());
+    let (hits_f, n_f) = matched(&f.fixtures, &e.fixtures, 2e-3);
+    let (hits_e, n_e) = matched(&e.fixtures, &f.fixtures, 2e-3);
+    println!(
+        "exact {} fixtures, flattened ({} segments) {}; flattened in exact {hits_f}/{n_f}, exact in flattened {hits_e}/{n_e}",
+        e.counts.admissible,
+        fine.segments().len(),
+        f.counts.admissible
+    );
+    assert!(n_f > 100 && hits_f as f64 >= 0.97 * n_f as f64);
+    assert!(hits_e as f64 >= 0.6 * n_e as f64);
+    let best = |fs: &[Fixture]| fs.iter().map(|f| f.score).fold(f64::INFINITY, f64::min);
+    let (be, bf) = (best(&e.fixtures), best(&f.fixtures));
+    assert!(
+        (be - bf).abs() <= 0.01 * be,
+        "best {be} exact vs {bf} flattened"
+    );
+}

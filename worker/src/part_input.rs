@@ -5,8 +5,8 @@
 
 use crate::protocol::Digest;
 use fixplan_core::{
-    prepare, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, PrepareError, PreparedPart,
-    Units,
+    outline::Vertex, prepare, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, PrepareError,
+    PreparedPart, Units,
 };
 use serde::{Deserialize, Serialize};
 use sha2::{Digest as _, Sha256};
@@ -77,9 +77,18 @@ struct WireKit {
     clamp: WireClamp,
 }
 
+/// The part with every vertex as `(x, y, bulge)`: a vertex's file form
+/// (`[x, y]` or `[x, y, b]`) has a varying length, which postcard's
+/// tuples cannot carry.
+#[derive(Serialize, Deserialize)]
+struct WirePart {
+    outline: Vec<(f64, f64, f64)>,
+    access: Vec<Vec<[f64; 2]>>,
+}
+
 #[derive(Serialize, Deserialize)]
 struct WireInput {
-    part: Part,
+    part: WirePart,
     kit: WireKit,
     params: Params,
     units: Units,
@@ -90,7 +99,15 @@ impl PartInput {
     pub fn encode(&self) -> Result<Vec<u8>, InputError> {
         let k = &self.kit;
         let w = WireInput {
-            part: self.part.clone(),
+            part: WirePart {
+                outline: self
+                    .part
+                    .outline
+                    .iter()
+                    .map(|v| (v.x, v.y, v.bulge))
+                    .collect(),
+                access: self.part.access.clone(),
+            },
             kit: WireKit {
                 spacing: k.spacing,
                 cols: k.cols,
@@ -121,7 +138,15 @@ impl PartInput {
         let w: WireInput = postcard::from_bytes(bytes).map_err(InputError::Decode)?;
         let c = w.kit.clamp;
         Ok(PartInput {
-            part: w.part,
+            part: Part {
+                outline: w
+                    .part
+                    .outline
+                    .iter()
+                    .map(|&(x, y, b)| Vertex::new(x, y, b))
+                    .collect(),
+                access: w.part.access,
+            },
             kit: Kit {
                 spacing: w.kit.spacing,
                 cols: w.kit.cols,
@@ -189,8 +214,11 @@ mod tests {
             serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json")).unwrap();
         let mut params = case.params.clone();
         params.wrenches = Some(vec![[0.1, 1.0 / 3.0, -7.25e-3]]);
+        let mut part = case.part();
+        // An arc (SPEC 8.1): a vertex with a bulge crosses the wire too.
+        part.outline[1].bulge = -0.375;
         let input = PartInput {
-            part: case.part(),
+            part,
             kit: case.kit.clone(),
             params,
             units: case.units,
