@@ -15,6 +15,7 @@ use crate::ranking::{Fixture, TopK};
 use crate::report::Counts;
 use crate::segments::{arc_inward_normal, Feature, LineFeature, Segment};
 use crate::setups::{lattice_point, Setup};
+use nalgebra::Vector3;
 
 /// Counts and best fixtures of one piece of work: one per thread, merged
 /// at the end, so the inner loop shares nothing.
@@ -115,8 +116,12 @@ impl PreparedPart {
         acc.counts.setups += 1;
         let pose = setup.pose;
         let locs = setup.locators.map(lattice_point);
-        let normals = [0, 1, 2].map(|k| self.plate_normal(setup.combo[k], &pose, locs[k]));
-        let ws = [0, 1, 2].map(|k| wrench(locs[k], normals[k]));
+        let mut normals = [V2::zeros(); 3];
+        let mut ws = [Vector3::zeros(); 3];
+        for k in 0..3 {
+            normals[k] = self.plate_normal(setup.combo[k], &pose, locs[k]);
+            ws[k] = wrench(locs[k], normals[k]);
+        }
         let Some(lw) = LocatorWrenches::new(ws) else {
             return;
         };
@@ -141,7 +146,7 @@ impl PreparedPart {
 
     /// Inward normal in the plate frame of a contact centred at `q` on
     /// segment `seg` of the posed part (SPEC 4 and 8.3).
-    #[inline]
+    #[inline(always)]
     fn plate_normal(&self, seg: usize, pose: &Pose, q: V2) -> V2 {
         match &self.segments[seg].feature {
             Feature::Line(l) => -pose.rotate(l.n),
@@ -163,11 +168,15 @@ impl PreparedPart {
     ) {
         let pose = ctx.setup.pose;
         let f = -pose.rotate(line.n);
-        let angle_margins = [0, 1, 2, 3].map(|k| {
-            let wanted = ctx.only_rotation.is_none_or(|ok| ok == k);
-            wanted.then(|| self.angle_margin(k, f)).flatten()
-        });
-        if angle_margins.iter().all(Option::is_none) {
+        let mut angle_margins = [None; 4];
+        let mut any = false;
+        for (k, m) in (0..4u8).zip(angle_margins.iter_mut()) {
+            if ctx.only_rotation.is_none_or(|ok| ok == k) {
+                *m = self.angle_margin(k, f);
+                any |= m.is_some();
+            }
+        }
+        if !any {
             return;
         }
         let q0 = pose.apply(line.origin);

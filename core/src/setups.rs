@@ -11,7 +11,7 @@ use crate::geometry::{v2, V2};
 use crate::input::Pattern;
 use crate::pose::{solve_poses, Line, Pose};
 use crate::prepare::{PairBounds, PreparedPart};
-use crate::segments::Feature;
+use crate::segments::{Feature, Segment};
 
 /// Slack on annulus bounds, far above rounding and far below a lattice step.
 const ANNULUS_SLACK: f64 = 1e-7;
@@ -68,13 +68,27 @@ impl PreparedPart {
             // Polygons: SPEC 3's closed form, as before arcs.
             let (poses, count) = solve_poses(&[a, b, c], &locs);
             for pose in &poses[..count] {
-                self.visit_pose(combo, locs_i, pose, false, &mut visit);
+                self.visit_pose(combo, &segs, locs_i, &locs, pose, false, &mut visit);
             }
             return count;
         }
-        let poses = solve_contact_poses(&segs.map(|s| s.contact()), &locs);
+        self.curved_setups(combo, &segs, locs_i, &locs, &mut visit)
+    }
+
+    /// [`Self::setups_for_locators`] when a segment is an arc (SPEC 8.4),
+    /// kept out of line so the polygon loop stays as small as it was.
+    #[inline(never)]
+    fn curved_setups(
+        &self,
+        combo: [usize; 3],
+        segs: &[&Segment; 3],
+        locators: [[i64; 2]; 3],
+        locs: &[V2; 3],
+        visit: &mut impl FnMut(&Setup),
+    ) -> usize {
+        let poses = solve_contact_poses(&segs.map(|s| s.contact()), locs);
         for p in poses.iter() {
-            self.visit_pose(combo, locs_i, &p.pose, p.tangential, &mut visit);
+            self.visit_pose(combo, segs, locators, locs, &p.pose, p.tangential, visit);
         }
         poses.len()
     }
@@ -82,10 +96,14 @@ impl PreparedPart {
     /// Keeps a pose whose contacts lie strictly inside their segments, in
     /// canonical order on a shared segment. A tangential pose (SPEC 8.4)
     /// counts once and is borderline: its margin is zero.
+    #[inline]
+    #[allow(clippy::too_many_arguments)] // the setup's parts, unpacked once per lattice pair
     fn visit_pose(
         &self,
         combo: [usize; 3],
+        segs: &[&Segment; 3],
         locators: [[i64; 2]; 3],
+        locs: &[V2; 3],
         pose: &Pose,
         tangential: bool,
         visit: &mut impl FnMut(&Setup),
@@ -93,10 +111,9 @@ impl PreparedPart {
         let mut s = [0.0; 3];
         let mut margin = if tangential { 0.0 } else { f64::INFINITY };
         for k in 0..3 {
-            let seg = &self.segments[combo[k]];
-            let p = pose.inverse_apply(lattice_point(locators[k]));
-            s[k] = seg.param_of(p);
-            let m = seg.inner_margin(s[k]);
+            let p = pose.inverse_apply(locs[k]);
+            s[k] = segs[k].param_of(p);
+            let m = segs[k].inner_margin(s[k]);
             if m <= 0.0 {
                 return;
             }

@@ -37,6 +37,9 @@ pub struct Outline {
     /// The vertex positions, kept because point location runs in the
     /// clearance tests of every candidate fixture.
     points: Vec<V2>,
+    /// Whether an edge is an arc: asked once per clamp placement, where
+    /// polygons take their own faster path.
+    has_arcs: bool,
 }
 
 impl Outline {
@@ -46,10 +49,12 @@ impl Outline {
         let vertices = validate_outline(vertices)?;
         let edges = edges_of(&vertices);
         let points = vertices.iter().map(Vertex::point).collect();
+        let has_arcs = edges.iter().any(Edge::is_arc);
         Ok(Outline {
             vertices,
             edges,
             points,
+            has_arcs,
         })
     }
 
@@ -76,7 +81,7 @@ impl Outline {
 
     /// Whether any edge is an arc.
     pub fn has_arcs(&self) -> bool {
-        self.edges.iter().any(Edge::is_arc)
+        self.has_arcs
     }
 
     /// Area, centroid and polar moment of the true region (SPEC 6, 8.1).
