@@ -10,7 +10,7 @@
 //! distance function crosses `r - eps` only at cuts.
 
 use super::line::complement;
-use super::{Feature, LineFeature, Segment};
+use super::segment::{Feature, LineFeature, Segment};
 use crate::arc::{circle_circle, GrownArc};
 use crate::geometry::{boundary_distance2, cross, point_in_polygon, v2, EPS, V2};
 use crate::outline::{Edge, GrownEdge, Outline};

@@ -3,7 +3,7 @@
 //! without arcs take this path, the one fixplan had before arcs, so their
 //! segments stay bit for bit what they were.
 
-use super::{Feature, LineFeature, Segment};
+use super::segment::{Feature, LineFeature, Segment};
 use crate::geometry::{cross, point_in_polygon, v2, EPS, V2};
 
 /// The segments of a CCW polygon with access constraints, all in lattice

@@ -1,0 +1,208 @@
+//! A usable segment and what it lies on: a grown line or a grown arc, with
+//! its contact parameter, inward normals and distance bounds (SPEC 2, 8.2,
+//! 8.3).
+
+use crate::arc::{arc_arc_closest, segment_arc_closest, CircArc, GrownArc};
+use crate::contact_pose::{Circle, Contact};
+use crate::geometry::{segment_segment_dist2, EPS, V2};
+use crate::pose::Line;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A grown edge line: where a segment of a straight part edge lies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineFeature {
+    /// Start of the grown edge (`v_i + r n`): the origin of `s`.
+    pub origin: V2,
+    /// Unit direction of the edge (CCW).
+    pub u: V2,
+    /// Outward unit normal.
+    pub n: V2,
+    /// Right-hand side of the grown edge line `n . p = c`.
+    pub c: f64,
+}
+
+/// What a segment lies on, in the part frame (lattice units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Feature {
+    /// A grown straight edge; `s` runs along `u` from `origin`.
+    Line(LineFeature),
+    /// A grown arc (SPEC 8.2); `s` is the arc length from its start.
+    Arc(GrownArc),
+}
+
+/// The kind of a segment, as results list it (SPEC 8.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum SegmentKind {
+    /// On a straight part edge.
+    Line,
+    /// On a circular arc of the part.
+    Arc,
+}
+
+/// One usable segment in the part frame (lattice units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// Index of the part edge it comes from.
+    pub edge: usize,
+    /// Contact parameters of the segment's ends; contacts lie strictly inside.
+    pub s0: f64,
+    /// See `s0`.
+    pub s1: f64,
+    /// The grown line or arc the segment is a piece of.
+    pub feature: Feature,
+}
+
+impl Segment {
+    /// Line or arc.
+    pub fn kind(&self) -> SegmentKind {
+        match self.feature {
+            Feature::Line(_) => SegmentKind::Line,
+            Feature::Arc(_) => SegmentKind::Arc,
+        }
+    }
+
+    /// The contact centre at parameter `s` (on the grown line or arc).
+    #[inline]
+    pub fn point(&self, s: f64) -> V2 {
+        match &self.feature {
+            Feature::Line(l) => l.origin + l.u * s,
+            Feature::Arc(a) => a.point_at(s),
+        }
+    }
+
+    /// The contact parameter of a point on the grown line or arc (its
+    /// projection, for a point slightly off it).
+    #[inline]
+    pub fn param_of(&self, p: V2) -> f64 {
+        match &self.feature {
+            Feature::Line(l) => l.u.dot(&(p - l.origin)),
+            Feature::Arc(a) => a.param_of(p),
+        }
+    }
+
+    /// The inward unit normal (into the part) of a contact centred at `p`,
+    /// part frame: `-n` on a line; on an arc SPEC 8.3's `(C - p) / rho_e`
+    /// (convex) or `(p - C) / rho_e` (concave), through the centre.
+    #[inline]
+    pub fn inward_normal(&self, p: V2) -> V2 {
+        match &self.feature {
+            Feature::Line(l) => -l.n,
+            Feature::Arc(a) => arc_inward_normal(a.center, a.radius, a.is_convex(), p),
+        }
+    }
+
+    /// What the pose solver puts a locator centre on.
+    pub fn contact(&self) -> Contact {
+        match &self.feature {
+            Feature::Line(l) => Contact::Line(Line { n: l.n, c: l.c }),
+            Feature::Arc(a) => Contact::Circle(Circle {
+                centre: a.center,
+                radius: a.radius,
+            }),
+        }
+    }
+
+    /// Whether `s` lies strictly inside (by more than eps), and by how much.
+    #[inline]
+    pub fn inner_margin(&self, s: f64) -> f64 {
+        (s - self.s0).min(self.s1 - s) - EPS
+    }
+
+    /// First end (parameter `s0`); with [`Self::end`] it bounds the
+    /// distances that prune locator positions.
+    pub fn start(&self) -> V2 {
+        self.point(self.s0)
+    }
+
+    /// Last end (parameter `s1`).
+    pub fn end(&self) -> V2 {
+        self.point(self.s1)
+    }
+
+    /// The piece of arc the segment covers, `None` on a line.
+    pub fn arc_piece(&self) -> Option<CircArc> {
+        let Feature::Arc(a) = &self.feature else {
+            return None;
+        };
+        let sweep = a.sweep.signum() * (self.s1 - self.s0) / a.radius;
+        Some(CircArc {
+            a: self.start(),
+            b: self.end(),
+            center: a.center,
+            radius: a.radius,
+            bulge: (sweep / 4.0).tan(),
+            sweep,
+        })
+    }
+}
+
+/// Smallest and largest distance between a point of `a` and a point of
+/// `b`: the annulus that prunes where locators on `a` and `b` can be.
+///
+/// Exact for two lines (end points, the code of polygons) and for a line
+/// and an arc (the farthest point of an arc is a convex function of the
+/// other point, so it peaks at the line's ends); between two arcs the
+/// largest distance is sampled and bounded above by its Lipschitz slack.
+pub fn distance_range(a: &Segment, b: &Segment) -> (f64, f64) {
+    let (pa, pb) = (a.arc_piece(), b.arc_piece());
+    match (pa, pb) {
+        (None, None) => {
+            let dmin = segment_segment_dist2(a.start(), a.end(), b.start(), b.end()).sqrt();
+            let dmax = [
+                (a.start() - b.start()).norm(),
+                (a.start() - b.end()).norm(),
+                (a.end() - b.start()).norm(),
+                (a.end() - b.end()).norm(),
+            ]
+            .into_iter()
+            .fold(0.0, f64::max);
+            (dmin, dmax)
+        }
+        (Some(arc), None) | (None, Some(arc)) => {
+            let line = if pa.is_some() { b } else { a };
+            let dmin = segment_arc_closest(line.start(), line.end(), &arc).distance;
+            let dmax = farthest_on_arc(&arc, line.start()).max(farthest_on_arc(&arc, line.end()));
+            (dmin, dmax)
+        }
+        (Some(p), Some(q)) => {
+            let dmin = arc_arc_closest(&p, &q).distance;
+            // Samples `step` apart along p: every point of p is within
+            // step / 2 of one, and the farthest distance is 1-Lipschitz.
+            const SAMPLES: usize = 64;
+            let step = p.length() / SAMPLES as f64;
+            let dmax = (0..=SAMPLES)
+                .map(|k| farthest_on_arc(&q, p.point_at(k as f64 / SAMPLES as f64)))
+                .fold(0.0, f64::max)
+                + 0.5 * step;
+            (dmin, dmax)
+        }
+    }
+}
+
+/// Largest distance from `p` to a point of `arc`: an end, or the point
+/// opposite `p` across the centre when the arc reaches it.
+fn farthest_on_arc(arc: &CircArc, p: V2) -> f64 {
+    let ends = (p - arc.a).norm().max((p - arc.b).norm());
+    let w = arc.center - p;
+    let d = w.norm();
+    if d > 0.0 && arc.contains_on_circle(arc.center + w * (arc.radius / d), 0.0) {
+        ends.max(d + arc.radius)
+    } else if d == 0.0 {
+        ends.max(arc.radius)
+    } else {
+        ends
+    }
+}
+
+/// SPEC 8.3's inward normal of a contact centred at `q` on a grown circle
+/// of centre `center` and radius `rho` (any frame).
+#[inline]
+pub fn arc_inward_normal(center: V2, rho: f64, convex: bool, q: V2) -> V2 {
+    if convex {
+        (center - q) / rho
+    } else {
+        (q - center) / rho
+    }
+}
