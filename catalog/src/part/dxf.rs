@@ -519,20 +519,3 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
     pair(0, "EOF");
     s
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    use crate::part::outline::{bulge_points, dist};
-
-    #[test]
-    fn bulge_one_is_a_half_circle() {
-        let pts = bulge_points([1.0, 0.0], [-1.0, 0.0], 1.0, 0.01);
-        assert!(!pts.is_empty());
-        for p in &pts {
-            assert!((dist(*p, [0.0, 0.0]) - 1.0).abs() < 1e-12);
-            assert!(p[1] > 0.0, "CCW from (1,0) to (-1,0) passes above");
-        }
-    }
-}

@@ -431,6 +431,16 @@ mod tests {
     }
 
     #[test]
+    fn bulge_one_is_a_half_circle() {
+        let pts = bulge_points([1.0, 0.0], [-1.0, 0.0], 1.0, 0.01);
+        assert!(!pts.is_empty());
+        for p in &pts {
+            assert!((dist(*p, [0.0, 0.0]) - 1.0).abs() < 1e-12);
+            assert!(p[1] > 0.0, "CCW from (1,0) to (-1,0) passes above");
+        }
+    }
+
+    #[test]
     fn reversed_pieces_keep_their_arcs() {
         // A half circle from (1, 0) over the top to (-1, 0), then a line back;
         // the arc drawn backwards (clockwise from (-1, 0)) must give the
