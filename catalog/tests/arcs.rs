@@ -10,18 +10,15 @@ use fixplan_catalog::{
     load_catalog, load_catalog_with, parse_part, ArcMode, Format, LoadOptions, ReadOptions,
 };
 use fixplan_core::outline::{mass_properties, Outline, Vertex};
-use fixplan_core::{Part, Units};
+use fixplan_core::Part;
 use std::f64::consts::{FRAC_PI_4, PI};
 
 fn exact() -> ReadOptions {
-    ReadOptions::new(Units::Mm)
+    opts_mm()
 }
 
 fn flat() -> ReadOptions {
-    ReadOptions {
-        arcs: ArcMode::Flatten,
-        ..exact()
-    }
+    flat_mm()
 }
 
 fn v(x: f64, y: f64, b: f64) -> Vertex {
@@ -55,12 +52,7 @@ fn arcs(p: &Part) -> usize {
 }
 
 fn dxf(pairs: &[(i32, &str)]) -> String {
-    let mut s = String::from("  0\nSECTION\n  2\nENTITIES\n");
-    for (c, val) in pairs {
-        s.push_str(&format!("{c:>3}\n{val}\n"));
-    }
-    s.push_str("  0\nENDSEC\n  0\nEOF\n");
-    s
+    r12(pairs)
 }
 
 #[test]

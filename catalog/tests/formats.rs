@@ -6,35 +6,8 @@
 
 mod common;
 use common::*;
-use fixplan_catalog::{parse_part, read_raw, ArcMode, Format, LengthUnit, ReadOptions};
+use fixplan_catalog::{parse_part, read_raw, Format, LengthUnit, ReadOptions};
 use fixplan_core::Units;
-
-fn opts_mm() -> ReadOptions {
-    ReadOptions::new(Units::Mm)
-}
-
-/// Arcs flattened, as fixplan read them before exact arcs.
-fn flat_mm() -> ReadOptions {
-    ReadOptions {
-        arcs: ArcMode::Flatten,
-        ..opts_mm()
-    }
-}
-
-fn dxf_text(pairs: &[(i32, &str)]) -> String {
-    pairs
-        .iter()
-        .map(|(c, v)| format!("{c:>3}\n{v}\n"))
-        .collect()
-}
-
-/// An R12 ENTITIES section around `body` code pairs.
-fn r12(body: &[(i32, &str)]) -> String {
-    let mut v = vec![(0, "SECTION"), (2, "ENTITIES")];
-    v.extend_from_slice(body);
-    v.extend_from_slice(&[(0, "ENDSEC"), (0, "EOF")]);
-    dxf_text(&v)
-}
 
 fn line(
     layer: &'static str,
