@@ -124,40 +124,10 @@ fn dxf_lwpolyline_bulges_are_exact_and_mirrored_with_the_extrusion() {
 fn dxf_arcs_joined_backwards_keep_exact_bulges() {
     // The first LINE runs against the arcs, so both ARCs are appended
     // reversed: clockwise half circles, bulge -1.
-    let mut body = vec![
-        (0, "LINE"),
-        (8, "0"),
-        (10, "-30"),
-        (20, "25"),
-        (11, "30"),
-        (21, "25"),
-    ];
-    body.extend([
-        (0, "ARC"),
-        (8, "0"),
-        (10, "30"),
-        (20, "0"),
-        (40, "25"),
-        (50, "270"),
-        (51, "90"),
-    ]);
-    body.extend([
-        (0, "LINE"),
-        (8, "0"),
-        (10, "30"),
-        (20, "-25"),
-        (11, "-30"),
-        (21, "-25"),
-    ]);
-    body.extend([
-        (0, "ARC"),
-        (8, "0"),
-        (10, "-30"),
-        (20, "0"),
-        (40, "25"),
-        (50, "90"),
-        (51, "270"),
-    ]);
+    let mut body = line("0", ["-30", "25"], ["30", "25"]);
+    body.extend(arc_entity(["30", "0"], "25", "270", "90"));
+    body.extend(line("0", ["30", "-25"], ["-30", "-25"]));
+    body.extend(arc_entity(["-30", "0"], "25", "90", "270"));
     let p = read(&dxf(&body), Format::Dxf, &exact());
     assert_eq!(p.outline.len(), 4, "{:?}", p.outline);
     assert_eq!(arcs(&p), 2);

@@ -36,6 +36,40 @@ pub fn r12(body: &[(i32, &str)]) -> String {
 }
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+/// A LINE entity on `layer` from `a` to `b`.
+pub fn line(
+    layer: &'static str,
+    a: [&'static str; 2],
+    b: [&'static str; 2],
+) -> Vec<(i32, &'static str)> {
+    vec![
+        (0, "LINE"),
+        (8, layer),
+        (10, a[0]),
+        (20, a[1]),
+        (11, b[0]),
+        (21, b[1]),
+    ]
+}
+
+/// An ARC entity on layer 0: centre, radius, start and end angles (degrees).
+pub fn arc_entity(
+    c: [&'static str; 2],
+    r: &'static str,
+    a0: &'static str,
+    a1: &'static str,
+) -> Vec<(i32, &'static str)> {
+    vec![
+        (0, "ARC"),
+        (8, "0"),
+        (10, c[0]),
+        (20, c[1]),
+        (40, r),
+        (50, a0),
+        (51, a1),
+    ]
+}
+
 /// A fresh directory under the system temp dir, unique per call.
 pub fn temp_dir(tag: &str) -> PathBuf {
     static N: AtomicUsize = AtomicUsize::new(0);

@@ -9,21 +9,6 @@ use common::*;
 use fixplan_catalog::{parse_part, read_raw, Format, LengthUnit, ReadOptions};
 use fixplan_core::Units;
 
-fn line(
-    layer: &'static str,
-    a: [&'static str; 2],
-    b: [&'static str; 2],
-) -> Vec<(i32, &'static str)> {
-    vec![
-        (0, "LINE"),
-        (8, layer),
-        (10, a[0]),
-        (20, a[1]),
-        (11, b[0]),
-        (21, b[1]),
-    ]
-}
-
 #[test]
 fn dxf_r12_polyline_with_bulges_and_line_access() {
     let bytes = std::fs::read(fixture("r12_bulge_polyline.dxf")).unwrap();
@@ -76,25 +61,9 @@ fn dxf_r2000_inches_crlf_paper_space_hole_and_keepout() {
 fn dxf_line_arc_chain_joins_in_any_order_and_direction() {
     let mut body = Vec::new();
     body.extend(line("0", ["30", "25"], ["-30", "25"]));
-    body.extend(vec![
-        (0, "ARC"),
-        (8, "0"),
-        (10, "30"),
-        (20, "0"),
-        (40, "25"),
-        (50, "270"),
-        (51, "90"),
-    ]);
+    body.extend(arc_entity(["30", "0"], "25", "270", "90"));
     body.extend(line("0", ["30", "-25"], ["-30", "-25"])); // reversed
-    body.extend(vec![
-        (0, "ARC"),
-        (8, "0"),
-        (10, "-30"),
-        (20, "0"),
-        (40, "25"),
-        (50, "90"),
-        (51, "270"),
-    ]);
+    body.extend(arc_entity(["-30", "0"], "25", "90", "270"));
     let mut o = flat_mm();
     o.chord_tolerance = 0.05;
     let (part, w) = parse_part(r12(&body).as_bytes(), Format::Dxf, &o).unwrap();
