@@ -12,6 +12,7 @@
 //! name = "sample"
 //! units = "mm"               # "mm" or "in": every part is converted to it
 //! chord_tolerance = 0.2      # optional, catalogue units (default 0.05 mm)
+//! arcs = "exact"             # optional: "exact" (default) or "flatten"
 //!
 //! [[part]]
 //! id = "bracket-7"
@@ -22,9 +23,18 @@
 //!
 //! [[part]]
 //! id = "plate"
-//! outline = [[0, 0], [80, 0], [80, 50], [0, 50]]
+//! outline = [[0, 0], [80, 0], [80, 50, 1], [0, 50]]   # [x, y, bulge]: an arc
 //! access = [[[10, 40], [30, 40], [30, 60], [10, 60]]]
 //! ```
+//!
+//! **Arcs.** Circular arcs (DXF bulges, ARC and CIRCLE entities, SVG `A`
+//! commands with equal radii under a similarity transform, SVG circles,
+//! `[x, y, bulge]` vertices) are read as exact arcs, SPEC section 8.
+//! `arcs = "flatten"` (or [`LoadOptions::arcs`], the command line's
+//! `--arcs flatten`) cuts them into chords within the chord tolerance as
+//! fixplan did before arcs, for comparison. Ellipses, splines and Bézier
+//! curves are always flattened within the chord tolerance (an ellipse with
+//! equal axes is a circle and exact); access constraints are polygons.
 //!
 //! An entry may also give `units` (the file's units when the file does not
 //! say) and `chord_tolerance`; `access` polygons of an entry with a `file`
@@ -41,7 +51,7 @@ pub use kit::{builtin_kit_names, load_kit, KitSpec};
 pub use manifest::{load_catalog, load_catalog_with, Catalog, CatalogPart, LoadOptions, MANIFEST};
 pub use part::{
     parse_part, read_dxf, read_json, read_raw, read_svg, validate_part, write_dxf, write_json,
-    write_svg, DxfError, Format, InvalidPolygon, JsonError, ParseError, PolygonProblem,
+    write_svg, ArcMode, DxfError, Format, InvalidPolygon, JsonError, ParseError, PolygonProblem,
     PolygonRole, RawPart, ReadError, ReadOptions, SvgError,
 };
 pub use units::LengthUnit;

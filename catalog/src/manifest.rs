@@ -3,8 +3,11 @@
 //! so that one broken part never stops the others.
 
 use crate::error::{part_name, CatalogError, EntryProblem, PartError, PartErrorKind};
-use crate::part::{read_raw, validate_part, Format, RawPart, ReadOptions};
+use crate::part::{
+    flatten_vertices, read_raw, validate_part, ArcMode, Format, RawPart, ReadOptions,
+};
 use crate::units::{self, LengthUnit};
+use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -95,6 +98,9 @@ pub struct LoadOptions {
     /// Largest gap closed when joining DXF entities into loops, catalogue
     /// units; default 0.01 mm.
     pub join_tolerance: Option<f64>,
+    /// Circular arcs exact or flattened within the chord tolerance.
+    /// Overrides the manifest's `arcs`; default exact.
+    pub arcs: Option<ArcMode>,
 }
 
 /// The manifest's file name, looked for when a directory is given.
@@ -133,14 +139,17 @@ fn invalid(path: &Path, message: impl Into<String>) -> CatalogError {
     }
 }
 
-fn read_options(units: Units, opts: &LoadOptions, manifest_tol: Option<f64>) -> ReadOptions {
+/// The read options of a catalogue: the caller's choices, else the
+/// manifest's (`manifest` is the default [`Header`] for a directory).
+fn read_options(units: Units, opts: &LoadOptions, manifest: &Header) -> ReadOptions {
     let mut r = ReadOptions::new(units);
-    if let Some(t) = opts.chord_tolerance.or(manifest_tol) {
+    if let Some(t) = opts.chord_tolerance.or(manifest.chord_tolerance) {
         r.chord_tolerance = t;
     }
     if let Some(t) = opts.join_tolerance {
         r.join_tolerance = t;
     }
+    r.arcs = opts.arcs.or(manifest.arcs).unwrap_or_default();
     r
 }
 
@@ -153,7 +162,7 @@ fn dir_name(p: &Path) -> String {
 
 fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogError> {
     let units = opts.units.unwrap_or(Units::Mm);
-    let ropts = read_options(units, opts, None);
+    let ropts = read_options(units, opts, &Header::default());
     let entries = std::fs::read_dir(dir).map_err(|source| CatalogError::Io {
         path: dir.to_path_buf(),
         source,
@@ -204,7 +213,7 @@ fn read_file_part(
 /// [`validate_part`], keeping what was read in the error.
 fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErrorKind> {
     let read = Part {
-        outline: raw.outline.iter().map(|&p| p.into()).collect(),
+        outline: raw.outline.clone(),
         access: raw.access.clone(),
     };
     validate_part(raw, units).map_err(|problem| PartErrorKind::Invalid {
@@ -213,17 +222,26 @@ fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErro
     })
 }
 
-/// Validates an entry's inline outline and access polygons, given in the
-/// entry's units (`ropts.fallback`), else the catalogue's.
+/// Validates an entry's inline outline (`[x, y]` or `[x, y, bulge]`
+/// vertices, arcs flattened with [`ArcMode::Flatten`]) and access
+/// polygons, given in the entry's units (`ropts.fallback`), else the
+/// catalogue's.
 fn inline_part(
-    outline: &[[f64; 2]],
+    outline: &[Vertex],
     access: &[Vec<[f64; 2]>],
     ropts: &ReadOptions,
 ) -> Result<(Part, Vec<String>), PartErrorKind> {
     let k = ropts.fallback.factor_to(ropts.units);
     let sc = |p: &[[f64; 2]]| p.iter().map(|q| [q[0] * k, q[1] * k]).collect();
+    let mut outline: Vec<Vertex> = outline
+        .iter()
+        .map(|v| Vertex::new(v.x * k, v.y * k, v.bulge))
+        .collect();
+    if ropts.arcs.flatten() {
+        outline = flatten_vertices(&outline, true, ropts.chord_tolerance);
+    }
     let raw = RawPart {
-        outline: sc(outline),
+        outline,
         access: access.iter().map(|a| sc(a)).collect(),
         warnings: Vec::new(),
     };
@@ -237,7 +255,7 @@ struct Entry {
     #[serde(default)]
     file: Option<PathBuf>,
     #[serde(default)]
-    outline: Option<Vec<[f64; 2]>>,
+    outline: Option<Vec<Vertex>>,
     #[serde(default)]
     access: Vec<Vec<[f64; 2]>>,
     #[serde(default)]
@@ -255,14 +273,16 @@ struct Entry {
 /// Where an entry's polygons come from.
 enum Geometry<'a> {
     File(&'a Path),
-    Outline(&'a [[f64; 2]]),
+    Outline(&'a [Vertex]),
 }
 
 /// The manifest's top-level fields.
+#[derive(Default)]
 struct Header {
     name: String,
     units: Units,
     chord_tolerance: Option<f64>,
+    arcs: Option<ArcMode>,
     entries: Vec<toml::Value>,
 }
 
@@ -278,7 +298,7 @@ fn load_manifest(path: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
     let header = read_header(&mut table, path, base)?;
     let ctx = EntryContext {
         base,
-        ropts: read_options(header.units, opts, header.chord_tolerance),
+        ropts: read_options(header.units, opts, &header),
         chord_tolerance_given: opts.chord_tolerance.is_some(),
     };
     let mut seen = HashMap::new();
@@ -320,6 +340,21 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
             )
         })?),
     };
+    let arcs = match table.remove("arcs") {
+        None => None,
+        Some(toml::Value::String(s)) => Some(ArcMode::parse(&s).ok_or_else(|| {
+            invalid(
+                path,
+                format!("arcs = \"{s}\": expected \"exact\" (arcs kept, the default) or \"flatten\" (arcs cut into chords within chord_tolerance)"),
+            )
+        })?),
+        Some(v) => {
+            return Err(invalid(
+                path,
+                format!("arcs {v} is not a string: expected \"exact\" or \"flatten\""),
+            ))
+        }
+    };
     let entries = match table.remove("part") {
         None => Vec::new(),
         Some(toml::Value::Array(a)) => a,
@@ -328,13 +363,14 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
     if let Some(k) = table.keys().next() {
         return Err(invalid(
             path,
-            format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, part)"),
+            format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, arcs, part)"),
         ));
     }
     Ok(Header {
         name,
         units,
         chord_tolerance,
+        arcs,
         entries,
     })
 }

@@ -2,8 +2,73 @@
 #![allow(dead_code, missing_docs)] // test helpers, documented where they are used
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
+use fixplan_catalog::{ArcMode, ReadOptions};
+use fixplan_core::Units;
 use std::path::{Path, PathBuf};
+
+/// Read options of an mm catalogue, arcs exact (the default).
+pub fn opts_mm() -> ReadOptions {
+    ReadOptions::new(Units::Mm)
+}
+
+/// Arcs flattened, as fixplan read them before exact arcs.
+pub fn flat_mm() -> ReadOptions {
+    ReadOptions {
+        arcs: ArcMode::Flatten,
+        ..opts_mm()
+    }
+}
+
+/// DXF group code/value pairs as file text.
+pub fn dxf_text(pairs: &[(i32, &str)]) -> String {
+    pairs
+        .iter()
+        .map(|(c, v)| format!("{c:>3}\n{v}\n"))
+        .collect()
+}
+
+/// An R12 ENTITIES section around `body` code pairs.
+pub fn r12(body: &[(i32, &str)]) -> String {
+    let mut v = vec![(0, "SECTION"), (2, "ENTITIES")];
+    v.extend_from_slice(body);
+    v.extend_from_slice(&[(0, "ENDSEC"), (0, "EOF")]);
+    dxf_text(&v)
+}
 use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// A LINE entity on `layer` from `a` to `b`.
+pub fn line(
+    layer: &'static str,
+    a: [&'static str; 2],
+    b: [&'static str; 2],
+) -> Vec<(i32, &'static str)> {
+    vec![
+        (0, "LINE"),
+        (8, layer),
+        (10, a[0]),
+        (20, a[1]),
+        (11, b[0]),
+        (21, b[1]),
+    ]
+}
+
+/// An ARC entity on layer 0: centre, radius, start and end angles (degrees).
+pub fn arc_entity(
+    c: [&'static str; 2],
+    r: &'static str,
+    a0: &'static str,
+    a1: &'static str,
+) -> Vec<(i32, &'static str)> {
+    vec![
+        (0, "ARC"),
+        (8, "0"),
+        (10, c[0]),
+        (20, c[1]),
+        (40, r),
+        (50, a0),
+        (51, a1),
+    ]
+}
 
 /// A fresh directory under the system temp dir, unique per call.
 pub fn temp_dir(tag: &str) -> PathBuf {

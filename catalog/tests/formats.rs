@@ -1,5 +1,7 @@
 //! Every format: DXF (R12 and R2000, other tools' files, bulges, LINE/ARC
-//! chains, units), SVG (commands, transforms, units, access), JSON.
+//! chains, units), SVG (commands, transforms, units, access), JSON. What
+//! is about flattening curves reads with `arcs = "flatten"`; exact arcs
+//! are in `arcs.rs`.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 mod common;
@@ -7,44 +9,10 @@ use common::*;
 use fixplan_catalog::{parse_part, read_raw, Format, LengthUnit, ReadOptions};
 use fixplan_core::Units;
 
-fn opts_mm() -> ReadOptions {
-    ReadOptions::new(Units::Mm)
-}
-
-fn dxf_text(pairs: &[(i32, &str)]) -> String {
-    pairs
-        .iter()
-        .map(|(c, v)| format!("{c:>3}\n{v}\n"))
-        .collect()
-}
-
-/// An R12 ENTITIES section around `body` code pairs.
-fn r12(body: &[(i32, &str)]) -> String {
-    let mut v = vec![(0, "SECTION"), (2, "ENTITIES")];
-    v.extend_from_slice(body);
-    v.extend_from_slice(&[(0, "ENDSEC"), (0, "EOF")]);
-    dxf_text(&v)
-}
-
-fn line(
-    layer: &'static str,
-    a: [&'static str; 2],
-    b: [&'static str; 2],
-) -> Vec<(i32, &'static str)> {
-    vec![
-        (0, "LINE"),
-        (8, layer),
-        (10, a[0]),
-        (20, a[1]),
-        (11, b[0]),
-        (21, b[1]),
-    ]
-}
-
 #[test]
 fn dxf_r12_polyline_with_bulges_and_line_access() {
     let bytes = std::fs::read(fixture("r12_bulge_polyline.dxf")).unwrap();
-    let mut o = opts_mm();
+    let mut o = flat_mm();
     o.chord_tolerance = 0.01;
     let (part, warnings) = parse_part(&bytes, Format::Dxf, &o).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
@@ -93,26 +61,10 @@ fn dxf_r2000_inches_crlf_paper_space_hole_and_keepout() {
 fn dxf_line_arc_chain_joins_in_any_order_and_direction() {
     let mut body = Vec::new();
     body.extend(line("0", ["30", "25"], ["-30", "25"]));
-    body.extend(vec![
-        (0, "ARC"),
-        (8, "0"),
-        (10, "30"),
-        (20, "0"),
-        (40, "25"),
-        (50, "270"),
-        (51, "90"),
-    ]);
+    body.extend(arc_entity(["30", "0"], "25", "270", "90"));
     body.extend(line("0", ["30", "-25"], ["-30", "-25"])); // reversed
-    body.extend(vec![
-        (0, "ARC"),
-        (8, "0"),
-        (10, "-30"),
-        (20, "0"),
-        (40, "25"),
-        (50, "90"),
-        (51, "270"),
-    ]);
-    let mut o = opts_mm();
+    body.extend(arc_entity(["-30", "0"], "25", "90", "270"));
+    let mut o = flat_mm();
     o.chord_tolerance = 0.05;
     let (part, w) = parse_part(r12(&body).as_bytes(), Format::Dxf, &o).unwrap();
     assert!(w.is_empty(), "{w:?}");
@@ -129,9 +81,9 @@ fn dxf_line_arc_chain_joins_in_any_order_and_direction() {
 fn dxf_chord_tolerance_controls_flattening() {
     let body = vec![(0, "CIRCLE"), (8, "0"), (10, "0"), (20, "0"), (40, "30")];
     let text = r12(&body);
-    let mut coarse = opts_mm();
+    let mut coarse = flat_mm();
     coarse.chord_tolerance = 1.0;
-    let mut fine = opts_mm();
+    let mut fine = flat_mm();
     fine.chord_tolerance = 0.01;
     let (a, _) = parse_part(text.as_bytes(), Format::Dxf, &coarse).unwrap();
     let (b, _) = parse_part(text.as_bytes(), Format::Dxf, &fine).unwrap();
@@ -224,6 +176,12 @@ fn svg_part(body: &str) -> fixplan_core::Part {
         .0
 }
 
+fn svg_flat(body: &str) -> fixplan_core::Part {
+    parse_part(svg_doc(body).as_bytes(), Format::Svg, &flat_mm())
+        .unwrap_or_else(|e| panic!("{e}"))
+        .0
+}
+
 #[test]
 fn svg_y_axis_is_negated() {
     let p = svg_part(r#"<polygon points="0,0 10,0 10,20"/>"#);
@@ -252,13 +210,13 @@ fn svg_path_absolute_and_relative_commands_agree() {
 #[test]
 fn svg_curves_and_arcs_are_flattened_within_tolerance() {
     // A circle made of two arcs (A), radius 20.
-    let p = svg_part(r#"<path d="M 0 0 A 20 20 0 0 1 40 0 A 20 20 0 0 1 0 0 Z"/>"#);
+    let p = svg_flat(r#"<path d="M 0 0 A 20 20 0 0 1 40 0 A 20 20 0 0 1 0 0 Z"/>"#);
     for q in &p.outline {
         assert!(close((q[0] - 20.0).hypot(q[1]), 20.0, 1e-9), "{q:?}");
     }
     assert!(p.outline.len() > 20);
     // Relative arc with flags glued: a1 1 0 011 1 style.
-    let g = svg_part(r#"<path d="M0,0 h10 a5,5 0 1,1 0,10 h-10 z"/>"#);
+    let g = svg_flat(r#"<path d="M0,0 h10 a5,5 0 1,1 0,10 h-10 z"/>"#);
     assert!(close(bbox(&g.outline)[2], 15.0, 0.06));
     // Cubic (C, S) and quadratic (Q, T) curves stay within their hulls.
     let c =

@@ -24,6 +24,7 @@ fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
         backend: Backend::Embedded {
             threads: Some(threads),
         },
+        arcs: None,
     }
 }
 

@@ -2,7 +2,16 @@
 //!
 //! What a part drawing means here: closed loops made of LWPOLYLINE,
 //! POLYLINE (with bulge arcs), CIRCLE, ELLIPSE, or chains of LINE and ARC
-//! entities that meet end to end. The loop with the largest area is the
+//! entities that meet end to end.
+//!
+//! **Arcs.** Bulges (group code 42), ARC and CIRCLE entities, and
+//! ELLIPSEs whose axes are equal stay exact circular arcs: bulge vertices
+//! (SPEC 8.1), a CIRCLE two half arcs (bulge 1 on both vertices), and a
+//! LINE/ARC chain joined backwards has its bulges negated and moved with
+//! their edges. Other ELLIPSEs are flattened within the chord tolerance,
+//! and so is everything with [`ArcMode::Flatten`](super::raw::ArcMode) (as
+//! this reader did before arcs, polygon for polygon) and every access
+//! loop, access constraints being polygons. The loop with the largest area is the
 //! part; loops on a layer named `ACCESS` or `KEEPOUT` (any case) are access
 //! constraints; other loops inside the part (holes, pockets) are ignored
 //! with a warning, because the method of Brost & Goldberg holds a part by
@@ -10,14 +19,15 @@
 //! annotations are skipped.
 
 use super::outline::{
-    arc_pieces, arc_points, circle_loop, dist, fmt, fmt_pt, join_pieces, pick_outline,
-    OutlineError, Piece, MAX_ARC_PIECES, P,
+    arc_pieces, arc_points, circle_loop, exact_arc, exact_circle, flatten_vertices, fmt, fmt_pt,
+    join_pieces, pick_outline, positions, straight, OutlineError, Piece, MAX_ARC_PIECES, P,
 };
 use super::raw::{RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use dxf::entities::EntityType;
 use dxf::enums::Units as DxfUnits;
 use dxf::Drawing;
+use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
 
 fn is_access_layer(layer: &str) -> bool {
@@ -51,54 +61,16 @@ fn ocs_flip(nx: f64, ny: f64, nz: f64) -> Option<bool> {
     }
 }
 
-fn flip_all(pts: &mut [P], flip: bool) {
+/// Mirrors x (and so the turning direction of every arc) when `flip`.
+fn flip_all(pts: &mut [Vertex], flip: bool) {
     if flip {
         for p in pts {
-            p[0] = -p[0];
+            p.x = -p.x;
+            if p.bulge != 0.0 {
+                p.bulge = -p.bulge;
+            }
         }
     }
-}
-
-/// Interior points of a DXF bulge segment from `p` to `q` (bulge = tan of a
-/// quarter of the included angle, positive CCW), endpoints excluded.
-fn bulge_points(p: P, q: P, bulge: f64, tol: f64) -> Vec<P> {
-    if !bulge.is_finite() || bulge.abs() < 1e-12 {
-        return Vec::new();
-    }
-    let chord = [q[0] - p[0], q[1] - p[1]];
-    let c = chord[0].hypot(chord[1]);
-    if c == 0.0 || !c.is_finite() {
-        return Vec::new();
-    }
-    let theta = 4.0 * bulge.atan();
-    // The centre sits on the chord's bisector, (1 - b^2) / (4 b) chord
-    // lengths to the left of p -> q.
-    let k = (1.0 - bulge * bulge) / (4.0 * bulge);
-    let center = [
-        (p[0] + q[0]) / 2.0 - chord[1] * k,
-        (p[1] + q[1]) / 2.0 + chord[0] * k,
-    ];
-    let r = dist(center, p);
-    let a0 = (p[1] - center[1]).atan2(p[0] - center[0]);
-    let mut pts = arc_points(center, r, a0, theta, tol, 1);
-    pts.pop();
-    pts
-}
-
-/// Vertices with bulges to points; `closed` adds the closing segment's arc.
-fn bulged_polyline(verts: &[(P, f64)], closed: bool, tol: f64) -> Vec<P> {
-    let mut pts = Vec::with_capacity(verts.len());
-    let n = verts.len();
-    for i in 0..n {
-        let (p, b) = verts[i];
-        pts.push(p);
-        if i + 1 < n {
-            pts.extend(bulge_points(p, verts[i + 1].0, b, tol));
-        } else if closed && n > 1 {
-            pts.extend(bulge_points(p, verts[0].0, b, tol));
-        }
-    }
-    pts
 }
 
 /// Why a DXF file does not give a part.
@@ -152,9 +124,9 @@ fn chain_name(entities: usize, first: &str) -> String {
 /// What one entity adds to the drawing.
 enum Shape {
     /// A loop on its own (closed polyline, circle, full ellipse).
-    Closed(Vec<P>),
+    Closed(Vec<Vertex>),
     /// A piece to be joined with others (line, arc, open polyline).
-    Open(Vec<P>),
+    Open(Vec<Vertex>),
     /// Geometry this reader cannot use; the reason ends the warning.
     Ignored(&'static str),
     /// Not geometry (text, dimensions, points...).
@@ -166,8 +138,16 @@ const NOT_PLANAR: Shape = Shape::Ignored("is not in the XY plane");
 /// The loops and pieces of one kind of layer (part or access).
 #[derive(Default)]
 struct Layer {
-    loops: Vec<(Vec<P>, String)>,
+    loops: Vec<(Vec<Vertex>, String)>,
     pieces: Vec<Piece>,
+}
+
+/// How curves are read: chords within `tol` (file units) when `flatten`,
+/// else exact arcs (and chords for what is not circular).
+#[derive(Clone, Copy)]
+struct Curves {
+    tol: f64,
+    flatten: bool,
 }
 
 /// Everything the entities of a drawing gave, still in file units.
@@ -179,19 +159,24 @@ struct Found {
 }
 
 impl Found {
-    /// Sorts entity number `k` (from 0, all spaces) into its layer.
-    fn add(&mut self, k: usize, e: &dxf::entities::Entity, tol: f64) {
+    /// Sorts entity number `k` (from 0, all spaces) into its layer; access
+    /// loops are always flattened.
+    fn add(&mut self, k: usize, e: &dxf::entities::Entity, curves: Curves) {
         if e.common.is_in_paper_space {
             return;
         }
         let layer = &e.common.layer;
         let label = format!("{} #{} on layer {layer}", entity_name(&e.specific), k + 1);
-        let dest = if is_access_layer(layer) {
-            &mut self.access
+        let (dest, curves) = if is_access_layer(layer) {
+            let flat = Curves {
+                flatten: true,
+                ..curves
+            };
+            (&mut self.access, flat)
         } else {
-            &mut self.part
+            (&mut self.part, curves)
         };
-        match entity_shape(&e.specific, tol) {
+        match entity_shape(&e.specific, curves) {
             Shape::Closed(pts) => dest.loops.push((pts, label)),
             Shape::Open(pts) if pts.len() >= 2 => dest.pieces.push(Piece { pts, label }),
             Shape::Ignored(why) => self.warnings.push(format!("{label} {why}; ignored")),
@@ -200,14 +185,14 @@ impl Found {
     }
 }
 
-fn entity_shape(e: &EntityType, tol: f64) -> Shape {
+fn entity_shape(e: &EntityType, curves: Curves) -> Shape {
     match e {
-        EntityType::Line(l) => Shape::Open(vec![[l.p1.x, l.p1.y], [l.p2.x, l.p2.y]]),
-        EntityType::Arc(a) => arc_shape(a, tol),
-        EntityType::Circle(c) => circle_shape(c, tol),
-        EntityType::Ellipse(el) => ellipse_shape(el, tol),
-        EntityType::LwPolyline(pl) => lwpolyline_shape(pl, tol),
-        EntityType::Polyline(pl) => polyline_shape(pl, tol),
+        EntityType::Line(l) => Shape::Open(straight(vec![[l.p1.x, l.p1.y], [l.p2.x, l.p2.y]])),
+        EntityType::Arc(a) => arc_shape(a, curves),
+        EntityType::Circle(c) => circle_shape(c, curves),
+        EntityType::Ellipse(el) => ellipse_shape(el, curves),
+        EntityType::LwPolyline(pl) => lwpolyline_shape(pl, curves),
+        EntityType::Polyline(pl) => polyline_shape(pl, curves),
         EntityType::Spline(_) | EntityType::Insert(_) => {
             Shape::Ignored("is not supported (explode or convert it to polylines)")
         }
@@ -216,7 +201,19 @@ fn entity_shape(e: &EntityType, tol: f64) -> Shape {
     }
 }
 
-fn arc_shape(a: &dxf::entities::Arc, tol: f64) -> Shape {
+/// A circular arc from angle `a0` (radians) sweeping `sweep` about `c`:
+/// one or two bulge vertices, or chords.
+fn circular(c: P, r: f64, a0: f64, sweep: f64, curves: Curves) -> Vec<Vertex> {
+    if curves.flatten {
+        let mut pts = vec![[c[0] + r * a0.cos(), c[1] + r * a0.sin()]];
+        pts.extend(arc_points(c, r, a0, sweep, curves.tol, 1));
+        straight(pts)
+    } else {
+        exact_arc(c, r, a0, sweep)
+    }
+}
+
+fn arc_shape(a: &dxf::entities::Arc, curves: Curves) -> Shape {
     let Some(flip) = ocs_flip(a.normal.x, a.normal.y, a.normal.z) else {
         return NOT_PLANAR;
     };
@@ -226,22 +223,30 @@ fn arc_shape(a: &dxf::entities::Arc, tol: f64) -> Shape {
     if sweep == 0.0 {
         sweep = std::f64::consts::TAU;
     }
-    let mut pts = vec![[c[0] + a.radius * a0.cos(), c[1] + a.radius * a0.sin()]];
-    pts.extend(arc_points(c, a.radius, a0, sweep, tol, 1));
+    let mut pts = circular(c, a.radius, a0, sweep, curves);
     flip_all(&mut pts, flip);
     Shape::Open(pts)
 }
 
-fn circle_shape(c: &dxf::entities::Circle, tol: f64) -> Shape {
+/// A circle as a closed loop: two half arcs, or chords.
+fn circle_loop_of(c: P, r: f64, curves: Curves) -> Vec<Vertex> {
+    if curves.flatten {
+        straight(circle_loop(c, r, curves.tol))
+    } else {
+        exact_circle(c, r)
+    }
+}
+
+fn circle_shape(c: &dxf::entities::Circle, curves: Curves) -> Shape {
     let Some(flip) = ocs_flip(c.normal.x, c.normal.y, c.normal.z) else {
         return NOT_PLANAR;
     };
-    let mut pts = circle_loop([c.center.x, c.center.y], c.radius, tol);
+    let mut pts = circle_loop_of([c.center.x, c.center.y], c.radius, curves);
     flip_all(&mut pts, flip);
     Shape::Closed(pts)
 }
 
-fn ellipse_shape(el: &dxf::entities::Ellipse, tol: f64) -> Shape {
+fn ellipse_shape(el: &dxf::entities::Ellipse, curves: Curves) -> Shape {
     let Some(flip) = ocs_flip(el.normal.x, el.normal.y, el.normal.z) else {
         return NOT_PLANAR;
     };
@@ -255,6 +260,26 @@ fn ellipse_shape(el: &dxf::entities::Ellipse, tol: f64) -> Shape {
     if full {
         sweep = std::f64::consts::TAU;
     }
+    // Equal axes: a circle or a circular arc, exact unless flattening.
+    if (ratio - 1.0).abs() <= 1e-12 && !curves.flatten {
+        let c = [el.center.x, el.center.y];
+        let a0 = maj[1].atan2(maj[0]) + t0;
+        let mut pts = if full {
+            exact_arc(c, rmax, a0, std::f64::consts::TAU)
+        } else {
+            circular(c, rmax, a0, sweep, curves)
+        };
+        if full {
+            pts.pop();
+        }
+        flip_all(&mut pts, flip);
+        return if full {
+            Shape::Closed(pts)
+        } else {
+            Shape::Open(pts)
+        };
+    }
+    let tol = curves.tol;
     let n = arc_pieces(rmax, sweep, tol).max(if full { 3 } else { 1 });
     let n = n.min(MAX_ARC_PIECES);
     let at = |t: f64| {
@@ -263,8 +288,8 @@ fn ellipse_shape(el: &dxf::entities::Ellipse, tol: f64) -> Shape {
             el.center.y + maj[1] * t.cos() + min[1] * t.sin(),
         ]
     };
-    let mut pts: Vec<P> = (0..=n)
-        .map(|i| at(t0 + sweep * i as f64 / n as f64))
+    let mut pts: Vec<Vertex> = (0..=n)
+        .map(|i| Vertex::from(at(t0 + sweep * i as f64 / n as f64)))
         .collect();
     flip_all(&mut pts, flip);
     if full {
@@ -275,9 +300,30 @@ fn ellipse_shape(el: &dxf::entities::Ellipse, tol: f64) -> Shape {
     }
 }
 
-/// A polyline's points as a closed loop or an open piece, by its flag.
-fn polyline_points(verts: &[(P, f64)], closed: bool, flip: bool, tol: f64) -> Shape {
-    let mut pts = bulged_polyline(verts, closed, tol);
+/// A polyline's vertices as a closed loop or an open piece, by its flag:
+/// the bulges kept (an open polyline's last one is no edge), or flattened.
+fn polyline_points(verts: &[(P, f64)], closed: bool, flip: bool, curves: Curves) -> Shape {
+    let mut exact: Vec<Vertex> = verts
+        .iter()
+        .map(|&(p, b)| Vertex::new(p[0], p[1], b))
+        .collect();
+    if !closed {
+        if let Some(last) = exact.last_mut() {
+            last.bulge = 0.0;
+        }
+    }
+    // A bulge this small is a straight edge for any drawing (it was never
+    // flattened either).
+    for v in &mut exact {
+        if v.bulge.abs() < 1e-12 {
+            v.bulge = 0.0;
+        }
+    }
+    let mut pts = if curves.flatten {
+        flatten_vertices(&exact, closed, curves.tol)
+    } else {
+        exact
+    };
     flip_all(&mut pts, flip);
     if closed {
         Shape::Closed(pts)
@@ -286,16 +332,16 @@ fn polyline_points(verts: &[(P, f64)], closed: bool, flip: bool, tol: f64) -> Sh
     }
 }
 
-fn lwpolyline_shape(pl: &dxf::entities::LwPolyline, tol: f64) -> Shape {
+fn lwpolyline_shape(pl: &dxf::entities::LwPolyline, curves: Curves) -> Shape {
     let d = &pl.extrusion_direction;
     let Some(flip) = ocs_flip(d.x, d.y, d.z) else {
         return NOT_PLANAR;
     };
     let verts: Vec<(P, f64)> = pl.vertices.iter().map(|v| ([v.x, v.y], v.bulge)).collect();
-    polyline_points(&verts, pl.flags & 1 == 1, flip, tol)
+    polyline_points(&verts, pl.flags & 1 == 1, flip, curves)
 }
 
-fn polyline_shape(pl: &dxf::entities::Polyline, tol: f64) -> Shape {
+fn polyline_shape(pl: &dxf::entities::Polyline, curves: Curves) -> Shape {
     // 8: 3D polyline, 16: 3D mesh, 64: polyface mesh.
     if pl.flags & (8 | 16 | 64) != 0 {
         return Shape::Ignored("is a 3D polyline or mesh");
@@ -310,7 +356,7 @@ fn polyline_shape(pl: &dxf::entities::Polyline, tol: f64) -> Shape {
         .filter(|v| v.flags & 16 == 0)
         .map(|v| ([v.location.x, v.location.y], v.bulge))
         .collect();
-    polyline_points(&verts, pl.flags & 1 == 1, flip, tol)
+    polyline_points(&verts, pl.flags & 1 == 1, flip, curves)
 }
 
 /// Parses the drawing; the `dxf` crate is not written for hostile input,
@@ -340,6 +386,10 @@ impl Scale {
     fn pt(self, p: P) -> P {
         [p[0] * self.factor, p[1] * self.factor]
     }
+
+    fn vertex(self, v: Vertex) -> Vertex {
+        Vertex::new(v.x * self.factor, v.y * self.factor, v.bulge)
+    }
 }
 
 /// A layer's loops in catalogue units: its closed entities, then its
@@ -349,7 +399,7 @@ fn close_layer(
     layer: Layer,
     join_tol: f64,
     scale: Scale,
-) -> Result<Vec<(Vec<P>, String)>, DxfError> {
+) -> Result<Vec<(Vec<Vertex>, String)>, DxfError> {
     let (joined, open) = join_pieces(layer.pieces, join_tol);
     if let Some(o) = open.first() {
         return Err(DxfError::OpenLoop {
@@ -370,7 +420,7 @@ fn close_layer(
     );
     Ok(loops
         .into_iter()
-        .map(|(pts, label)| (pts.into_iter().map(|p| scale.pt(p)).collect(), label))
+        .map(|(pts, label)| (pts.into_iter().map(|v| scale.vertex(v)).collect(), label))
         .collect())
 }
 
@@ -387,16 +437,19 @@ pub fn read_dxf(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, DxfError> {
     };
     // Tolerances are given in catalogue units; the geometry is still in
     // file units here.
-    let tol = opts.chord_tolerance / scale.factor;
+    let curves = Curves {
+        tol: opts.chord_tolerance / scale.factor,
+        flatten: opts.arcs.flatten(),
+    };
     let join_tol = opts.join_tolerance / scale.factor;
     let mut found = Found::default();
     for (k, e) in drawing.entities().enumerate() {
-        found.add(k, e, tol);
+        found.add(k, e, curves);
     }
     let part_loops = close_layer(found.part, join_tol, scale)?;
     let access = close_layer(found.access, join_tol, scale)?
         .into_iter()
-        .map(|(pts, _)| pts)
+        .map(|(pts, _)| positions(&pts))
         .collect();
     Ok(pick_outline(
         part_loops,
@@ -421,9 +474,10 @@ fn entity_name(e: &EntityType) -> &'static str {
 }
 
 /// Writes a part as an AutoCAD 2000 (AC1015) DXF: one closed LWPOLYLINE on
-/// layer `PART` for the outline and one on layer `ACCESS` per access
-/// constraint, `$INSUNITS` set from `units`. Numbers are written in Rust's
-/// shortest round-trip form, so reading the file back gives the same part.
+/// layer `PART` for the outline (arcs as bulges, group code 42) and one on
+/// layer `ACCESS` per access constraint, `$INSUNITS` set from `units`.
+/// Numbers are written in Rust's shortest round-trip form, so reading the
+/// file back gives the same part.
 pub fn write_dxf(part: &Part, units: Units) -> String {
     let insunits = match units {
         Units::Mm => 4,
@@ -442,9 +496,9 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
     pair(0, "ENDSEC");
     pair(0, "SECTION");
     pair(2, "ENTITIES");
-    let outline: Vec<[f64; 2]> = part.outline.iter().map(|v| [v.x, v.y]).collect();
+    let access: Vec<Vec<Vertex>> = part.access.iter().map(|a| straight(a.clone())).collect();
     let polys =
-        std::iter::once(("PART", &outline)).chain(part.access.iter().map(|a| ("ACCESS", a)));
+        std::iter::once(("PART", &part.outline)).chain(access.iter().map(|a| ("ACCESS", a)));
     for (handle, (layer, pts)) in (0x100..).zip(polys) {
         pair(0, "LWPOLYLINE");
         pair(5, &format!("{handle:X}"));
@@ -454,26 +508,14 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
         pair(90, &pts.len().to_string());
         pair(70, "1");
         for p in pts.iter() {
-            pair(10, &format!("{:?}", p[0]));
-            pair(20, &format!("{:?}", p[1]));
+            pair(10, &format!("{:?}", p.x));
+            pair(20, &format!("{:?}", p.y));
+            if p.is_arc() {
+                pair(42, &format!("{:?}", p.bulge));
+            }
         }
     }
     pair(0, "ENDSEC");
     pair(0, "EOF");
     s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bulge_one_is_a_half_circle() {
-        let pts = bulge_points([1.0, 0.0], [-1.0, 0.0], 1.0, 0.01);
-        assert!(!pts.is_empty());
-        for p in &pts {
-            assert!((dist(*p, [0.0, 0.0]) - 1.0).abs() < 1e-12);
-            assert!(p[1] > 0.0, "CCW from (1,0) to (-1,0) passes above");
-        }
-    }
 }

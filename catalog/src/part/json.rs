@@ -3,10 +3,15 @@
 //! A whole case file is accepted (its kit and parameters are ignored here:
 //! the catalogue's kit applies), and so is core's own `Part` serialisation
 //! (`outline` instead of `part`), so a part exported by fixplan reads back.
-//! An optional `units` field says what the numbers are in.
+//! An optional `units` field says what the numbers are in. Outline
+//! vertices are `[x, y]` or `[x, y, bulge]` (SPEC 8.1); with
+//! [`ArcMode::Flatten`](super::raw::ArcMode) the arcs are flattened within
+//! the chord tolerance. Access constraints are polygons.
 
+use super::outline::flatten_vertices;
 use super::raw::{PolygonRole, RawPart, ReadOptions};
 use crate::units::LengthUnit;
+use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
 use serde_json::Value;
 
@@ -41,6 +46,14 @@ pub enum JsonError {
         /// What was there instead.
         value: Value,
     },
+    /// An outline vertex that is not `[x, y]` or `[x, y, bulge]`.
+    #[error("outline: vertex {vertex} is not an [x, y] or [x, y, bulge] list: {value}")]
+    NotAVertex {
+        /// Its index, from 0.
+        vertex: usize,
+        /// What was there instead.
+        value: Value,
+    },
     /// A two-element vertex with something else than numbers in it.
     #[error("{polygon}: vertex {vertex} is not a pair of numbers: {value}")]
     NotNumbers {
@@ -69,6 +82,25 @@ fn point(v: &Value, polygon: PolygonRole, vertex: usize) -> Result<[f64; 2], Jso
         _ => Err(JsonError::NotAPair {
             polygon,
             vertex,
+            value: v.clone(),
+        }),
+    }
+}
+
+/// An outline vertex: a point, or a point and the bulge of its edge.
+fn vertex(v: &Value, i: usize) -> Result<Vertex, JsonError> {
+    match v.as_array().map(|a| a.as_slice()) {
+        Some([_, _]) => point(v, PolygonRole::Outline, i).map(Vertex::from),
+        Some([x, y, b]) => match (x.as_f64(), y.as_f64(), b.as_f64()) {
+            (Some(x), Some(y), Some(b)) => Ok(Vertex::new(x, y, b)),
+            _ => Err(JsonError::NotNumbers {
+                polygon: PolygonRole::Outline,
+                vertex: i,
+                value: v.clone(),
+            }),
+        },
+        _ => Err(JsonError::NotAVertex {
+            vertex: i,
             value: v.clone(),
         }),
     }
@@ -108,7 +140,14 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
         .get("part")
         .or_else(|| obj.get("outline"))
         .ok_or(JsonError::NoOutline)?;
-    let mut outline = polygon(outline, PolygonRole::Outline)?;
+    let list = outline
+        .as_array()
+        .ok_or(JsonError::NotAList(PolygonRole::Outline))?;
+    let mut outline = list
+        .iter()
+        .enumerate()
+        .map(|(i, v)| vertex(v, i))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut access = Vec::new();
     match obj.get("access") {
         None | Some(Value::Null) => {}
@@ -121,10 +160,17 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
     }
     let f = src.factor_to(opts.units);
     if f != 1.0 {
-        for p in outline.iter_mut().chain(access.iter_mut().flatten()) {
+        for v in outline.iter_mut() {
+            v.x *= f;
+            v.y *= f;
+        }
+        for p in access.iter_mut().flatten() {
             p[0] *= f;
             p[1] *= f;
         }
+    }
+    if opts.arcs.flatten() {
+        outline = flatten_vertices(&outline, true, opts.chord_tolerance);
     }
     Ok(RawPart {
         outline,
@@ -133,7 +179,8 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
     })
 }
 
-/// Writes a part in the Appendix A field names, with its units.
+/// Writes a part in the Appendix A field names, with its units (arc
+/// vertices as `[x, y, bulge]`).
 pub fn write_json(part: &Part, units: Units) -> String {
     let v = serde_json::json!({
         "units": units,

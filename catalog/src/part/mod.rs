@@ -11,9 +11,10 @@ mod validate;
 
 pub use dxf::{read_dxf, write_dxf, DxfError};
 pub use json::{read_json, write_json, JsonError};
+pub(crate) use outline::flatten_vertices;
 pub use outline::OutlineError;
 pub use raw::{
-    Format, PolygonRole, RawPart, ReadOptions, DEFAULT_CHORD_TOLERANCE_MM,
+    ArcMode, Format, PolygonRole, RawPart, ReadOptions, DEFAULT_CHORD_TOLERANCE_MM,
     DEFAULT_JOIN_TOLERANCE_MM,
 };
 pub use svg::{read_svg, write_svg, ElementProblem, PathError, SvgError, TransformError};
@@ -43,7 +44,7 @@ pub enum ReadError {
 }
 
 /// Why a part file's bytes do not give a valid part: unreadable, or read
-/// but not a polygon SPEC accepts.
+/// but not an outline SPEC accepts.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ParseError {
     /// The file could not be read as its format.

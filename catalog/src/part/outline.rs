@@ -1,11 +1,13 @@
-//! What the drawing readers share: curve flattening, joining pieces into
-//! loops, choosing the outline among the loops, and numbers for messages.
-//! Everything here works on plain `[f64; 2]` points because that is what
-//! files hold and what [`fixplan_core::Part`] stores; areas and
-//! point-in-polygon come from `fixplan_core::geometry`.
+//! What the drawing readers share: exact arcs as bulge vertices, curve
+//! flattening, joining pieces into loops (arcs kept), choosing the outline
+//! among the loops, and numbers for messages. Points are plain `[f64; 2]`
+//! as files hold them; outlines are core's [`Vertex`] lists (a point and
+//! the bulge of the edge leaving it); areas and point location come from
+//! `fixplan_core` so that the true region, arcs included, decides.
 
 use super::raw::RawPart;
 use fixplan_core::geometry::{point_in_polygon, signed_area, v2, V2};
+use fixplan_core::outline::{edges_of, mass_properties, Edge, Vertex};
 use fixplan_core::Units;
 
 pub(crate) type P = [f64; 2];
@@ -87,12 +89,123 @@ pub(crate) fn circle_loop(c: P, r: f64, tol: f64) -> Vec<P> {
     pts
 }
 
+/// Vertices with straight edges.
+pub(crate) fn straight(pts: Vec<P>) -> Vec<Vertex> {
+    pts.into_iter().map(Vertex::from).collect()
+}
+
+/// The positions of vertices, dropping bulges (for access constraints,
+/// which are polygons and are always flattened before this).
+pub(crate) fn positions(v: &[Vertex]) -> Vec<P> {
+    v.iter().map(|q| [q.x, q.y]).collect()
+}
+
+/// An exact circular arc of centre `c` and radius `r` from angle `a0`
+/// sweeping `sweep` radians (CCW when positive), both ends included, the
+/// end with bulge 0: one bulge vertex, or two half arcs for a full turn
+/// (a bulge of `tan(pi / 2)` is no number).
+pub(crate) fn exact_arc(c: P, r: f64, a0: f64, sweep: f64) -> Vec<Vertex> {
+    let at = |a: f64| Vertex::new(c[0] + r * a.cos(), c[1] + r * a.sin(), 0.0);
+    let pieces = if sweep.abs() >= std::f64::consts::TAU - 1e-9 {
+        2
+    } else {
+        1
+    };
+    let bulge = (sweep / pieces as f64 / 4.0).tan();
+    let mut v: Vec<Vertex> = (0..pieces)
+        .map(|k| Vertex {
+            bulge,
+            ..at(a0 + sweep * k as f64 / pieces as f64)
+        })
+        .collect();
+    v.push(at(a0 + sweep));
+    v
+}
+
+/// A full circle as a closed loop of two half arcs (bulge 1 on both
+/// vertices, SPEC 8.1), starting at angle 0.
+pub(crate) fn exact_circle(c: P, r: f64) -> Vec<Vertex> {
+    vec![
+        Vertex::new(c[0] + r, c[1], 1.0),
+        Vertex::new(c[0] - r, c[1], 1.0),
+    ]
+}
+
+/// Interior points of a DXF bulge edge from `p` to `q` (bulge = tan of a
+/// quarter of the included angle, positive CCW), endpoints excluded.
+pub(crate) fn bulge_points(p: P, q: P, bulge: f64, tol: f64) -> Vec<P> {
+    if !bulge.is_finite() || bulge.abs() < 1e-12 {
+        return Vec::new();
+    }
+    let chord = [q[0] - p[0], q[1] - p[1]];
+    let c = chord[0].hypot(chord[1]);
+    if c == 0.0 || !c.is_finite() {
+        return Vec::new();
+    }
+    let theta = 4.0 * bulge.atan();
+    // The centre sits on the chord's bisector, (1 - b^2) / (4 b) chord
+    // lengths to the left of p -> q.
+    let k = (1.0 - bulge * bulge) / (4.0 * bulge);
+    let center = [
+        (p[0] + q[0]) / 2.0 - chord[1] * k,
+        (p[1] + q[1]) / 2.0 + chord[0] * k,
+    ];
+    let r = dist(center, p);
+    let a0 = (p[1] - center[1]).atan2(p[0] - center[0]);
+    let mut pts = arc_points(center, r, a0, theta, tol, 1);
+    pts.pop();
+    pts
+}
+
+/// Vertices with bulges flattened into chords within `tol`; `closed` adds
+/// the closing edge's arc. What the DXF reader always did with polyline
+/// bulges, so `arcs = "flatten"` gives the polygons of before.
+pub(crate) fn flatten_vertices(verts: &[Vertex], closed: bool, tol: f64) -> Vec<Vertex> {
+    let mut pts = Vec::with_capacity(verts.len());
+    let n = verts.len();
+    for i in 0..n {
+        let v = verts[i];
+        let p = [v.x, v.y];
+        pts.push(p);
+        if i + 1 < n {
+            pts.extend(bulge_points(
+                p,
+                [verts[i + 1].x, verts[i + 1].y],
+                v.bulge,
+                tol,
+            ));
+        } else if closed && n > 1 {
+            pts.extend(bulge_points(p, [verts[0].x, verts[0].y], v.bulge, tol));
+        }
+    }
+    straight(pts)
+}
+
+/// A piece read backwards: the points reversed, each bulge negated and
+/// moved with its edge (the edge `v(k) -> v(k+1)` becomes `v(k+1) -> v(k)`),
+/// the new last vertex (an open end) straight.
+pub(crate) fn reversed(v: &[Vertex]) -> Vec<Vertex> {
+    let n = v.len();
+    (0..n)
+        .map(|k| {
+            let p = v[n - 1 - k];
+            let b = if k + 1 < n { -v[n - 2 - k].bulge } else { 0.0 };
+            Vertex::new(p.x, p.y, if b == 0.0 { 0.0 } else { b })
+        })
+        .collect()
+}
+
 /// An open piece of a drawing (a LINE, an ARC, an open polyline) waiting to
-/// be joined, with a label for error messages.
+/// be joined, with a label for error messages. The last vertex's bulge is
+/// not an edge and is kept 0.
 #[derive(Debug, Clone)]
 pub(crate) struct Piece {
-    pub pts: Vec<P>,
+    pub pts: Vec<Vertex>,
     pub label: String,
+}
+
+fn pt(v: Vertex) -> P {
+    [v.x, v.y]
 }
 
 /// A chain that could not be closed.
@@ -104,8 +217,9 @@ pub(crate) struct OpenChain {
 }
 
 /// Joins pieces end to end (either direction, nearest free end within
-/// `tol`) into closed loops. Returned loops do not repeat their first point.
-pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<OpenChain>) {
+/// `tol`) into closed loops, arcs kept: a piece joined backwards is
+/// [`reversed`]. Returned loops do not repeat their first point.
+pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<Vertex>>, Vec<OpenChain>) {
     let mut used = vec![false; pieces.len()];
     let mut loops = Vec::new();
     let mut open = Vec::new();
@@ -117,8 +231,8 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<Ope
         let mut chain = pieces[i].pts.clone();
         let mut labels = vec![pieces[i].label.clone()];
         loop {
-            let first = chain[0];
-            let last = chain[chain.len() - 1];
+            let first = pt(chain[0]);
+            let last = pt(chain[chain.len() - 1]);
             if chain.len() > 2 && dist(first, last) <= tol {
                 chain.pop();
                 loops.push(chain);
@@ -130,7 +244,7 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<Ope
                 if used[j] || pc.pts.is_empty() {
                     continue;
                 }
-                let (s, e) = (pc.pts[0], pc.pts[pc.pts.len() - 1]);
+                let (s, e) = (pt(pc.pts[0]), pt(pc.pts[pc.pts.len() - 1]));
                 for (d, at_end, rev) in [
                     (dist(last, s), true, false),
                     (dist(last, e), true, true),
@@ -146,11 +260,16 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<Ope
                 Some((_, j, at_end, rev)) => {
                     used[j] = true;
                     labels.push(pieces[j].label.clone());
-                    let mut pts = pieces[j].pts.clone();
-                    if rev {
-                        pts.reverse();
-                    }
+                    let mut pts = if rev {
+                        reversed(&pieces[j].pts)
+                    } else {
+                        pieces[j].pts.clone()
+                    };
                     if at_end {
+                        // The joint keeps the chain's point and takes the
+                        // bulge of the piece's first edge.
+                        let k = chain.len() - 1;
+                        chain[k].bulge = pts[0].bulge;
                         chain.extend_from_slice(&pts[1..]);
                     } else {
                         pts.pop();
@@ -161,8 +280,8 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<Ope
                 None => {
                     open.push(OpenChain {
                         labels,
-                        start: chain[0],
-                        end: chain[chain.len() - 1],
+                        start: pt(chain[0]),
+                        end: pt(chain[chain.len() - 1]),
                     });
                     break;
                 }
@@ -172,14 +291,15 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<P>>, Vec<Ope
     (loops, open)
 }
 
-fn to_v2(p: &[P]) -> Vec<V2> {
-    p.iter().map(|q| v2(q[0], q[1])).collect()
-}
-
-/// Unsigned area for choosing the largest loop; an overflowing loop counts
-/// as the largest rather than as NaN, so the choice stays total.
-fn loop_area(p: &[P]) -> f64 {
-    let a = signed_area(&to_v2(p)).abs();
+/// Unsigned area of the true region (arcs included: a circle is two
+/// vertices) for choosing the largest loop; an overflowing loop counts as
+/// the largest rather than as NaN, so the choice stays total.
+fn loop_area(p: &[Vertex]) -> f64 {
+    let a = if p.iter().any(Vertex::is_arc) {
+        mass_properties(p).area.abs()
+    } else {
+        signed_area(&p.iter().map(Vertex::point).collect::<Vec<_>>()).abs()
+    };
     if a.is_finite() {
         a
     } else {
@@ -187,10 +307,23 @@ fn loop_area(p: &[P]) -> f64 {
     }
 }
 
-/// Even-odd test of `q` against `poly`, enough to tell a hole from a second
-/// outline; an empty polygon contains nothing (core's test needs a vertex).
-fn inside(q: P, poly: &[V2]) -> bool {
-    !poly.is_empty() && point_in_polygon(v2(q[0], q[1]), poly)
+/// Even-odd test of `q` against the true region of `outline` (the polygon
+/// of its vertices toggled by each arc's circular segment), enough to tell
+/// a hole from a second outline; an empty loop contains nothing (core's
+/// test needs a vertex).
+fn inside(q: Vertex, outline: &[Vertex]) -> bool {
+    if outline.is_empty() {
+        return false;
+    }
+    let p = v2(q.x, q.y);
+    let poly: Vec<V2> = outline.iter().map(Vertex::point).collect();
+    let mut inside = point_in_polygon(p, &poly);
+    for e in edges_of(outline) {
+        if let Edge::Arc(arc) = e {
+            inside ^= arc.segment_contains(p);
+        }
+    }
+    inside
 }
 
 /// Why the loops of a drawing do not make one part.
@@ -219,7 +352,7 @@ pub enum OutlineError {
 /// planar method does not use; loops outside it mean the file holds more
 /// than one part, which is ambiguous.
 pub(crate) fn pick_outline(
-    mut loops: Vec<(Vec<P>, String)>,
+    mut loops: Vec<(Vec<Vertex>, String)>,
     access: Vec<Vec<P>>,
     mut warnings: Vec<String>,
     units: Units,
@@ -234,20 +367,20 @@ pub(crate) fn pick_outline(
     let outer_i = (0..loops.len())
         .max_by(|&i, &j| areas[i].total_cmp(&areas[j]))
         .unwrap_or(0);
-    let outer = to_v2(&loops[outer_i].0);
+    let outer = &loops[outer_i].0;
     for (i, (l, label)) in loops.iter().enumerate() {
         if i == outer_i || l.is_empty() {
             continue;
         }
-        if inside(l[0], &outer) {
+        if inside(l[0], outer) {
             warnings.push(format!(
                 "{label} near {} {unit} is a loop inside the outline (a hole or pocket); ignored: fixtures hold the outer outline only",
-                fmt_pt(l[0])
+                fmt_pt(pt(l[0]))
             ));
         } else {
             return Err(OutlineError::MoreThanOne {
                 label: label.clone(),
-                near: l[0],
+                near: pt(l[0]),
                 units,
             });
         }
@@ -279,7 +412,7 @@ mod tests {
     #[test]
     fn pieces_join_in_any_direction() {
         let pc = |a: P, b: P| Piece {
-            pts: vec![a, b],
+            pts: straight(vec![a, b]),
             label: "LINE".into(),
         };
         let (loops, open) = join_pieces(
@@ -295,5 +428,55 @@ mod tests {
         assert_eq!(loops.len(), 1);
         assert_eq!(loops[0].len(), 4);
         assert!((loop_area(&loops[0]) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bulge_one_is_a_half_circle() {
+        let pts = bulge_points([1.0, 0.0], [-1.0, 0.0], 1.0, 0.01);
+        assert!(!pts.is_empty());
+        for p in &pts {
+            assert!((dist(*p, [0.0, 0.0]) - 1.0).abs() < 1e-12);
+            assert!(p[1] > 0.0, "CCW from (1,0) to (-1,0) passes above");
+        }
+    }
+
+    #[test]
+    fn reversed_pieces_keep_their_arcs() {
+        // A half circle from (1, 0) over the top to (-1, 0), then a line back;
+        // the arc drawn backwards (clockwise from (-1, 0)) must give the
+        // same loop.
+        let arc = exact_arc([0.0, 0.0], 1.0, 0.0, std::f64::consts::PI);
+        assert_eq!(arc.len(), 2);
+        assert!((arc[0].bulge - 1.0).abs() < 1e-15);
+        let back = reversed(&arc);
+        assert!((back[0].bulge + 1.0).abs() < 1e-15 && back[1].bulge == 0.0);
+        let line = Piece {
+            pts: straight(vec![[-1.0, 0.0], [1.0, 0.0]]),
+            label: "LINE".into(),
+        };
+        let (loops, open) = join_pieces(
+            vec![
+                line,
+                Piece {
+                    pts: back,
+                    label: "ARC".into(),
+                },
+            ],
+            1e-9,
+        );
+        assert!(open.is_empty());
+        let area = loop_area(&loops[0]);
+        assert!((area - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{area}");
+        assert!(inside(Vertex::new(0.0, 0.5, 0.0), &loops[0]));
+        assert!(!inside(Vertex::new(0.0, -0.5, 0.0), &loops[0]));
+    }
+
+    #[test]
+    fn full_turns_are_two_half_arcs() {
+        let c = exact_arc([0.0, 0.0], 2.0, 0.0, std::f64::consts::TAU);
+        assert_eq!(c.len(), 3);
+        assert!((c[0].bulge - 1.0).abs() < 1e-12 && (c[1].bulge - 1.0).abs() < 1e-12);
+        let area = loop_area(&exact_circle([0.0, 0.0], 2.0));
+        assert!((area - 4.0 * std::f64::consts::PI).abs() < 1e-12);
     }
 }

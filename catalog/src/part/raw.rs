@@ -4,6 +4,7 @@
 //! can all use these types without using each other.
 
 use crate::units::LengthUnit;
+use fixplan_core::outline::Vertex;
 use fixplan_core::Units;
 use std::fmt;
 use std::path::Path;
@@ -28,6 +29,65 @@ pub struct ReadOptions {
     pub chord_tolerance: f64,
     /// Largest gap closed when joining DXF entities, catalogue units.
     pub join_tolerance: f64,
+    /// Circular arcs kept exact (bulge vertices) or flattened into chords.
+    pub arcs: ArcMode,
+}
+
+/// What the readers make of circular arcs (DXF bulges, ARC and CIRCLE
+/// entities, SVG `A` commands with equal radii under a similarity, SVG
+/// circles): exact arcs, as SPEC 8 enumerates them, or chords within the
+/// chord tolerance, as fixplan read them before arcs were supported (for
+/// comparison). Ellipses, splines and Bézier curves are flattened either
+/// way; access constraints are always polygons.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ArcMode {
+    /// Arcs become bulge vertices (SPEC 8.1).
+    #[default]
+    Exact,
+    /// Arcs become chords within the chord tolerance.
+    Flatten,
+}
+
+impl ArcMode {
+    /// The values a manifest's `arcs` and the `--arcs` flag take.
+    pub const NAMES: [&'static str; 2] = ["exact", "flatten"];
+
+    /// `"exact"` or `"flatten"` (any case); `None` for anything else.
+    pub fn parse(s: &str) -> Option<ArcMode> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "exact" => Some(ArcMode::Exact),
+            "flatten" => Some(ArcMode::Flatten),
+            _ => None,
+        }
+    }
+
+    /// The name [`ArcMode::parse`] reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            ArcMode::Exact => "exact",
+            ArcMode::Flatten => "flatten",
+        }
+    }
+
+    /// Whether arcs are flattened.
+    pub fn flatten(self) -> bool {
+        self == ArcMode::Flatten
+    }
+}
+
+impl fmt::Display for ArcMode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for ArcMode {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<ArcMode, String> {
+        ArcMode::parse(s)
+            .ok_or_else(|| format!("unknown arcs mode \"{s}\" (expected \"exact\" or \"flatten\")"))
+    }
 }
 
 impl ReadOptions {
@@ -38,6 +98,7 @@ impl ReadOptions {
             fallback: units.into(),
             chord_tolerance: DEFAULT_CHORD_TOLERANCE_MM / units.mm_per_unit(),
             join_tolerance: DEFAULT_JOIN_TOLERANCE_MM / units.mm_per_unit(),
+            arcs: ArcMode::Exact,
         }
     }
 }
@@ -47,8 +108,9 @@ impl ReadOptions {
 /// about what a valid part is.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RawPart {
-    /// The part's outer outline, in file order.
-    pub outline: Vec<[f64; 2]>,
+    /// The part's outer outline, in file order; a vertex's bulge makes the
+    /// edge to the next vertex an arc (SPEC 8.1).
+    pub outline: Vec<Vertex>,
     /// Regions that must stay free of fixture elements.
     pub access: Vec<Vec<[f64; 2]>>,
     /// What the reader ignored or assumed, for the user to check.

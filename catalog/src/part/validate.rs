@@ -3,12 +3,17 @@
 //! CAD exports routinely repeat the closing vertex, leave zero-length edges
 //! where two entities meet, or split one straight edge into several LINEs.
 //! Those are fixed here (with a warning) because the fix cannot change the
-//! shape. Anything else that SPEC 1 forbids is left for
-//! [`fixplan_core::polygon::validate_polygon`] to report, so the catalogue
-//! and the solver never disagree about what a valid polygon is.
+//! shape: a dropped duplicate vertex leaves its bulge to the edge that
+//! survives, and a vertex is merged away only between two straight edges.
+//! Anything else that SPEC 1 and 8.1 forbid is left for
+//! [`fixplan_core::outline::validate_outline`] (the outline, arcs
+//! included) and [`fixplan_core::polygon::validate_polygon`] (access
+//! constraints, which stay polygons) to report, so the catalogue and the
+//! solver never disagree about what a valid outline is.
 
 use super::outline::{dist, fmt_pt, scale_of, P};
 use super::raw::{PolygonRole, RawPart};
+use fixplan_core::outline::{validate_outline, OutlineError, Vertex};
 use fixplan_core::polygon::{validate_polygon, PolygonError};
 use fixplan_core::{Part, Units};
 
@@ -47,6 +52,11 @@ pub enum PolygonProblem {
         /// The catalogue's units, for the coordinates in the message.
         units: Units,
     },
+    /// What core's outline validation found that polygons cannot have (an
+    /// outline with arcs and fewer than 2 vertices, a bulge that is no
+    /// number); problems polygons share are [`PolygonProblem::Core`].
+    #[error("{0}")]
+    Arc(OutlineError),
 }
 
 /// Repairs and validates the outline and every access constraint: the part
@@ -57,14 +67,10 @@ pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), 
     let outline = clean_and_validate(&raw.outline, PolygonRole::Outline, units, &mut warnings)?;
     let mut access = Vec::with_capacity(raw.access.len());
     for (i, a) in raw.access.iter().enumerate() {
-        access.push(clean_and_validate(
-            a,
-            PolygonRole::Access(i),
-            units,
-            &mut warnings,
-        )?);
+        let a: Vec<Vertex> = a.iter().map(|&p| Vertex::from(p)).collect();
+        let cleaned = clean_and_validate(&a, PolygonRole::Access(i), units, &mut warnings)?;
+        access.push(cleaned.iter().map(|v| [v.x, v.y]).collect());
     }
-    let outline = outline.into_iter().map(Into::into).collect();
     Ok((Part { outline, access }, warnings))
 }
 
@@ -75,104 +81,142 @@ const DUP_REL: f64 = 1e-9;
 /// digits, far below any real feature.
 const COLLINEAR_REL: f64 = 1e-7;
 
-/// Repairs what is safe to repair, then validates. `what` names the polygon
-/// in messages; `units` labels coordinates.
+/// Repairs what is safe to repair, then validates: the outline with
+/// [`validate_outline`] (arcs included), an access constraint with
+/// [`validate_polygon`]. `what` names the polygon in messages; `units`
+/// labels coordinates.
 fn clean_and_validate(
-    pts: &[P],
+    verts: &[Vertex],
     what: PolygonRole,
     units: Units,
     warnings: &mut Vec<String>,
-) -> Result<Vec<P>, InvalidPolygon> {
+) -> Result<Vec<Vertex>, InvalidPolygon> {
     let invalid = |problem| InvalidPolygon {
         polygon: what,
         problem,
     };
-    if let Some(i) = pts
+    if let Some(i) = verts
         .iter()
-        .position(|p| !p[0].is_finite() || !p[1].is_finite())
+        .position(|p| !p.x.is_finite() || !p.y.is_finite())
     {
         return Err(invalid(PolygonProblem::NonFinite {
             vertex: i,
-            x: pts[i][0],
-            y: pts[i][1],
+            x: verts[i].x,
+            y: verts[i].y,
         }));
     }
+    let pts: Vec<P> = verts.iter().map(|v| [v.x, v.y]).collect();
+    let mut bulges: Vec<f64> = verts.iter().map(|v| v.bulge).collect();
     let unit = units.label();
-    let scale = scale_of(pts).max(f64::MIN_POSITIVE);
+    let scale = scale_of(&pts).max(f64::MIN_POSITIVE);
     let mut idx = (0..pts.len()).collect();
-    drop_repeated_vertices(pts, &mut idx, scale, what, unit, warnings);
-    merge_collinear_vertices(pts, &mut idx, scale, what, unit, warnings);
-    let cleaned: Vec<P> = idx.iter().map(|&i| pts[i]).collect();
-    validate_polygon(&cleaned).map_err(|error| invalid(PolygonProblem::Core { error, units }))?;
-    Ok(cleaned)
+    let mut c = Cleaning {
+        pts: &pts,
+        bulges: &mut bulges,
+        idx: &mut idx,
+        scale,
+        what,
+        unit,
+        warnings,
+    };
+    c.drop_repeated_vertices();
+    c.merge_collinear_vertices();
+    let cleaned: Vec<Vertex> = idx
+        .iter()
+        .map(|&i| Vertex::new(pts[i][0], pts[i][1], bulges[i]))
+        .collect();
+    let core = |error: PolygonError| invalid(PolygonProblem::Core { error, units });
+    let checked = match what {
+        PolygonRole::Outline => validate_outline(&cleaned).map(drop).map_err(|e| match e {
+            OutlineError::Polygon(error) => core(error),
+            other => invalid(PolygonProblem::Arc(other)),
+        }),
+        PolygonRole::Access(_) => {
+            let p: Vec<P> = cleaned.iter().map(|v| [v.x, v.y]).collect();
+            validate_polygon(&p).map(drop).map_err(core)
+        }
+    };
+    checked.map(|()| cleaned)
 }
 
-/// Drops consecutive duplicates (zero-length edges), including a repeated
-/// closing vertex, from the indices `idx` into `pts`.
-fn drop_repeated_vertices(
-    pts: &[P],
-    idx: &mut Vec<usize>,
+/// The repairs of one outline or access constraint: indices `idx` into
+/// `pts` of the vertices kept, `bulges[i]` the bulge of the edge leaving
+/// `pts[i]` (updated when a repeated vertex hands its edge on).
+struct Cleaning<'a> {
+    pts: &'a [P],
+    bulges: &'a mut [f64],
+    idx: &'a mut Vec<usize>,
     scale: f64,
     what: PolygonRole,
-    unit: &str,
-    warnings: &mut Vec<String>,
-) {
-    let mut k = 0;
-    while idx.len() > 1 && k < idx.len() {
-        let wraps = k + 1 == idx.len();
-        let (a, b) = (idx[k], idx[(k + 1) % idx.len()]);
-        if dist(pts[a], pts[b]) <= DUP_REL * scale {
-            // Keep the earlier vertex, and vertex 0 on the closing edge, so
-            // that v0 stays v0.
-            let (kept, dropped, at) = if wraps { (b, a, k) } else { (a, b, k + 1) };
-            warnings.push(format!(
-                "{what}: vertex {dropped} repeats vertex {kept} at {} {unit} (zero-length edge); dropped",
-                fmt_pt(pts[kept])
-            ));
-            idx.remove(at);
-        } else {
-            k += 1;
+    unit: &'a str,
+    warnings: &'a mut Vec<String>,
+}
+
+impl Cleaning<'_> {
+    /// Drops consecutive duplicates (zero-length edges), including a
+    /// repeated closing vertex. The zero-length edge goes; the edge leaving
+    /// the dropped vertex survives, leaving the kept one with its bulge.
+    fn drop_repeated_vertices(&mut self) {
+        let (pts, idx) = (self.pts, &mut *self.idx);
+        let (what, unit) = (self.what, self.unit);
+        let mut k = 0;
+        while idx.len() > 1 && k < idx.len() {
+            let wraps = k + 1 == idx.len();
+            let (a, b) = (idx[k], idx[(k + 1) % idx.len()]);
+            if dist(pts[a], pts[b]) <= DUP_REL * self.scale {
+                // Keep the earlier vertex, and vertex 0 on the closing edge,
+                // so that v0 stays v0.
+                let (kept, dropped, at) = if wraps { (b, a, k) } else { (a, b, k + 1) };
+                self.warnings.push(format!(
+                    "{what}: vertex {dropped} repeats vertex {kept} at {} {unit} (zero-length edge); dropped",
+                    fmt_pt(pts[kept])
+                ));
+                // The zero-length edge leaves a (its bulge goes), b's edge
+                // survives: from a when b is dropped; from b itself (kept,
+                // vertex 0) when a, the last vertex, is.
+                if !wraps {
+                    self.bulges[a] = self.bulges[b];
+                }
+                idx.remove(at);
+            } else {
+                k += 1;
+            }
         }
     }
-}
 
-/// Drops vertices in the middle of a straight run: merging the two edges
-/// keeps the shape and gives the enumeration one segment instead of two
-/// trimmed halves.
-fn merge_collinear_vertices(
-    pts: &[P],
-    idx: &mut Vec<usize>,
-    scale: f64,
-    what: PolygonRole,
-    unit: &str,
-    warnings: &mut Vec<String>,
-) {
-    let mut changed = true;
-    while changed && idx.len() > 3 {
-        changed = false;
-        let m = idx.len();
-        for k in 0..m {
-            let (a, b, c) = (
-                pts[idx[(k + m - 1) % m]],
-                pts[idx[k]],
-                pts[idx[(k + 1) % m]],
-            );
-            let u = [c[0] - a[0], c[1] - a[1]];
-            let len = u[0].hypot(u[1]);
-            if len == 0.0 {
-                continue;
-            }
-            let off = ((b[0] - a[0]) * u[1] - (b[1] - a[1]) * u[0]).abs() / len;
-            let along = (b[0] - a[0]) * u[0] + (b[1] - a[1]) * u[1];
-            if off <= COLLINEAR_REL * scale && along > 0.0 && along < len * len {
-                warnings.push(format!(
-                    "{what}: vertex {} at {} {unit} lies on the straight edge through its neighbours; merged",
-                    idx[k],
-                    fmt_pt(b)
-                ));
-                idx.remove(k);
-                changed = true;
-                break;
+    /// Drops vertices in the middle of a straight run: merging the two
+    /// edges keeps the shape and gives the enumeration one segment instead
+    /// of two trimmed halves. A vertex next to an arc is never merged.
+    fn merge_collinear_vertices(&mut self) {
+        let (pts, idx) = (self.pts, &mut *self.idx);
+        let (what, unit) = (self.what, self.unit);
+        let mut changed = true;
+        while changed && idx.len() > 3 {
+            changed = false;
+            let m = idx.len();
+            for k in 0..m {
+                let (ia, ib) = (idx[(k + m - 1) % m], idx[k]);
+                if self.bulges[ia] != 0.0 || self.bulges[ib] != 0.0 {
+                    continue;
+                }
+                let (a, b, c) = (pts[ia], pts[ib], pts[idx[(k + 1) % m]]);
+                let u = [c[0] - a[0], c[1] - a[1]];
+                let len = u[0].hypot(u[1]);
+                if len == 0.0 {
+                    continue;
+                }
+                let off = ((b[0] - a[0]) * u[1] - (b[1] - a[1]) * u[0]).abs() / len;
+                let along = (b[0] - a[0]) * u[0] + (b[1] - a[1]) * u[1];
+                if off <= COLLINEAR_REL * self.scale && along > 0.0 && along < len * len {
+                    self.warnings.push(format!(
+                        "{what}: vertex {} at {} {unit} lies on the straight edge through its neighbours; merged",
+                        idx[k],
+                        fmt_pt(b)
+                    ));
+                    idx.remove(k);
+                    changed = true;
+                    break;
+                }
             }
         }
     }
@@ -206,6 +250,7 @@ mod tests {
             [0.0, 10.0],
             [0.0, 0.0],
         ];
+        let sq: Vec<Vertex> = sq.iter().map(|&p| Vertex::from(p)).collect();
         let out = clean_and_validate(&sq, PolygonRole::Outline, Units::Mm, &mut w).unwrap();
         assert_eq!(
             out,
@@ -217,8 +262,66 @@ mod tests {
     #[test]
     fn crossing_names_place_and_unit() {
         let mut w = Vec::new();
-        let bow = [[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]];
+        let bow: Vec<Vertex> = [[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]]
+            .iter()
+            .map(|&p| Vertex::from(p))
+            .collect();
         let e = clean_and_validate(&bow, PolygonRole::Outline, Units::Mm, &mut w).unwrap_err();
         assert_eq!(e.to_string(), "outline: edge 0 crosses edge 2 at (1, 1) mm");
+    }
+
+    #[test]
+    fn repairs_keep_arcs() {
+        let mut w = Vec::new();
+        // A slot: two half circles joined by lines, with a repeated vertex
+        // after each arc end (its zero-length edge goes, the arc stays on the
+        // vertex before), a repeated closing vertex, and a vertex in the
+        // middle of a straight side that is merged. (5, 0) lies on the line
+        // through (0, 0) and (10, 0) but is next to no arc.
+        let v = |x: f64, y: f64, b: f64| Vertex::new(x, y, b);
+        let slot = [
+            v(0.0, 0.0, 0.0),
+            v(5.0, 0.0, 0.0),
+            v(10.0, 0.0, 0.0),
+            v(10.0, 0.0, 1.0),
+            v(10.0, 4.0, 0.0),
+            v(0.0, 4.0, 1.0),
+            v(0.0, 0.0, 0.0),
+        ];
+        let out = clean_and_validate(&slot, PolygonRole::Outline, Units::Mm, &mut w).unwrap();
+        assert_eq!(
+            out,
+            vec![
+                v(0.0, 0.0, 0.0),
+                v(10.0, 0.0, 1.0),
+                v(10.0, 4.0, 0.0),
+                v(0.0, 4.0, 1.0)
+            ],
+            "{w:?}"
+        );
+        // A vertex between a line and an arc is never merged, even when it
+        // lies on the line through its neighbours.
+        let d = [
+            v(0.0, 0.0, 0.0),
+            v(10.0, 0.0, 0.5),
+            v(20.0, 0.0, 0.0),
+            v(20.0, 10.0, 0.0),
+            v(0.0, 10.0, 0.0),
+        ];
+        let mut w = Vec::new();
+        let out = clean_and_validate(&d, PolygonRole::Outline, Units::Mm, &mut w).unwrap();
+        assert_eq!(out, d.to_vec(), "{w:?}");
+        assert!(w.is_empty(), "{w:?}");
+    }
+
+    #[test]
+    fn arc_problems_are_reported() {
+        let mut w = Vec::new();
+        let bad = [Vertex::new(0.0, 0.0, f64::NAN), Vertex::new(1.0, 0.0, 1.0)];
+        let e = clean_and_validate(&bad, PolygonRole::Outline, Units::Mm, &mut w).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "outline: vertex 0 has bulge NaN; a bulge must be a finite number"
+        );
     }
 }

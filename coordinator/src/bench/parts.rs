@@ -155,12 +155,13 @@ pub fn run(parts: &[BenchPart], repeat: usize) {
 pub fn bench_main(
     cases: &[PathBuf],
     catalog: Option<&Path>,
+    arcs: Option<fixplan_catalog::ArcMode>,
     kit: &str,
     repeat: usize,
 ) -> Result<()> {
     let parts = match catalog {
         Some(c) => {
-            let cat = fixplan_catalog::load_catalog(c)?;
+            let cat = crate::run::load_catalog_arcs(c, arcs)?;
             let spec = fixplan_catalog::load_kit(kit, cat.units)?;
             let parts = cat
                 .parts

@@ -9,7 +9,7 @@ use crate::run::progress::Totals;
 use crate::run::{run_catalog, RunOptions};
 use anyhow::{Context, Result};
 use clap::Args;
-use fixplan_catalog::{load_catalog, load_kit};
+use fixplan_catalog::{load_kit, ArcMode};
 use fixplan_worker::agent::{run_worker, Fault, WorkerError, WorkerOptions};
 use fixplan_worker::protocol::PROTOCOL_VERSION;
 use fixplan_worker::zenoh_link::{zenoh_config, TlsFiles, ZenohOptions};
@@ -87,6 +87,11 @@ pub struct CoordinatorArgs {
     /// The catalogue (as for `fixplan run`; default: the sample catalogue).
     #[arg(long, value_name = "DIR|catalog.toml")]
     pub catalog: Option<PathBuf>,
+    /// Circular arcs of the parts: `exact` (SPEC 8) or `flatten` (chords
+    /// within the catalogue's chord tolerance, for comparison). Default:
+    /// the manifest's `arcs`, else exact.
+    #[arg(long, value_name = "exact|flatten")]
+    pub arcs: Option<ArcMode>,
     /// The kit: a built-in name or a kit TOML file.
     #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
     pub kit: String,
@@ -236,7 +241,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
     // Before anything is read or written (zenoh_link::open checks again).
     fixplan_worker::exposure::check_config(&zenoh_config(&zenoh)?, zenoh.insecure)?;
     let catalog_path = a.catalog.clone().unwrap_or(default_catalog);
-    let catalog = load_catalog(&catalog_path)?;
+    let catalog = crate::run::load_catalog_arcs(&catalog_path, a.arcs)?;
     let spec = load_kit(&a.kit, catalog.units)?;
     let cores = fixplan_worker::host::cores();
     let copts = ClusterOptions {
@@ -262,6 +267,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         quiet: a.quiet,
         search: SearchOptions::default(),
         backend: Backend::Cluster(copts),
+        arcs: a.arcs,
     };
     run_catalog(&catalog, &spec, &opts).context("coordinator")
 }

@@ -11,6 +11,7 @@ use crate::run::backend::Backend;
 use crate::run::{default_catalog, load_and_run, RunOptions};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
+use fixplan_catalog::ArcMode;
 use std::path::PathBuf;
 
 /// Design modular fixtures for planar parts: every fixture of three round
@@ -62,6 +63,12 @@ enum Cmd {
         /// file. Its lengths are read in the catalogue's unit.
         #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
         kit: String,
+        /// Circular arcs of the parts (DXF bulges, ARC, CIRCLE, SVG circular
+        /// arcs): `exact` (SPEC 8) or `flatten` (chords within the
+        /// catalogue's chord tolerance, as before arcs, for comparison).
+        /// Default: the manifest's `arcs`, else exact.
+        #[arg(long, value_name = "exact|flatten")]
+        arcs: Option<ArcMode>,
         /// Fixtures kept per part (0 keeps all). Default: the kit's
         /// parameters (10). A part's own `top_k` in the catalogue wins.
         #[arg(long, value_name = "N")]
@@ -146,6 +153,10 @@ enum Cmd {
         /// Runs per part; the fastest counts.
         #[arg(long, default_value_t = 3)]
         repeat: usize,
+        /// Circular arcs of a --catalog's parts: `exact` or `flatten`
+        /// (default: the manifest's `arcs`, else exact).
+        #[arg(long, value_name = "exact|flatten")]
+        arcs: Option<ArcMode>,
     },
     /// Print the ranked fixtures of a results file as tables.
     Show {
@@ -249,6 +260,7 @@ fn real_main() -> Result<()> {
         Cmd::Run {
             catalog,
             kit,
+            arcs,
             top_k,
             threads,
             output,
@@ -275,6 +287,7 @@ fn real_main() -> Result<()> {
                 quiet,
                 search: search.options(),
                 backend,
+                arcs,
             })?;
         }
         Cmd::Study(a) => {
@@ -292,7 +305,8 @@ fn real_main() -> Result<()> {
             catalog,
             kit,
             repeat,
-        } => crate::bench::parts::bench_main(&cases, catalog.as_deref(), &kit, repeat)?,
+            arcs,
+        } => crate::bench::parts::bench_main(&cases, catalog.as_deref(), arcs, &kit, repeat)?,
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             crate::view::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;

@@ -6,6 +6,7 @@ use crate::job::search::{parse_grid_steps, SearchError, SearchOptions};
 use crate::study::{study_main, StudyOptions, StudyReport};
 use anyhow::Result;
 use clap::Args;
+use fixplan_catalog::ArcMode;
 use std::path::PathBuf;
 
 /// `fixplan study --help`.
@@ -88,6 +89,11 @@ pub struct StudyArgs {
     /// No table.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Circular arcs of the parts: `exact` (SPEC 8) or `flatten` (chords
+    /// within the catalogue's chord tolerance, for comparison). Default:
+    /// the manifest's `arcs`, else exact.
+    #[arg(long, value_name = "exact|flatten")]
+    pub arcs: Option<ArcMode>,
     /// `--workers N`: the study through a cluster.
     #[command(flatten)]
     pub cluster: RunClusterArgs,
@@ -151,6 +157,7 @@ pub fn study_cli_main(a: &StudyArgs, default_catalog: PathBuf) -> Result<StudyRe
         chart: a.chart.clone(),
         no_share: a.no_share,
         quiet: a.quiet,
+        arcs: a.arcs,
     };
     let copts = a.cluster.options(a.threads);
     study_main(&opts, copts.as_ref())

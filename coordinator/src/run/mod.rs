@@ -23,7 +23,7 @@ use crate::job::{JobContext, SearchOptions};
 use crate::output::messages::{CatalogInfo, RunMsg};
 use anyhow::{Context, Result};
 use backend::{Backend, PartJob};
-use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
+use fixplan_catalog::{load_catalog_with, load_kit, ArcMode, Catalog, KitSpec, LoadOptions};
 use outcome::{part_outcome, PartOutcome};
 use progress::{progress_line, summary_table, Progress, Totals};
 use solve::solve_in_order;
@@ -50,6 +50,9 @@ pub struct RunOptions {
     pub search: SearchOptions,
     /// Threads of this process, or a cluster.
     pub backend: Backend,
+    /// `--arcs`: circular arcs exact or flattened, over the manifest's
+    /// `arcs` (default: the manifest's, else exact).
+    pub arcs: Option<ArcMode>,
 }
 
 /// The built-in sample catalogue: `examples/catalog/catalog.toml` of the
@@ -63,9 +66,18 @@ pub fn default_catalog() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(rel)
 }
 
+/// Loads a catalogue with `--arcs` applied (`None`: as its manifest says).
+pub fn load_catalog_arcs(path: &Path, arcs: Option<ArcMode>) -> Result<Catalog> {
+    let opts = LoadOptions {
+        arcs,
+        ..LoadOptions::default()
+    };
+    Ok(load_catalog_with(path, &opts)?)
+}
+
 /// Loads `opts.catalog` and `opts.kit`, then [`run_catalog`].
 pub fn load_and_run(opts: &RunOptions) -> Result<Totals> {
-    let catalog = load_catalog(&opts.catalog)?;
+    let catalog = load_catalog_arcs(&opts.catalog, opts.arcs)?;
     let spec = load_kit(&opts.kit, catalog.units)?;
     run_catalog(&catalog, &spec, opts)
 }

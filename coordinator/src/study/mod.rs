@@ -26,7 +26,7 @@ pub use stats::{median, nearest_rank};
 use crate::cluster::ClusterOptions;
 use crate::run::backend::Backend;
 use anyhow::{Context, Result};
-use fixplan_catalog::{load_catalog, Catalog};
+use fixplan_catalog::{ArcMode, Catalog};
 use sharing::{Rows, SharePlan};
 use stats::{kit_messages, summary, Work};
 use std::io::Write;
@@ -57,6 +57,8 @@ pub struct StudyOptions {
     pub no_share: bool,
     /// No progress line and no table (the files only).
     pub quiet: bool,
+    /// `--arcs`: circular arcs exact or flattened (default: the manifest's).
+    pub arcs: Option<ArcMode>,
 }
 
 /// Runs a study on a catalogue already loaded; `cluster` sends the work to
@@ -111,7 +113,7 @@ pub fn run_study(
 
 /// `fixplan study`: loads, runs, writes every output asked for.
 pub fn study_main(opts: &StudyOptions, cluster: Option<&ClusterOptions>) -> Result<StudyReport> {
-    let catalog = load_catalog(&opts.catalog)?;
+    let catalog = crate::run::load_catalog_arcs(&opts.catalog, opts.arcs)?;
     let kits = study_kits(&opts.kits, opts.sweep.as_deref(), catalog.units)?;
     if !opts.quiet {
         eprintln!(

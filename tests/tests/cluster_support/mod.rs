@@ -199,6 +199,7 @@ pub fn run_opts(out: &Path, top_k: usize, cluster: Option<ClusterOptions>) -> Ru
             Some(c) => Backend::Cluster(c),
             None => Backend::Embedded { threads: Some(1) },
         },
+        arcs: None,
     }
 }
 

@@ -23,7 +23,20 @@
 //! **What is read.** `polygon`, `polyline`, `path` (M, L, H, V, C, S, Q, T,
 //! A, Z, absolute and relative, curves flattened to the chord tolerance),
 //! `rect`, `circle` and `ellipse`, with `translate`, `scale`, `rotate`,
-//! `skewX`, `skewY` and `matrix` transforms on elements and groups. Elements
+//! `skewX`, `skewY` and `matrix` transforms on elements and groups.
+//!
+//! **Arcs.** An `A` command with equal radii, a `<circle>` and an
+//! `<ellipse>` with `rx = ry` are exact circular arcs (bulge vertices, SPEC
+//! 8.1; a circle is two half arcs) when the element's whole transform is a
+//! similarity (uniform scale, rotation, translation, possibly a reflection,
+//! which turns arcs the other way, as does the y flip below). Elliptical
+//! arcs, arcs under a skew or non-uniform scale, Bézier curves, access
+//! shapes and everything with [`ArcMode::Flatten`](super::raw::ArcMode)
+//! are flattened within the chord tolerance. A path may carry
+//! `data-fixplan-bulges` (what [`write_svg`] writes: one bulge per vertex
+//! of its outline, in part coordinates); a bulge computed from an `A`
+//! command within `1e-9` (relative) of the one written there is taken as
+//! written, so that a written part reads back bit for bit. Elements
 //! whose `class` contains `access` or `keepout`, or whose `id` starts with
 //! one of those words (any case), are access constraints, and so is all
 //! inside a group marked that way. The largest closed shape is the part;
@@ -37,9 +50,10 @@ mod transform;
 pub use path::PathError;
 pub use transform::TransformError;
 
-use super::outline::{arc_pieces, fmt_pt, pick_outline, OutlineError, P};
+use super::outline::{arc_pieces, fmt_pt, pick_outline, positions, OutlineError, P};
 use super::raw::{RawPart, ReadOptions};
 use crate::units::LengthUnit;
+use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
 use lexer::Lexer;
 use path::{parse_path, Sub};
@@ -173,7 +187,9 @@ fn marked_access(node: roxmltree::Node) -> bool {
 /// after transforms.
 struct Walk {
     tol: f64,
-    loops: Vec<(Vec<P>, String)>,
+    /// Circular arcs may stay exact (`arcs = "exact"`).
+    exact: bool,
+    loops: Vec<(Vec<Vertex>, String)>,
     access: Vec<Vec<P>>,
     warnings: Vec<String>,
     depth_guard: usize,
@@ -216,31 +232,36 @@ fn walk(node: roxmltree::Node, ctm: Affine, access: bool, w: &mut Walk) -> Resul
             continue;
         }
         let tol = w.tol / ctm.max_scale();
-        if let Some(subs) = element_subpaths(child, tol, &mut w.warnings)? {
+        let exact = w.exact && !access && ctm.is_similarity();
+        if let Some(subs) = element_subpaths(child, tol, exact, &mut w.warnings)? {
             w.add(child, subs, ctm, access)?;
         }
     }
     Ok(())
 }
 
-/// The subpaths a drawing element draws, in its user units; `None` for
-/// elements that are not geometry here (with a warning for those a user
-/// may have meant as geometry).
+/// The subpaths a drawing element draws, in its user units (circular arcs
+/// exact when `exact`); `None` for elements that are not geometry here
+/// (with a warning for those a user may have meant as geometry).
 fn element_subpaths(
     el: roxmltree::Node,
     tol: f64,
+    exact: bool,
     warnings: &mut Vec<String>,
 ) -> Result<Option<Vec<Sub>>, SvgError> {
     let name = el.tag_name().name();
     let subs = match name {
         "polygon" | "polyline" => vec![Sub {
-            pts: points_attr(el.attribute("points").unwrap_or(""))?,
+            pts: points_attr(el.attribute("points").unwrap_or(""))?
+                .into_iter()
+                .map(Vertex::from)
+                .collect(),
             closed: name == "polygon",
         }],
-        "path" => parse_path(el.attribute("d").unwrap_or(""), tol)
+        "path" => parse_path(el.attribute("d").unwrap_or(""), tol, exact)
             .map_err(|e| in_element(el, ElementProblem::Path(e)))?,
         "rect" => vec![rect(el)?],
-        "circle" | "ellipse" => vec![ellipse(el, tol)?],
+        "circle" | "ellipse" => vec![ellipse(el, tol, exact)?],
         "use" => {
             warnings.push(format!(
                 "{} (a reference) is not supported; ignored",
@@ -266,13 +287,17 @@ fn rect(el: roxmltree::Node) -> Result<Sub, SvgError> {
     let wd = length_attr(el, "width", 0.0)?;
     let ht = length_attr(el, "height", 0.0)?;
     Ok(Sub {
-        pts: vec![[x, y], [x + wd, y], [x + wd, y + ht], [x, y + ht]],
+        pts: [[x, y], [x + wd, y], [x + wd, y + ht], [x, y + ht]]
+            .into_iter()
+            .map(Vertex::from)
+            .collect(),
         closed: true,
     })
 }
 
-/// A `<circle>` or `<ellipse>` as a closed polygon within `tol`.
-fn ellipse(el: roxmltree::Node, tol: f64) -> Result<Sub, SvgError> {
+/// A `<circle>` or `<ellipse>` as a closed polygon within `tol`, or, when
+/// `exact` and the radii are equal, as two half arcs.
+fn ellipse(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Sub, SvgError> {
     let cx = length_attr(el, "cx", 0.0)?;
     let cy = length_attr(el, "cy", 0.0)?;
     let (rx, ry) = if el.tag_name().name() == "circle" {
@@ -281,11 +306,16 @@ fn ellipse(el: roxmltree::Node, tol: f64) -> Result<Sub, SvgError> {
     } else {
         (length_attr(el, "rx", 0.0)?, length_attr(el, "ry", 0.0)?)
     };
+    if exact && rx.abs() == ry.abs() {
+        let r = rx.abs();
+        let pts = vec![Vertex::new(cx + r, cy, 1.0), Vertex::new(cx - r, cy, 1.0)];
+        return Ok(Sub { pts, closed: true });
+    }
     let n = arc_pieces(rx.abs().max(ry.abs()), std::f64::consts::TAU, tol).max(3);
     let pts = (0..n)
         .map(|k| {
             let t = std::f64::consts::TAU * k as f64 / n as f64;
-            [cx + rx * t.cos(), cy + ry * t.sin()]
+            Vertex::new(cx + rx * t.cos(), cy + ry * t.sin(), 0.0)
         })
         .collect();
     Ok(Sub { pts, closed: true })
@@ -301,28 +331,72 @@ impl Walk {
         ctm: Affine,
         access: bool,
     ) -> Result<(), SvgError> {
+        let mirror = ctm.mirrors();
+        let mut loops = Vec::new();
         for (k, sub) in subs.into_iter().enumerate() {
             let mut pts = sub.pts;
-            let closes = pts.len() > 2 && pts.first() == pts.last();
+            let at = |i: usize| pts.get(i).map(|v: &Vertex| [v.x, v.y]);
+            let closes = pts.len() > 2 && at(0) == at(pts.len() - 1);
             if !sub.closed && !closes {
                 return Err(SvgError::OpenSubpath {
                     element: describe(el),
                     subpath: k,
-                    from: pts.first().copied().unwrap_or_default(),
-                    to: pts.last().copied().unwrap_or_default(),
+                    from: at(0).unwrap_or_default(),
+                    to: pts.last().map(|v| [v.x, v.y]).unwrap_or_default(),
                 });
             }
             if closes {
                 pts.pop();
             }
-            let pts: Vec<P> = pts.into_iter().map(|p| ctm.apply(p)).collect();
+            let pts: Vec<Vertex> = pts
+                .into_iter()
+                .map(|v| {
+                    let [x, y] = ctm.apply([v.x, v.y]);
+                    let b = if mirror && v.bulge != 0.0 {
+                        -v.bulge
+                    } else {
+                        v.bulge
+                    };
+                    Vertex::new(x, y, b)
+                })
+                .collect();
             if access {
-                self.access.push(pts);
+                self.access.push(positions(&pts));
             } else {
-                self.loops.push((pts, describe(el)));
+                loops.push((pts, describe(el)));
             }
         }
+        if let (Some(b), [(pts, _)]) = (written_bulges(el), &mut loops[..]) {
+            take_written_bulges(pts, &b);
+        }
+        self.loops.extend(loops);
         Ok(())
+    }
+}
+
+/// The `data-fixplan-bulges` of an element, if it is a list of numbers.
+fn written_bulges(el: roxmltree::Node) -> Option<Vec<f64>> {
+    let s = el.attribute("data-fixplan-bulges")?;
+    let mut lx = Lexer::new(s);
+    let mut v = Vec::new();
+    while !lx.at_end() {
+        v.push(lx.number()?);
+    }
+    Some(v)
+}
+
+/// Bulges in user coordinates (before the y flip) taken as written when
+/// the computed ones agree within `1e-9` (relative): `written` is in part
+/// coordinates, one per vertex.
+fn take_written_bulges(pts: &mut [Vertex], written: &[f64]) {
+    if pts.len() != written.len() {
+        return;
+    }
+    for (v, &w) in pts.iter_mut().zip(written) {
+        let user = -w;
+        if v.bulge != 0.0 && (v.bulge - user).abs() <= 1e-9 * user.abs().max(1.0) {
+            v.bulge = user;
+        }
     }
 }
 
@@ -376,6 +450,7 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
     let k = user_unit(root, opts)?;
     let mut w = Walk {
         tol: opts.chord_tolerance / k,
+        exact: !opts.arcs.flatten(),
         loops: Vec::new(),
         access: Vec::new(),
         warnings: Vec::new(),
@@ -387,19 +462,33 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
         None => Affine::ID,
     };
     walk(root, ctm, access, &mut w)?;
-    // User units down to part units up: (x, y) -> (x, -y), then scale.
+    // User units down to part units up: (x, y) -> (x, -y), then scale; the
+    // flip turns every arc the other way.
     let map = |pts: Vec<P>| -> Vec<P> { pts.into_iter().map(|p| [p[0] * k, -p[1] * k]).collect() };
-    let loops = w.loops.into_iter().map(|(p, l)| (map(p), l)).collect();
+    let map_v = |pts: Vec<Vertex>| -> Vec<Vertex> {
+        pts.into_iter()
+            .map(|v| {
+                Vertex::new(
+                    v.x * k,
+                    -v.y * k,
+                    if v.bulge == 0.0 { 0.0 } else { -v.bulge },
+                )
+            })
+            .collect()
+    };
+    let loops = w.loops.into_iter().map(|(p, l)| (map_v(p), l)).collect();
     let access = w.access.into_iter().map(map).collect();
     Ok(pick_outline(loops, access, w.warnings, opts.units)?)
 }
 
 /// Writes a part as SVG with a physical size in `units`, so that any SVG
 /// tool shows it at scale and [`read_svg`] reads back the same numbers:
-/// the outline is `<path id="outline">`, access constraints are paths of
-/// class `access`, and part y is written as SVG `-y`.
+/// the outline is `<path id="outline">` (arcs as `A` commands, their
+/// bulges also in `data-fixplan-bulges` so they read back bit for bit),
+/// access constraints are paths of class `access`, and part y is written
+/// as SVG `-y`.
 pub fn write_svg(part: &Part, units: Units) -> String {
-    let outline: Vec<[f64; 2]> = part.outline.iter().map(|v| [v.x, v.y]).collect();
+    let outline = positions(&part.outline);
     let all = outline.iter().chain(part.access.iter().flatten());
     let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
     for p in all {
@@ -415,28 +504,63 @@ pub fn write_svg(part: &Part, units: Units) -> String {
     }
     let (w, h) = ((x1 - x0).max(1e-9), (y1 - y0).max(1e-9));
     let u = units.label();
-    let path = |pts: &[[f64; 2]]| {
-        let mut d = String::new();
-        for (i, p) in pts.iter().enumerate() {
-            d.push_str(if i == 0 { "M " } else { " L " });
-            d.push_str(&format!("{:?},{:?}", p[0], -p[1]));
-        }
-        d.push_str(" Z");
-        d
-    };
     let mut s = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:?}{u}\" height=\"{h:?}{u}\" viewBox=\"{x0:?} {y0:?} {w:?} {h:?}\">\n"
     );
+    let bulges = if part.outline.iter().any(Vertex::is_arc) {
+        let list: Vec<String> = part
+            .outline
+            .iter()
+            .map(|v| format!("{:?}", v.bulge))
+            .collect();
+        format!(" data-fixplan-bulges=\"{}\"", list.join(" "))
+    } else {
+        String::new()
+    };
     s.push_str(&format!(
-        "  <path id=\"outline\" fill=\"#ddd\" stroke=\"black\" d=\"{}\"/>\n",
-        path(&outline)
+        "  <path id=\"outline\" fill=\"#ddd\" stroke=\"black\"{bulges} d=\"{}\"/>\n",
+        path_data(&part.outline)
     ));
     for a in &part.access {
+        let a: Vec<Vertex> = a.iter().map(|&p| Vertex::from(p)).collect();
         s.push_str(&format!(
             "  <path class=\"access\" fill=\"none\" stroke=\"red\" d=\"{}\"/>\n",
-            path(a)
+            path_data(&a)
         ));
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// A closed outline as path data in SVG coordinates (y negated): `L` for
+/// straight edges, `A` for arcs (radius from the bulge, large-arc when
+/// `|b| > 1`, and the sweep flag, SVG's positive-angle direction in its
+/// y-down coordinates, for a clockwise part arc, `b < 0`).
+fn path_data(pts: &[Vertex]) -> String {
+    let mut d = String::new();
+    let n = pts.len();
+    for (i, p) in pts.iter().enumerate() {
+        if i == 0 {
+            d.push_str(&format!("M {:?},{:?}", p.x, -p.y));
+        }
+        let q = pts[(i + 1) % n];
+        if i + 1 == n && !p.is_arc() {
+            break;
+        }
+        if p.is_arc() {
+            let chord = (q.x - p.x).hypot(q.y - p.y);
+            let b = p.bulge.abs();
+            let r = chord * (1.0 / b + b) / 4.0;
+            let large = u8::from(b > 1.0);
+            let sweep = u8::from(p.bulge < 0.0);
+            d.push_str(&format!(
+                " A {r:?},{r:?} 0 {large} {sweep} {:?},{:?}",
+                q.x, -q.y
+            ));
+        } else {
+            d.push_str(&format!(" L {:?},{:?}", q.x, -q.y));
+        }
+    }
+    d.push_str(" Z");
+    d
 }

@@ -1,8 +1,11 @@
-//! Path data (`d` attributes): every command of SVG 1.1, curves flattened
-//! to a chord tolerance, into subpaths in user units.
+//! Path data (`d` attributes): every command of SVG 1.1 into subpaths in
+//! user units; Bézier curves and elliptical arcs flattened to a chord
+//! tolerance, circular arcs (`A` with equal radii) kept exact as bulge
+//! vertices when the caller asks.
 
 use super::lexer::Lexer;
 use crate::part::outline::{arc_pieces, MAX_ARC_PIECES, P};
+use fixplan_core::outline::Vertex;
 
 /// Why path data cannot be read.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -18,8 +21,10 @@ pub enum PathError {
 
 /// A subpath in user units, before transforms.
 pub(super) struct Sub {
-    /// Its points; a closing point equal to the first is kept.
-    pub(super) pts: Vec<P>,
+    /// Its vertices, a bulge for each circular arc kept exact (turning
+    /// counter-clockwise in user coordinates when positive); a closing
+    /// point equal to the first is kept.
+    pub(super) pts: Vec<Vertex>,
     /// Ended by `Z` (or a closed element such as `<polygon>`).
     pub(super) closed: bool,
 }
@@ -28,9 +33,11 @@ pub(super) struct Sub {
 struct PathParser<'a> {
     lx: Lexer<'a>,
     tol: f64,
+    /// Circular arcs become bulges rather than chords.
+    exact: bool,
     subs: Vec<Sub>,
     /// The subpath being drawn.
-    cur: Vec<P>,
+    cur: Vec<Vertex>,
     /// The current point.
     pos: P,
     /// Where the current subpath started (for `Z`).
@@ -40,11 +47,13 @@ struct PathParser<'a> {
     last_ctrl: Option<(u8, P)>,
 }
 
-/// Parses path data into subpaths, curves flattened within `tol`.
-pub(super) fn parse_path(d: &str, tol: f64) -> Result<Vec<Sub>, PathError> {
+/// Parses path data into subpaths, curves flattened within `tol`, circular
+/// arcs exact when `exact`.
+pub(super) fn parse_path(d: &str, tol: f64, exact: bool) -> Result<Vec<Sub>, PathError> {
     let mut p = PathParser {
         lx: Lexer::new(d),
         tol,
+        exact,
         subs: Vec::new(),
         cur: Vec::new(),
         pos: [0.0, 0.0],
@@ -126,8 +135,13 @@ impl PathParser<'_> {
     /// Starts drawing from the current point if nothing is drawn yet.
     fn begin(&mut self) {
         if self.cur.is_empty() {
-            self.cur.push(self.pos);
+            self.cur.push(self.pos.into());
         }
+    }
+
+    /// Appends points drawn by a flattened curve.
+    fn push_points(&mut self, pts: Vec<P>) {
+        self.cur.extend(pts.into_iter().map(Vertex::from));
     }
 
     /// Reads and draws one command's parameters.
@@ -140,7 +154,7 @@ impl PathParser<'_> {
                 let p = self.point(base)?;
                 self.pos = p;
                 self.start = p;
-                self.cur.push(p);
+                self.cur.push(p.into());
                 self.last_ctrl = None;
             }
             b'L' => {
@@ -170,7 +184,7 @@ impl PathParser<'_> {
 
     fn line_to(&mut self, p: P) {
         self.begin();
-        self.cur.push(p);
+        self.cur.push(p.into());
         self.pos = p;
         self.last_ctrl = None;
     }
@@ -195,7 +209,9 @@ impl PathParser<'_> {
         let p2 = self.point(base)?;
         let p3 = self.point(base)?;
         self.begin();
-        cubic(self.pos, p1, p2, p3, self.tol, &mut self.cur);
+        let mut pts = Vec::new();
+        cubic(self.pos, p1, p2, p3, self.tol, &mut pts);
+        self.push_points(pts);
         self.pos = p3;
         self.last_ctrl = Some((b'C', p2));
         Ok(())
@@ -210,7 +226,9 @@ impl PathParser<'_> {
         };
         let p2 = self.point(base)?;
         self.begin();
-        quad(self.pos, p1, p2, self.tol, &mut self.cur);
+        let mut pts = Vec::new();
+        quad(self.pos, p1, p2, self.tol, &mut pts);
+        self.push_points(pts);
         self.pos = p2;
         self.last_ctrl = Some((b'Q', p1));
         Ok(())
@@ -226,7 +244,12 @@ impl PathParser<'_> {
         };
         let p = self.point(base)?;
         self.begin();
-        arc(self.pos, shape, p, self.tol, &mut self.cur);
+        let mut pts = Vec::new();
+        let bulge = arc(self.pos, shape, p, self.tol, self.exact, &mut pts);
+        if let (Some(b), Some(last)) = (bulge, self.cur.last_mut()) {
+            last.bulge = b;
+        }
+        self.push_points(pts);
         self.pos = p;
         self.last_ctrl = None;
         Ok(())
@@ -288,8 +311,14 @@ struct ArcShape {
     sweep: bool,
 }
 
-/// SVG elliptical arc (endpoint parameterisation, SVG 1.1 F.6.5).
-fn arc(p1: P, shape: ArcShape, p2: P, tol: f64, out: &mut Vec<P>) {
+/// Radii closer than this (relative) are one circle's.
+const EQUAL_RADII_REL: f64 = 1e-9;
+
+/// SVG elliptical arc (endpoint parameterisation, SVG 1.1 F.6.5): points
+/// pushed on `out` (start excluded, end included), chords within `tol`. A
+/// circular arc (equal radii) with `exact` set pushes only its end and
+/// returns the bulge of the edge to it, `tan(sweep / 4)`.
+fn arc(p1: P, shape: ArcShape, p2: P, tol: f64, exact: bool, out: &mut Vec<P>) -> Option<f64> {
     let ArcShape {
         rx,
         ry,
@@ -298,13 +327,14 @@ fn arc(p1: P, shape: ArcShape, p2: P, tol: f64, out: &mut Vec<P>) {
         sweep,
     } = shape;
     if p1 == p2 {
-        return;
+        return None;
     }
     let (mut rx, mut ry) = (rx.abs(), ry.abs());
     if rx == 0.0 || ry == 0.0 || !rx.is_finite() || !ry.is_finite() {
         out.push(p2);
-        return;
+        return None;
     }
+    let circular = (rx - ry).abs() <= EQUAL_RADII_REL * rx.max(ry);
     let (s, c) = phi.to_radians().sin_cos();
     let dx2 = (p1[0] - p2[0]) / 2.0;
     let dy2 = (p1[1] - p2[1]) / 2.0;
@@ -338,6 +368,13 @@ fn arc(p1: P, shape: ArcShape, p2: P, tol: f64, out: &mut Vec<P>) {
     } else if !sweep && dt > 0.0 {
         dt -= std::f64::consts::TAU;
     }
+    if exact && circular {
+        let bulge = (dt / 4.0).tan();
+        if bulge.is_finite() && bulge != 0.0 {
+            out.push(p2);
+            return Some(bulge);
+        }
+    }
     let n = arc_pieces(rx.max(ry), dt, tol);
     for k in 1..n {
         let t = t1 + dt * k as f64 / n as f64;
@@ -348,4 +385,5 @@ fn arc(p1: P, shape: ArcShape, p2: P, tol: f64, out: &mut Vec<P>) {
         ]);
     }
     out.push(p2);
+    None
 }

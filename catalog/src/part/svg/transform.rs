@@ -45,6 +45,27 @@ impl Affine {
         [a * p[0] + c * p[1] + e, b * p[0] + d * p[1] + f]
     }
 
+    /// Whether the map keeps circles circles: a uniform scale, a rotation,
+    /// a translation and possibly a reflection (columns orthogonal and of
+    /// equal length, to a relative `1e-9`).
+    pub(super) fn is_similarity(self) -> bool {
+        let [a, b, c, d, _, _] = self.0;
+        let (p, q) = (a * a + b * b, c * c + d * d);
+        let tol = 1e-9 * p.max(q);
+        p > 0.0
+            && p.is_finite()
+            && q.is_finite()
+            && (p - q).abs() <= tol
+            && (a * c + b * d).abs() <= tol
+    }
+
+    /// Whether the map mirrors (negative determinant), which turns every
+    /// arc the other way.
+    pub(super) fn mirrors(self) -> bool {
+        let [a, b, c, d, _, _] = self.0;
+        a * d - b * c < 0.0
+    }
+
     /// Largest stretch of the map, to keep chord errors within tolerance
     /// after scaling.
     pub(super) fn max_scale(self) -> f64 {
