@@ -86,17 +86,24 @@ pub fn catalog() -> (Catalog, KitSpec) {
             ..part("broken", vec![])
         },
         part("tiny", vec![[0.0, 0.0], [3.0, 0.0], [0.0, 3.0]]),
-        part(
-            "hex",
-            vec![
-                [30.0, 0.0],
-                [70.0, 0.0],
-                [95.0, 40.0],
-                [70.0, 80.0],
-                [30.0, 80.0],
-                [5.0, 40.0],
-            ],
-        ),
+        // A hexagon with arcs (SPEC 8): a convex arc, a concave one and a
+        // half-round end, so every transport and resume path carries them.
+        CatalogPart {
+            part: Ok(Part {
+                outline: [
+                    [30.0, 0.0, 0.0],
+                    [70.0, 0.0, -0.2],
+                    [95.0, 40.0, 0.0],
+                    [70.0, 80.0, 0.0],
+                    [30.0, 80.0, 0.25],
+                    [5.0, 40.0, 0.0],
+                ]
+                .map(Into::into)
+                .to_vec(),
+                access: vec![],
+            }),
+            ..part("hex", vec![])
+        },
     ];
     let cat = Catalog {
         name: "mem".into(),
