@@ -112,7 +112,7 @@ pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> R
             f.clamp.extension,
             if f.borderline { "  (borderline)" } else { "" }
         )?;
-        arcs.print_contacts(f, &u, out)?;
+        arcs.print_contacts(f, u, out)?;
     }
     if n < fx.len() {
         writeln!(out, "  ... {} more kept (--top 0 shows all)", fx.len() - n)?;
