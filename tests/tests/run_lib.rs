@@ -3,13 +3,16 @@
 //! every channel reads back.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
+use fixplan_catalog::{Catalog, CatalogPart};
 use fixplan_coordinator::output::{PartRecord, ResultsFile};
 use fixplan_coordinator::run::backend::Backend;
 use fixplan_coordinator::run::{run_catalog, RunOptions};
-use fixplan_core::Status;
+use fixplan_coordinator::view::{render::render, show::show};
+use fixplan_core::outline::Vertex;
+use fixplan_core::{Part, Status, Units};
 use std::path::{Path, PathBuf};
 
-use fixplan_tests::{catalog, fixtures_channel};
+use fixplan_tests::{catalog, fixtures_channel, part};
 
 fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
     RunOptions {
@@ -76,4 +79,68 @@ fn invalid_parts_carry_their_message() {
     assert_eq!(recs[4].part.status, Status::NoFixture);
     assert_eq!(recs[0].part.status, Status::Ok);
     assert_eq!(recs[0].fixtures.result.fixtures.len(), 5);
+}
+
+/// A 60 x 40 plate whose right end is an arc of this bulge: 1 a half
+/// circle, -3 a bite so deep it crosses the left edge (invalid).
+fn arc_part(id: &str, bulge: f64) -> CatalogPart {
+    let outline = [
+        [0.0, 0.0, 0.0],
+        [60.0, 0.0, bulge],
+        [60.0, 40.0, 0.0],
+        [0.0, 40.0, 0.0],
+    ];
+    CatalogPart {
+        part: Ok(Part {
+            outline: outline.map(Vertex::from).to_vec(),
+            access: vec![],
+        }),
+        ..part(id, vec![])
+    }
+}
+
+/// Parts with arcs through a run, `show` and `render`: the pictures draw
+/// the arc with an SVG arc command (the invalid part's too, as read), and
+/// `show` names the arcs and the contacts on them.
+#[test]
+fn arc_parts_through_show_and_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, spec) = catalog();
+    let cat = Catalog {
+        name: "arcs".into(),
+        units: Units::Mm,
+        source: PathBuf::from("mem"),
+        parts: vec![arc_part("half-round", 1.0), arc_part("bitten", -3.0)],
+    };
+    let out = dir.path().join("r.mcap");
+    let t = run_catalog(&cat, &spec, &opts(&out, 2, None)).unwrap();
+    assert_eq!((t.ok, t.invalid), (1, 1), "{t:?}");
+
+    let mut text = Vec::new();
+    show(&out, None, 3, &mut text).unwrap();
+    let text = String::from_utf8(text).unwrap();
+    for want in [
+        "== half-round [ok]",
+        "   arcs: outline edges 1 of 4; segments 1 of 4 (marked * below)",
+        " on arc segment 1: centre (",
+        "== bitten [invalid]",
+        "   arcs: outline edges 1 of 4\n",
+    ] {
+        assert!(text.contains(want), "{want:?} not in\n{text}");
+    }
+
+    let pics = dir.path().join("pics");
+    assert_eq!(render(&out, &pics, None, 1).unwrap(), 2);
+    let svg = std::fs::read_to_string(pics.join("0000-half-round-rank01.svg")).unwrap();
+    // Half circle: large-arc 0; bulge > 0 turns clockwise on screen: sweep 0.
+    assert!(
+        svg.contains("<path d=\"M") && svg.contains(" 0 0 0 "),
+        "{svg}"
+    );
+    let svg = std::fs::read_to_string(pics.join("0001-bitten.svg")).unwrap();
+    // 4 atan(3) is over half a circle (large-arc 1); bulge < 0: sweep 1.
+    assert!(
+        svg.contains("<path d=\"M") && svg.contains(" 0 1 1 "),
+        "{svg}"
+    );
 }

@@ -75,8 +75,7 @@ pub fn part_outcome(
         None => format!("{}: no fixture", cp.id),
     };
     let shown = best.ok_or(caption.as_str());
-    let points: Vec<[f64; 2]> = outline.iter().map(|v| [v.x, v.y]).collect();
-    let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &points, &access, shown);
+    let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &outline, &access, shown);
     let part = serde_json::to_vec(&part_msg)?;
     let scene = serde_json::to_vec(&scene)?;
     let (status, error) = (result.status, result.error.clone());

@@ -2,6 +2,8 @@
 //! catalogue's unit with hole `[0, 0]` at the origin: what the SVG pictures
 //! and the Foxglove scene both draw.
 
+use super::outline::{extent_points, moved};
+use fixplan_core::outline::Vertex;
 use fixplan_core::{FixtureReport, Kit, Pattern, Point};
 
 /// A circle: centre and radius.
@@ -39,8 +41,9 @@ pub struct Hole {
 /// Everything to draw for one fixture, in plate coordinates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FixtureDrawing {
-    /// The part's outline in its pose.
-    pub part: Vec<Point>,
+    /// The part's outline in its pose: vertices moved, bulges unchanged
+    /// (the pose and the plate's turn are rotations, never reflections).
+    pub part: Vec<Vertex>,
     /// The access regions in the part's pose (nothing may cover them).
     pub access: Vec<Vec<Point>>,
     /// Locators 1-3, in the order the report lists them.
@@ -99,7 +102,7 @@ pub fn plate_outline(kit: &Kit) -> Vec<Point> {
 /// by the placement rotation and moved so that locator 1 sits in its hole.
 pub fn fixture_drawing(
     kit: &Kit,
-    outline: &[Point],
+    outline: &[Vertex],
     access: &[Vec<Point>],
     f: &FixtureReport,
 ) -> FixtureDrawing {
@@ -131,7 +134,7 @@ pub fn fixture_drawing(
         })
         .collect();
     FixtureDrawing {
-        part: outline.iter().map(pose).collect(),
+        part: moved(outline, pose),
         access: access
             .iter()
             .map(|a| a.iter().map(pose).collect())
@@ -173,9 +176,10 @@ pub fn bounds<'a>(pts: impl IntoIterator<Item = &'a Point>) -> Option<[Point; 2]
 }
 
 impl FixtureDrawing {
-    /// Bounding box of everything drawn (part, clamp, locators).
+    /// Bounding box of everything drawn (part with its arcs, clamp,
+    /// locators).
     pub fn bounds(&self) -> [Point; 2] {
-        let mut pts: Vec<Point> = self.part.clone();
+        let mut pts: Vec<Point> = extent_points(&self.part);
         pts.extend(self.clamp_body.iter().copied());
         pts.extend(self.plunger.iter().copied());
         for a in &self.access {

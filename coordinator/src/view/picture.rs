@@ -3,12 +3,15 @@
 //! plunger at its extension, contact points and normals, score in the
 //! caption), or one of the part alone when it has no fixture. Hand-written
 //! SVG: small files that open in any browser and stay the same byte for
-//! byte.
+//! byte. A part's arcs are exact SVG arcs (`A` path commands); a polygon
+//! part is a `polygon`, as before arcs.
 
 use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
+use super::outline::{extent_points, has_arcs, vertex_points};
 use super::svg::escape;
 use crate::output::messages::RunMsg;
 use crate::output::reader::PartRecord;
+use fixplan_core::outline::{edges_of, Edge, Vertex};
 use fixplan_core::{FixtureReport, Kit, Point, Status};
 use std::fmt::Write as _;
 
@@ -61,6 +64,47 @@ impl View {
         let _ = writeln!(out, r#"<polygon points="{}" {style}/>"#, self.points(pts));
     }
 
+    /// A part outline: a `polygon` when every edge is straight (the
+    /// pictures of polygon parts stay byte for byte), else a `path` with an
+    /// exact `A` command per arc.
+    fn outline(&self, out: &mut String, outline: &[Vertex], style: &str) {
+        if !has_arcs(outline) {
+            return self.polygon(out, &vertex_points(outline), style);
+        }
+        let _ = writeln!(out, r#"<path d="{}" {style}/>"#, self.path(outline));
+    }
+
+    /// The path data of a closed outline of lines and arcs. y points down
+    /// in SVG, so an arc turning counter-clockwise in the plate frame
+    /// (`bulge > 0`) turns clockwise on screen: sweep flag 0; the large-arc
+    /// flag is set when the arc turns more than half a circle.
+    fn path(&self, outline: &[Vertex]) -> String {
+        let mut d = String::new();
+        let edges = edges_of(outline);
+        for (i, e) in edges.iter().enumerate() {
+            if i == 0 {
+                let (x, y) = self.p([e.start().x, e.start().y]);
+                let _ = write!(d, "M{x:.2},{y:.2}");
+            }
+            let (x, y) = self.p([e.end().x, e.end().y]);
+            match e {
+                // `Z` draws the last straight edge.
+                Edge::Line { .. } if i + 1 == edges.len() => {}
+                Edge::Line { .. } => {
+                    let _ = write!(d, " L{x:.2},{y:.2}");
+                }
+                Edge::Arc(arc) => {
+                    let r = arc.radius * self.k;
+                    let large = u8::from(arc.bulge.abs() > 1.0);
+                    let sweep = u8::from(arc.bulge < 0.0);
+                    let _ = write!(d, " A{r:.2},{r:.2} 0 {large} {sweep} {x:.2},{y:.2}");
+                }
+            }
+        }
+        d.push_str(" Z");
+        d
+    }
+
     fn circle(&self, out: &mut String, c: Point, r: f64, style: &str) {
         let (x, y) = self.p(c);
         let _ = writeln!(
@@ -102,8 +146,7 @@ fn caption(out: &mut String, v: &View, lines: &[String]) {
 /// numbers a machinist sets the fixture up by.
 pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
     let kit = &run.kit;
-    let outline = vertex_points(&rec.part.outline);
-    let d: FixtureDrawing = fixture_drawing(kit, &outline, &rec.part.access, f);
+    let d: FixtureDrawing = fixture_drawing(kit, &rec.part.outline, &rec.part.access, f);
     let l = kit.spacing;
     let [lo, hi] = d.bounds();
     let b = [
@@ -145,7 +188,7 @@ fn draw_plate(s: &mut String, v: &View, kit: &Kit, b: [Point; 2], hole_r: f64) {
 
 /// Part in its pose and its access regions, hatched.
 fn draw_part(s: &mut String, v: &View, d: &FixtureDrawing) {
-    v.polygon(
+    v.outline(
         s,
         &d.part,
         r##"fill="#cfe3f7" fill-opacity="0.9" stroke="#1f5fa8" stroke-width="2""##,
@@ -259,8 +302,7 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
 /// The SVG of a part without a fixture: its outline and the reason.
 pub fn part_svg(rec: &PartRecord) -> String {
     let p = &rec.part;
-    let outline = vertex_points(&p.outline);
-    let mut pts = outline.clone();
+    let mut pts = extent_points(&p.outline);
     for a in &p.access {
         pts.extend(a.iter().copied());
     }
@@ -280,9 +322,9 @@ pub fn part_svg(rec: &PartRecord) -> String {
     };
     let mut s = header(&v);
     if p.outline.len() >= 2 {
-        v.polygon(
+        v.outline(
             &mut s,
-            &outline,
+            &p.outline,
             r##"fill="#cfe3f7" stroke="#1f5fa8" stroke-width="2""##,
         );
     }
@@ -304,9 +346,4 @@ pub fn part_svg(rec: &PartRecord) -> String {
     );
     s.push_str("</svg>\n");
     s
-}
-
-/// The vertex positions of an outline (arcs drawn as their chords).
-fn vertex_points(outline: &[fixplan_core::outline::Vertex]) -> Vec<[f64; 2]> {
-    outline.iter().map(|v| [v.x, v.y]).collect()
 }

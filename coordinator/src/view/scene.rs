@@ -9,7 +9,9 @@
 //! the order a `Value` map wrote them in, so the bytes did not change.
 
 use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, Circle, FixtureDrawing};
+use super::outline::{extent_points, flattened};
 use crate::output::messages::NS_PER_PART;
+use fixplan_core::outline::Vertex;
 use fixplan_core::{FixtureReport, Kit, Point, Units};
 use serde::Serialize;
 
@@ -148,6 +150,9 @@ pub struct SceneUpdate<'a> {
 struct Scene {
     m: f64,
     ns: u64,
+    /// Largest distance between an arc and the chords that draw it
+    /// (catalogue unit): `1e-3` of the part's size.
+    chord_error: f64,
 }
 
 impl Scene {
@@ -170,6 +175,13 @@ impl Scene {
             thickness,
             kind: 1,
         }
+    }
+
+    /// A part outline as a closed line strip, arcs cut into short chords
+    /// (Foxglove has no arc primitive); a polygon's points are its
+    /// vertices, as before arcs.
+    fn outline_line(&self, outline: &[Vertex], thickness: f64, color: Color) -> Line {
+        self.loop_line(&flattened(outline, self.chord_error), thickness, color)
     }
 
     fn disk(&self, c: &Circle, height: f64, color: Color) -> Cylinder {
@@ -253,13 +265,15 @@ impl Scene {
     fn unplaced(
         &self,
         caption: &str,
-        outline: &[Point],
+        outline: &[Vertex],
         access: &[Vec<Point>],
     ) -> Vec<Entity<'static>> {
-        let lines = std::iter::once(self.loop_line(outline, 3.0, PART))
+        let lines = std::iter::once(self.outline_line(outline, 3.0, PART))
             .chain(access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)))
             .collect();
-        let at = bounds(outline).map(|b| b[1]).unwrap_or([0.0, 0.0]);
+        let at = bounds(&extent_points(outline))
+            .map(|b| b[1])
+            .unwrap_or([0.0, 0.0]);
         let texts = vec![self.text(at, caption.to_string())];
         vec![
             self.entity(
@@ -316,7 +330,7 @@ impl Scene {
         hi: Point,
         f: &FixtureReport,
     ) -> Entity<'static> {
-        let mut part_lines = vec![self.loop_line(&d.part, 3.0, PART)];
+        let mut part_lines = vec![self.outline_line(&d.part, 3.0, PART)];
         part_lines.extend(d.access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)));
         let label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
         self.entity(
@@ -368,19 +382,24 @@ impl Scene {
 /// The scene of part `index`: with a fixture, the part posed on the plate
 /// with the best fixture; without, the outline alone in the part frame
 /// (for an invalid part, the outline as read) and `best`'s caption: no
-/// fixture, or the error.
+/// fixture, or the error. Arcs are drawn as chords within `1e-3` of the
+/// part's size (and 5 degrees of turn); contacts on arcs, as on lines, are
+/// arrows along the reported inward normal.
 pub fn scene_update(
     index: usize,
     id: &str,
     units: Units,
     kit: &Kit,
-    outline: &[Point],
+    outline: &[Vertex],
     access: &[Vec<Point>],
     best: Result<&FixtureReport, &str>,
 ) -> SceneUpdate<'static> {
+    let size =
+        bounds(&extent_points(outline)).map_or(0.0, |[lo, hi]| (hi[0] - lo[0]).max(hi[1] - lo[1]));
     let s = Scene {
         m: units.mm_per_unit() / 1000.0,
         ns: index as u64 * NS_PER_PART,
+        chord_error: 1e-3 * size,
     };
     let entities = match best {
         Err(caption) => s.unplaced(caption, outline, access),

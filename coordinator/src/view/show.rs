@@ -3,7 +3,9 @@
 
 use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
 use anyhow::Result;
-use fixplan_core::Status;
+use fixplan_core::outline::edges_of;
+use fixplan_core::segments::SegmentKind;
+use fixplan_core::{FixtureReport, Status};
 use std::io::Write;
 use std::path::Path;
 
@@ -48,7 +50,7 @@ pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) ->
     Ok(())
 }
 
-fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
+pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
     let p = &rec.part;
     let u = p.units.label();
     write!(out, "== {} [{}]", p.id, status_word(p.status))?;
@@ -65,6 +67,10 @@ fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
     }
     for w in &p.warnings {
         writeln!(out, "   warning: {w}")?;
+    }
+    let arcs = ArcSegments::of(rec);
+    if let Some(line) = arcs.summary(rec) {
+        writeln!(out, "   {line}")?;
     }
     let fx = &rec.fixtures.result.fixtures;
     if fx.is_empty() {
@@ -93,21 +99,107 @@ fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
             "  {:>4} {:>10.4}  {:<10} {:<24} {:>28}  {:<22} {:.3}{}",
             f.rank,
             f.score,
-            format!("{},{},{}", f.segments[0], f.segments[1], f.segments[2]),
+            arcs.mark_all(&f.segments),
             locs,
             format!("{:.3}, {:.3}, {:.2}°", f.pose.x, f.pose.y, f.pose.theta_deg),
             format!(
                 "{}/{}°/{},{}",
-                f.clamp.segment, f.clamp.rotation_deg, f.clamp.mount[0], f.clamp.mount[1]
+                arcs.mark(f.clamp.segment),
+                f.clamp.rotation_deg,
+                f.clamp.mount[0],
+                f.clamp.mount[1]
             ),
             f.clamp.extension,
             if f.borderline { "  (borderline)" } else { "" }
         )?;
+        arcs.print_contacts(f, u, out)?;
     }
     if n < fx.len() {
         writeln!(out, "  ... {} more kept (--top 0 shows all)", fx.len() - n)?;
     }
     Ok(())
+}
+
+/// Which segments of a part lie on arcs (SPEC 8.6's `segment_kinds`), for
+/// marking them in the table and listing the contacts on them. Empty for
+/// a polygon part, whose table stays as it was.
+struct ArcSegments {
+    arc: Vec<bool>,
+}
+
+impl ArcSegments {
+    fn of(rec: &PartRecord) -> ArcSegments {
+        let kinds = &rec.fixtures.result.segment_kinds;
+        let arc: Vec<bool> = kinds.iter().map(|k| *k == SegmentKind::Arc).collect();
+        ArcSegments {
+            arc: if arc.contains(&true) { arc } else { Vec::new() },
+        }
+    }
+
+    fn is_arc(&self, segment: usize) -> bool {
+        self.arc.get(segment).copied().unwrap_or(false)
+    }
+
+    /// A segment index, `*` after it when it lies on an arc.
+    fn mark(&self, segment: usize) -> String {
+        format!("{segment}{}", if self.is_arc(segment) { "*" } else { "" })
+    }
+
+    fn mark_all(&self, segments: &[usize; 3]) -> String {
+        segments.map(|s| self.mark(s)).join(",")
+    }
+
+    /// Which outline edges are arcs (from the outline as listed) and which
+    /// segments (from the results, when the file lists their kinds);
+    /// `None` for a polygon part.
+    fn summary(&self, rec: &PartRecord) -> Option<String> {
+        let list = |ix: &[usize]| {
+            ix.iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let outline = &rec.part.outline;
+        let edges: Vec<usize> = edges_of(outline)
+            .iter()
+            .enumerate()
+            .filter_map(|(i, e)| e.is_arc().then_some(i))
+            .collect();
+        let segments: Vec<usize> = (0..self.arc.len()).filter(|&i| self.arc[i]).collect();
+        if edges.is_empty() && segments.is_empty() {
+            return None;
+        }
+        let kinds = rec.fixtures.result.segment_kinds.len();
+        let of_segments = if !segments.is_empty() {
+            format!("; segments {} of {kinds} (marked * below)", list(&segments))
+        } else if kinds > 0 {
+            "; no segment lies on an arc".to_string()
+        } else {
+            String::new()
+        };
+        Some(format!(
+            "arcs: outline edges {} of {}{of_segments}",
+            list(&edges),
+            outline.len()
+        ))
+    }
+
+    /// One line per contact on an arc: which locator (or the clamp), the
+    /// segment, the centre of the locator or tip and the inward normal
+    /// (canonical plate frame, as the results report them).
+    fn print_contacts(&self, f: &FixtureReport, unit: &str, out: &mut dyn Write) -> Result<()> {
+        let on = [f.segments[0], f.segments[1], f.segments[2], f.clamp.segment];
+        for ((name, seg), c) in ["L1", "L2", "L3", "clamp"].iter().zip(on).zip(&f.contacts) {
+            if self.is_arc(seg) {
+                writeln!(
+                    out,
+                    "         {name} on arc segment {seg}: centre ({:.3}, {:.3}) {unit}, inward normal ({:.4}, {:.4})",
+                    c.point[0], c.point[1], c.normal[0], c.normal[1]
+                )?;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Prints one JSON line per part: `{"part": ID, ...SPEC Appendix A result}`.
