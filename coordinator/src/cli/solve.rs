@@ -1,6 +1,7 @@
 //! `fixplan solve CASE.json`: one part, SPEC Appendix A in and out.
 
 use fixplan_core::{solve_case, Case, SolveResult, Status};
+use std::io::Write;
 use std::path::Path;
 
 /// Reads and solves a case file. Every failure becomes an `invalid` result
@@ -32,7 +33,11 @@ pub fn solve_main(case: &Path, threads: Option<usize>) -> anyhow::Result<()> {
             .build_global()?;
     }
     let res = solve_file(case);
-    println!("{}", serde_json::to_string_pretty(&res)?);
+    // Written, not printed: `fixplan solve CASE | head` closes the pipe,
+    // which `println!` turns into a panic and `main` into a quiet exit.
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{}", serde_json::to_string_pretty(&res)?)?;
+    out.flush()?;
     if res.status == Status::Invalid {
         std::process::exit(2);
     }
