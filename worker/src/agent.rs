@@ -9,6 +9,7 @@ use crate::protocol::{
     encode_as, Assign, DataPath, Digest, Frame, Join, Msg, Next, Outcome, ShardDone, ShardFailed,
     TransportChoice, PROTOCOL_VERSION,
 };
+use crate::replay::Replay;
 use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
 use fixplan_core::PreparedPart;
 use rayon::prelude::*;
@@ -83,6 +84,9 @@ pub struct WorkerOptions {
     pub protocol_version: u16,
     /// Misbehave on purpose (tests of the coordinator's checks).
     pub fault: Option<Fault>,
+    /// Answer shards seen before from this cache, at once, and record the
+    /// others (`fixplan bench-coordinator`: the coordinator measured alone).
+    pub replay: Option<Arc<Replay>>,
 }
 
 impl Default for WorkerOptions {
@@ -96,6 +100,7 @@ impl Default for WorkerOptions {
             name: None,
             protocol_version: PROTOCOL_VERSION,
             fault: None,
+            replay: None,
         }
     }
 }
@@ -237,6 +242,36 @@ impl Agent {
     /// batch of small parts keeps every thread busy), each inside its own
     /// `catch_unwind` so one panicking part fails alone.
     fn work_on(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
+        if let Some(replay) = self.opts.replay.clone() {
+            return self.replayed(&replay, batch);
+        }
+        self.enumerated(batch)
+    }
+
+    /// [`Agent::work_on`] with a replay cache: the shards it knows at
+    /// once, the others enumerated and recorded.
+    fn replayed(&mut self, replay: &Replay, batch: Vec<Assign>) -> Vec<Outcome> {
+        let mut out: Vec<Option<Outcome>> = batch.iter().map(|a| replay.get(a)).collect();
+        let (mut todo, mut at) = (Vec::new(), Vec::new());
+        for (i, mut a) in batch.into_iter().enumerate() {
+            if out[i].is_none() {
+                a.input = a.input.take().or_else(|| replay.input_for(&a));
+                todo.push(a);
+                at.push(i);
+            }
+        }
+        if !todo.is_empty() {
+            let asked = todo.clone();
+            for ((a, o), i) in asked.iter().zip(self.enumerated(todo)).zip(at) {
+                replay.put(a, &o);
+                out[i] = Some(o);
+            }
+        }
+        out.into_iter().flatten().collect()
+    }
+
+    /// Enumerates the shards of `batch` side by side on the pool.
+    fn enumerated(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
         let jobs: Vec<_> = batch
             .into_iter()
             .map(|a| {

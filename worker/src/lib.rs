@@ -11,6 +11,8 @@
 //!   without TLS unless `--insecure`;
 //! - [`iox`]: iceoryx2 request/reply through shared memory on one host;
 //! - [`agent`]: the `fixplan worker` loop;
+//! - [`replay`]: shard results replayed by simulated workers
+//!   (`fixplan bench-coordinator`);
 //! - [`host`]: host ids and unique names;
 //! - [`log`]: the log line format and the subscriber of the `fixplan` command
 //!   (library code only emits `tracing` events).
@@ -22,6 +24,7 @@ pub mod iox;
 pub mod log;
 pub mod part_input;
 pub mod protocol;
+pub mod replay;
 pub mod zenoh_link;
 
 use fixplan_core::{PartialResult, PreparedPart};

@@ -283,6 +283,7 @@ pub fn worker_main(a: &WorkerArgs) -> Result<()> {
         name: a.name.clone(),
         protocol_version: a.protocol_version,
         fault: a.fault,
+        replay: None,
     };
     match run_worker(opts) {
         Ok(_) => Ok(()),

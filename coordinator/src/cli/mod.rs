@@ -135,6 +135,18 @@ enum Cmd {
     /// wall time. Run it on an otherwise idle machine; `--repeat 100` for
     /// figures where the start and stop of the run weigh little.
     BenchCluster(crate::bench::cluster::BenchArgs),
+    /// Measure the coordinator's ceiling: parts/s and its CPU per part when
+    /// workers cost nothing.
+    ///
+    /// Simulated workers in this process (one thread each, `--simulated-
+    /// workers 1,8,64`) answer every shard at once with its real result,
+    /// computed in a warm-up run of the same catalogue and replayed in the
+    /// measured run, over the transport of a real run. The coordinator is
+    /// the `fixplan run --workers` path, results file included. Prints per
+    /// count: wall time, parts/s, and the coordinator's CPU per part (this
+    /// process's CPU minus the simulated workers' threads'). Profile it with
+    /// `perf record -g fixplan bench-coordinator ...`.
+    BenchCoordinator(crate::bench::ceiling::CeilingArgs),
     /// Measure the enumeration per part on one thread: wall time, where it
     /// goes (setup enumeration, clamp placement, admissibility checks,
     /// metric), pose solutions computed per setup kept (what the pruning
@@ -242,7 +254,7 @@ fn quiet_logs(cmd: &Cmd) -> bool {
         Cmd::Worker(a) => a.quiet,
         #[cfg(feature = "tls")]
         Cmd::Certs(_) => false,
-        Cmd::BenchCluster(_) => true,
+        Cmd::BenchCluster(_) | Cmd::BenchCoordinator(_) => true,
         Cmd::Solve { .. }
         | Cmd::Bench { .. }
         | Cmd::Show { .. }
@@ -300,6 +312,7 @@ fn real_main() -> Result<()> {
         #[cfg(feature = "tls")]
         Cmd::Certs(a) => cluster::certs_main(&a)?,
         Cmd::BenchCluster(a) => crate::bench::cluster::bench_main(&a)?,
+        Cmd::BenchCoordinator(a) => crate::bench::ceiling::bench_main(&a)?,
         Cmd::Bench {
             cases,
             catalog,

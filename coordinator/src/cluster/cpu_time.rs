@@ -23,3 +23,10 @@ pub fn thread_micros() -> u64 {
 pub fn process_micros() -> u64 {
     micros(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
+
+/// `CLOCK_MONOTONIC` in microseconds: the clock `perf record -k
+/// CLOCK_MONOTONIC` stamps its samples with, to profile a stretch of a
+/// run (`fixplan bench-coordinator` prints its measured runs' bounds).
+pub fn monotonic_micros() -> u64 {
+    micros(libc::CLOCK_MONOTONIC)
+}

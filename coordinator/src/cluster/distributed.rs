@@ -233,7 +233,10 @@ fn settings(opts: &ClusterOptions, batch_cost: u64) -> Settings {
         host_id: fixplan_worker::host::host_id(),
         transport: opts.transport,
         iox: iox_data_path(opts),
-        iox_clients: opts.local_workers.max(iox::DEFAULT_CLIENTS),
+        iox_clients: opts
+            .iox_clients
+            .unwrap_or(opts.local_workers)
+            .max(iox::DEFAULT_CLIENTS),
         lease: opts.lease,
         min_workers: opts.min_workers,
         verify: opts.verify,

@@ -61,6 +61,10 @@ pub struct ClusterOptions {
     /// Worker threads expected in all, for the shard sizes (default: the
     /// local workers' threads, or this host's cores).
     pub expected_threads: Option<usize>,
+    /// Workers the iceoryx2 server serves at once (default: the local
+    /// workers, at least [`fixplan_worker::iox::DEFAULT_CLIENTS`]); more
+    /// workers on this host fall back to zenoh.
+    pub iox_clients: Option<usize>,
     /// Less logging (local workers too).
     pub quiet: bool,
     /// How much of each result is re-derived before it is merged.
@@ -83,6 +87,7 @@ impl Default for ClusterOptions {
             worker_threads: None,
             worker_exe: None,
             expected_threads: None,
+            iox_clients: None,
             quiet: false,
             verify: VerifyPolicy::default(),
             good_enough: None,

@@ -1,0 +1,284 @@
+//! `fixplan bench-coordinator`: the coordinator's ceiling. Simulated
+//! workers in this process answer every shard at once with its real
+//! result, computed beforehand ([`Replay`]), over the transport a real
+//! run uses (join over zenoh on a unix socket, shards over iceoryx2 or
+//! zenoh); the coordinator is the real `fixplan run --workers` path
+//! ([`run_catalog`] with a cluster backend), results file included. So
+//! the run's time and CPU are the coordinator's own work.
+//!
+//! Per count of simulated workers: a warm-up run (the same run, whose
+//! shards are enumerated once and recorded) then the measured run, in
+//! which every shard is replayed. The coordinator's CPU is this process's
+//! CPU time over the measured run minus the simulated workers' threads'
+//! (what their zenoh sessions do on zenoh's shared threads still counts
+//! as the coordinator's: joins and liveliness, little with iceoryx2).
+
+use crate::cluster::cpu_time::{monotonic_micros, process_micros, thread_micros};
+use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
+use crate::job::SearchOptions;
+use crate::run::backend::Backend;
+use crate::run::{run_catalog, RunOptions};
+use anyhow::{bail, Context, Result};
+use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
+use fixplan_worker::agent::{run_worker, WorkerOptions};
+use fixplan_worker::host::unique_name;
+use fixplan_worker::replay::Replay;
+use fixplan_worker::zenoh_link::ZenohOptions;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// `fixplan bench-coordinator` options.
+#[derive(clap::Args, Debug, Clone)]
+pub struct CeilingArgs {
+    /// The catalogue (default: the sample catalogue).
+    #[arg(long, value_name = "DIR|catalog.toml")]
+    pub catalog: Option<PathBuf>,
+    /// The kit.
+    #[arg(long, default_value = "metric-25")]
+    pub kit: String,
+    /// The catalogue this many times over (more parts, steadier figures).
+    #[arg(long, default_value_t = 50)]
+    pub repeat: usize,
+    /// Simulated workers of each measurement (one thread each), e.g.
+    /// `1,8,64`.
+    #[arg(long, value_delimiter = ',', default_value = "1,8,64")]
+    pub simulated_workers: Vec<usize>,
+    /// The simulated workers' transport, as `fixplan worker --transport`.
+    #[arg(long, default_value = "auto")]
+    pub transport: TransportChoice,
+    /// How much of each result the coordinator re-derives: `sample`,
+    /// `all`, or `1/N` (as `fixplan run --verify`).
+    #[arg(long, value_name = "sample|all|1/N", default_value = "sample")]
+    pub verify: VerifyPolicy,
+    /// Keep the results files in this directory (`replay-N.mcap`); by
+    /// default they go to a temporary directory, removed at the end.
+    #[arg(long, value_name = "DIR")]
+    pub keep: Option<PathBuf>,
+}
+
+/// One run's figures.
+#[derive(Debug, Clone)]
+pub struct Ceiling {
+    /// Simulated workers.
+    pub workers: usize,
+    /// Parts written.
+    pub parts: usize,
+    /// Start of the run to its end (workers gone, file renamed), seconds.
+    pub wall: f64,
+    /// This process's CPU over the run, seconds.
+    pub process_cpu: f64,
+    /// The simulated workers' threads' CPU, seconds.
+    pub workers_cpu: f64,
+    /// Shards replayed and shards enumerated during the run.
+    pub replayed: (u64, u64),
+}
+
+impl Ceiling {
+    /// The coordinator's CPU over the run, seconds.
+    pub fn coordinator_cpu(&self) -> f64 {
+        (self.process_cpu - self.workers_cpu).max(0.0)
+    }
+}
+
+/// The catalogue `n` times over (the same entries again: the same ids).
+fn repeated(cat: &Catalog, n: usize) -> Catalog {
+    let mut c = cat.clone();
+    c.parts = (0..n.max(1)).flat_map(|_| cat.parts.clone()).collect();
+    c
+}
+
+/// Starts `n` simulated workers once the coordinator listens on `sock`;
+/// each thread returns its CPU time in microseconds.
+fn start_workers(
+    n: usize,
+    sock: PathBuf,
+    prefix: &str,
+    transport: TransportChoice,
+    replay: &Arc<Replay>,
+) -> JoinHandle<Vec<u64>> {
+    let (prefix, replay) = (prefix.to_string(), replay.clone());
+    std::thread::spawn(move || {
+        let until = Instant::now() + Duration::from_secs(30);
+        while std::os::unix::net::UnixStream::connect(&sock).is_err() && Instant::now() < until {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        let ep = format!("unixsock-stream/{}", sock.display());
+        let threads: Vec<_> = (0..n)
+            .map(|i| {
+                let opts = WorkerOptions {
+                    zenoh: ZenohOptions {
+                        connect: vec![ep.clone()],
+                        ..ZenohOptions::default()
+                    },
+                    key_prefix: prefix.clone(),
+                    threads: Some(1),
+                    transport,
+                    name: Some(format!("replay-{i}")),
+                    replay: Some(replay.clone()),
+                    ..WorkerOptions::default()
+                };
+                std::thread::Builder::new()
+                    .name(format!("replay-{i}"))
+                    .spawn(move || {
+                        if let Err(e) = run_worker(opts) {
+                            eprintln!("simulated worker {i}: {e}");
+                        }
+                        thread_micros()
+                    })
+            })
+            .collect();
+        threads
+            .into_iter()
+            .flatten()
+            .map(|t| t.join().unwrap_or(0))
+            .collect()
+    })
+}
+
+/// One run of the real coordinator path with `n` simulated workers,
+/// writing `output`.
+pub fn run_once(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    a: &CeilingArgs,
+    n: usize,
+    replay: &Arc<Replay>,
+    output: &Path,
+) -> Result<Ceiling> {
+    let sock = std::env::temp_dir().join(format!("{}.sock", unique_name("ceiling")));
+    let prefix = unique_name("ceiling");
+    let copts = ClusterOptions {
+        zenoh: ZenohOptions {
+            listen: vec![format!("unixsock-stream/{}", sock.display())],
+            ..ZenohOptions::default()
+        },
+        key_prefix: prefix.clone(),
+        transport: a.transport,
+        min_workers: n,
+        expected_threads: Some(n),
+        worker_threads: Some(1),
+        iox_clients: Some(n),
+        quiet: true,
+        verify: a.verify,
+        ..ClusterOptions::default()
+    };
+    let opts = RunOptions {
+        catalog: catalog.source.clone(),
+        kit: a.kit.clone(),
+        top_k: None,
+        output: output.to_path_buf(),
+        resume: false,
+        shard_size: None,
+        quiet: true,
+        search: SearchOptions::default(),
+        backend: Backend::Cluster(copts),
+        arcs: None,
+    };
+    let (h0, m0) = replay.counts();
+    let cpu0 = process_micros();
+    let t0 = Instant::now();
+    let workers = start_workers(n, sock.clone(), &prefix, a.transport, replay);
+    let totals = run_catalog(catalog, spec, &opts);
+    let wall = t0.elapsed().as_secs_f64();
+    let worker_micros: u64 = workers.join().unwrap_or_default().iter().sum();
+    let process = process_micros().saturating_sub(cpu0);
+    let _ = std::fs::remove_file(&sock);
+    let totals = totals?;
+    let (h1, m1) = replay.counts();
+    Ok(Ceiling {
+        workers: n,
+        parts: totals.parts(),
+        wall,
+        process_cpu: process as f64 * 1e-6,
+        workers_cpu: worker_micros as f64 * 1e-6,
+        replayed: (h1 - h0, m1 - m0),
+    })
+}
+
+/// Runs the measurements and prints them.
+pub fn bench_main(a: &CeilingArgs) -> Result<()> {
+    let path = a
+        .catalog
+        .clone()
+        .unwrap_or_else(crate::run::default_catalog);
+    let t = Instant::now();
+    let cat = load_catalog(&path)?;
+    let load_us = t.elapsed().as_secs_f64() * 1e6 / cat.parts.len().max(1) as f64;
+    let spec = load_kit(&a.kit, cat.units)?;
+    let catalog = repeated(&cat, a.repeat);
+    let tmp = std::env::temp_dir().join(unique_name("ceiling"));
+    let dir = a.keep.clone().unwrap_or_else(|| tmp.clone());
+    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    println!(
+        "catalogue: {} parts ({} x {}), kit {}, transport {}, results files in {}",
+        catalog.parts.len(),
+        a.repeat,
+        cat.parts.len(),
+        spec.name,
+        a.transport,
+        dir.display()
+    );
+    let replay = Arc::new(Replay::default());
+    let mut rows = Vec::new();
+    for &n in &a.simulated_workers {
+        let n = n.max(1);
+        let out = dir.join(format!("replay-{n}.mcap"));
+        let warm = run_once(&catalog, &spec, a, n, &replay, &out)?;
+        let from = monotonic_micros();
+        let run = run_once(&catalog, &spec, a, n, &replay, &out)?;
+        let to = monotonic_micros();
+        if run.replayed.1 > 0 {
+            bail!(
+                "{n} workers: {} shards were not replayed (the plan changed between the runs)",
+                run.replayed.1
+            );
+        }
+        eprintln!(
+            "{n} workers: warm-up {:.2} s ({} shards enumerated), measured {:.2} s \
+             (perf report --time {}.{:06},{}.{:06} with perf record -k CLOCK_MONOTONIC)",
+            warm.wall,
+            warm.replayed.1,
+            run.wall,
+            from / 1_000_000,
+            from % 1_000_000,
+            to / 1_000_000,
+            to % 1_000_000
+        );
+        rows.push(run);
+    }
+    print_table(&rows);
+    println!(
+        "reading the catalogue (once here, once per part in a run): {load_us:.1} us/part wall"
+    );
+    if a.keep.is_none() {
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+    Ok(())
+}
+
+fn print_table(rows: &[Ceiling]) {
+    println!(
+        "{:>8} {:>7} {:>8} {:>9} {:>10} {:>12} {:>10}",
+        "workers", "parts", "wall s", "parts/s", "shards", "coord us/pt", "coord cpu"
+    );
+    for r in rows {
+        let parts = r.parts.max(1) as f64;
+        println!(
+            "{:>8} {:>7} {:8.3} {:9.1} {:>10} {:12.1} {:9.0}%",
+            r.workers,
+            r.parts,
+            r.wall,
+            parts / r.wall,
+            r.replayed.0,
+            r.coordinator_cpu() * 1e6 / parts,
+            100.0 * r.coordinator_cpu() / r.wall
+        );
+    }
+    println!(
+        "(wall: coordinator start to results file renamed; shards: replayed in the run; coord us/pt: \
+         this process's CPU minus the simulated workers' threads', per part; coord cpu: that \
+         over the wall time, 100% = one core)"
+    );
+}

@@ -1,0 +1,94 @@
+//! Replayed shard results, for measuring the coordinator alone
+//! (`fixplan bench-coordinator`): a worker given a [`Replay`] answers a
+//! shard it has seen before (same part digest, range and `good_enough`)
+//! with the result computed the first time, at once, instead of
+//! enumerating it again. Shared by the simulated workers of one process.
+//! Never used by `fixplan worker`.
+
+use crate::protocol::{Assign, Digest, Outcome};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
+
+/// What names a shard's result: the part, the range, `good_enough` (bits).
+type Key = (Digest, u64, u64, Option<u64>);
+
+fn key(a: &Assign) -> Key {
+    (
+        a.digest,
+        a.range.start,
+        a.range.end,
+        a.good_enough.map(f64::to_bits),
+    )
+}
+
+/// Shard results computed once, replayed after.
+#[derive(Default)]
+pub struct Replay {
+    results: Mutex<HashMap<Key, Outcome>>,
+    /// Parts' wire inputs by digest: a replayed shard skips preparing its
+    /// part, so a later shard of it that is not in the cache (sent without
+    /// input: the coordinator believes this worker has it) takes it here.
+    inputs: Mutex<HashMap<Digest, Vec<u8>>>,
+    hits: AtomicU64,
+    misses: AtomicU64,
+}
+
+impl std::fmt::Debug for Replay {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (hits, misses) = self.counts();
+        f.debug_struct("Replay")
+            .field("hits", &hits)
+            .field("misses", &misses)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Replay {
+    /// The recorded outcome of `a`'s shard, renamed to `a`'s shard id.
+    pub fn get(&self, a: &Assign) -> Option<Outcome> {
+        if let Some(input) = &a.input {
+            let mut inputs = self.inputs.lock().unwrap_or_else(|e| e.into_inner());
+            inputs.entry(a.digest).or_insert_with(|| input.clone());
+        }
+        let results = self.results.lock().unwrap_or_else(|e| e.into_inner());
+        let Some(o) = results.get(&key(a)) else {
+            self.misses.fetch_add(1, Ordering::Relaxed);
+            return None;
+        };
+        let mut o = o.clone();
+        drop(results);
+        match &mut o {
+            Outcome::Done(d) => d.shard_id = a.shard_id,
+            Outcome::Failed(f) => f.shard_id = a.shard_id,
+        }
+        self.hits.fetch_add(1, Ordering::Relaxed);
+        Some(o)
+    }
+
+    /// The wire input of `a`'s part, if `a` came without it and it is known.
+    pub fn input_for(&self, a: &Assign) -> Option<Vec<u8>> {
+        if a.input.is_some() {
+            return None;
+        }
+        let inputs = self.inputs.lock().unwrap_or_else(|e| e.into_inner());
+        inputs.get(&a.digest).cloned()
+    }
+
+    /// Records the outcome of `a`'s shard (a failure too: the same input
+    /// fails the same way), unless it was sent without its input.
+    pub fn put(&self, a: &Assign, o: &Outcome) {
+        if a.input.is_some() || matches!(o, Outcome::Done(_)) {
+            let mut results = self.results.lock().unwrap_or_else(|e| e.into_inner());
+            results.insert(key(a), o.clone());
+        }
+    }
+
+    /// Shards answered from the cache, and shards computed, so far.
+    pub fn counts(&self) -> (u64, u64) {
+        (
+            self.hits.load(Ordering::Relaxed),
+            self.misses.load(Ordering::Relaxed),
+        )
+    }
+}
