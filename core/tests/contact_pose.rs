@@ -262,6 +262,31 @@ proptest! {
 
 // ------------------------------------------------------------ known pose
 
+/// The pose `(theta, w)` a setup was built from is among `poses`, to 1e-9
+/// (1e-6 when the pose is nearly tangential, where its position is only
+/// that well determined). Returns the tangency measure and the error.
+fn assert_truth_found(
+    case: usize,
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    theta: f64,
+    w: V2,
+    poses: &[ContactPose],
+) -> (f64, f64) {
+    let (s, c) = theta.sin_cos();
+    let det = scaled_jacobian_det(contacts, locs, c, s, w).abs();
+    let tol = if det < 1e-4 { 1e-6 } else { 1e-9 };
+    let err = poses
+        .iter()
+        .map(|p| circ_dist(p.pose.theta, theta).max((p.w - w).norm()))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        err <= tol,
+        "case {case}: truth {theta} {w:?} (det {det}) not found: {poses:?}\n{contacts:?}\n{locs:?}"
+    );
+    (det, err)
+}
+
 /// A pose built to be a solution is among the roots, to 1e-9 (1e-6 when
 /// the pose itself is nearly tangential, where its position is only that
 /// well determined), and every root satisfies every equation to 1e-9.
@@ -276,24 +301,10 @@ fn known_pose_is_found() {
         worst_res = worst_res.max(max_residual(&contacts, &locs, &poses));
         assert_distinct(&poses);
         total += poses.len();
-        let (s, c) = theta.sin_cos();
-        let det = scaled_jacobian_det(&contacts, &locs, c, s, w).abs();
-        let tol = if det < 1e-4 {
+        let (det, err) = assert_truth_found(case, &contacts, &locs, theta, w, &poses);
+        if det < 1e-4 {
             near_tangent += 1;
-            1e-6
         } else {
-            1e-9
-        };
-        let err = poses
-            .iter()
-            .map(|p| circ_dist(p.pose.theta, theta).max((p.w - w).norm()))
-            .fold(f64::INFINITY, f64::min);
-        assert!(
-            err <= tol,
-            "case {case}: truth {theta} {w:?} (det {det}) not found: {:?}\n{contacts:?}\n{locs:?}",
-            poses.as_slice()
-        );
-        if det >= 1e-4 {
             worst_err = worst_err.max(err);
         }
     }
@@ -327,18 +338,7 @@ fn quarter_turn_poses_are_found() {
         }
         let poses = solve_contact_poses(&contacts, &locs);
         max_residual(&contacts, &locs, &poses);
-        let (s, c) = theta.sin_cos();
-        let det = scaled_jacobian_det(&contacts, &locs, c, s, w).abs();
-        let tol = if det < 1e-4 { 1e-6 } else { 1e-9 };
-        let err = poses
-            .iter()
-            .map(|p| circ_dist(p.pose.theta, theta).max((p.w - w).norm()))
-            .fold(f64::INFINITY, f64::min);
-        assert!(
-            err <= tol,
-            "case {case}: truth {theta} {w:?} (det {det}) not found: {:?}\n{contacts:?}\n{locs:?}",
-            poses.as_slice()
-        );
+        assert_truth_found(case, &contacts, &locs, theta, w, &poses);
     }
 }
 

@@ -5,10 +5,9 @@
 mod support;
 
 use fixplan_core::combinations::combination_count;
-use fixplan_core::geometry::{cross, v2, V2};
+use fixplan_core::geometry::cross;
 use fixplan_core::input::Pattern;
 use fixplan_core::metric::fibonacci_sphere;
-use fixplan_core::pose::Pose;
 use fixplan_core::segments::Feature;
 use fixplan_core::{merge, Fixture};
 use nalgebra::{Matrix3, Vector3};
@@ -217,19 +216,7 @@ fn metric_closed_form_equals_direct_min_max() {
         let rho = (j / fixplan_core::geometry::signed_area(p.outline().points())).sqrt();
         let dirs = fibonacci_sphere(256);
         for f in p.enumerate_all().fixtures.iter().step_by(7) {
-            let pose = Pose {
-                theta: f.theta,
-                cos: f.theta.cos(),
-                sin: f.theta.sin(),
-                t: v2(f.t[0], f.t[1]),
-            };
-            let mut pts: Vec<V2> = f
-                .locators
-                .iter()
-                .map(|l| v2(l[0] as f64, l[1] as f64))
-                .collect();
-            pts.push(v2(f.contact[0], f.contact[1]));
-            let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
+            let (pose, pts, segs) = fixture_contacts(f);
             let w = [0, 1, 2, 3].map(|i| {
                 let q = pose.inverse_apply(pts[i]);
                 let Feature::Line(l) = p.segments()[segs[i]].feature else {

@@ -162,23 +162,27 @@ pub fn brute_force(p: &PreparedPart) -> PartialResult {
     }
 }
 
-/// Recomputes a fixture's contacts from its pose and the part's segments,
-/// and checks form closure without `W^-1`: the origin strictly inside the
-/// hull of the four wrenches.
-pub fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
+/// A fixture's pose (cosine and sine recomputed from `theta`), its four
+/// contact centres (plate frame: locators 1-3, then the clamp tip) and the
+/// segments they touch.
+pub fn fixture_contacts(f: &Fixture) -> (Pose, [V2; 4], [usize; 4]) {
     let pose = Pose {
         theta: f.theta,
         cos: f.theta.cos(),
         sin: f.theta.sin(),
         t: v2(f.t[0], f.t[1]),
     };
-    let mut points: Vec<V2> = f
-        .locators
-        .iter()
-        .map(|l| v2(l[0] as f64, l[1] as f64))
-        .collect();
-    points.push(v2(f.contact[0], f.contact[1]));
+    let l = |i: usize| v2(f.locators[i][0] as f64, f.locators[i][1] as f64);
+    let points = [l(0), l(1), l(2), v2(f.contact[0], f.contact[1])];
     let segs = [f.segments[0], f.segments[1], f.segments[2], f.clamp_segment];
+    (pose, points, segs)
+}
+
+/// Recomputes a fixture's contacts from its pose and the part's segments,
+/// and checks form closure without `W^-1`: the origin strictly inside the
+/// hull of the four wrenches.
+pub fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
+    let (pose, points, segs) = fixture_contacts(f);
     let mut w = [Vector3::zeros(); 4];
     let mut normals = [V2::zeros(); 4];
     for i in 0..4 {
