@@ -66,8 +66,14 @@ impl Scratch {
         }
         let pose = setup.pose;
         self.part.clear();
-        self.part.extend(prep.part.iter().map(|&p| pose.apply(p)));
-        self.part_box = Some(Aabb::of(&self.part));
+        self.part_box = None;
+        // A part with arcs is checked in its own frame (see
+        // `curved_part_clearance`): only polygons are posed here.
+        if !prep.outline.has_arcs() {
+            let pts = prep.outline.points();
+            self.part.extend(pts.iter().map(|&p| pose.apply(p)));
+            self.part_box = Some(Aabb::of(&self.part));
+        }
         self.access.resize(prep.access.len(), Vec::new());
         self.access_box.clear();
         for (dst, src) in self.access.iter_mut().zip(&prep.access) {
@@ -107,7 +113,11 @@ impl Scratch {
                 let d = curved_part_clearance(prep, &setup.pose, poly, &mut self.local, need)?;
                 margin = margin.min(d);
             }
-            let part = (!curved).then_some((&self.part, self.part_box.as_ref()?));
+            let part = if curved {
+                None
+            } else {
+                Some((&self.part, self.part_box.as_ref()?))
+            };
             let obstacles = part
                 .into_iter()
                 .chain(self.access.iter().zip(self.access_box.iter()));

@@ -161,9 +161,6 @@ pub struct PreparedPart {
     pub(crate) wrenches: Option<Vec<[f64; 3]>>,
     /// CCW outline, lattice units.
     pub(crate) outline: Outline,
-    /// Its vertices: the polygon itself when the outline has no arcs,
-    /// which the clearance tests of polygons use as before arcs.
-    pub(crate) part: Vec<V2>,
     /// Bounding box of the outline (part frame), arcs included.
     pub(crate) outline_box: Aabb,
     pub(crate) access: Vec<Vec<V2>>,
@@ -309,7 +306,6 @@ pub fn prepare(
         r,
         trim,
         wrenches: params.wrenches.clone(),
-        part: outline.points().to_vec(),
         outline_box: outline.aabb(),
         outline,
         access,
