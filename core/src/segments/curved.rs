@@ -121,16 +121,9 @@ fn removed_pieces(
                 .any(|poly| point_in_polygon(p, poly) || boundary_distance2(p, poly).sqrt() < rho)
     };
     cuts.windows(2)
-        .filter(|w| w[1] > w[0] && too_close(point(f, 0.5 * (w[0] + w[1]))))
+        .filter(|w| w[1] > w[0] && too_close(f.point(0.5 * (w[0] + w[1]))))
         .map(|w| (w[0], w[1]))
         .collect()
-}
-
-fn point(f: &Feature, s: f64) -> V2 {
-    match f {
-        Feature::Line(l) => l.origin + l.u * s,
-        Feature::Arc(a) => a.point_at(s),
-    }
 }
 
 /// Parameters where the grown edge `f` crosses the curves at distance

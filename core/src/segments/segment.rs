@@ -31,6 +31,17 @@ pub enum Feature {
     Arc(GrownArc),
 }
 
+impl Feature {
+    /// The point at parameter `s` of the whole grown line or arc.
+    #[inline]
+    pub fn point(&self, s: f64) -> V2 {
+        match self {
+            Feature::Line(l) => l.origin + l.u * s,
+            Feature::Arc(a) => a.point_at(s),
+        }
+    }
+}
+
 /// The kind of a segment, as results list it (SPEC 8.6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
@@ -66,10 +77,7 @@ impl Segment {
     /// The contact centre at parameter `s` (on the grown line or arc).
     #[inline]
     pub fn point(&self, s: f64) -> V2 {
-        match &self.feature {
-            Feature::Line(l) => l.origin + l.u * s,
-            Feature::Arc(a) => a.point_at(s),
-        }
+        self.feature.point(s)
     }
 
     /// The contact parameter of a point on the grown line or arc (its
