@@ -3,10 +3,13 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use fixplan_core::angle_set::AngleSet;
 use fixplan_core::form_closure::{wrench, LocatorWrenches};
-use fixplan_core::geometry::{polygon_clearance, v2};
+use fixplan_core::geometry::{polygon_clearance, polygon_clearance_below, v2};
+use fixplan_core::locator_sweep::{LineSweep, SweepScratch};
 use fixplan_core::metric::{MaxForceMetric, Metric, PartContact};
 use fixplan_core::pose::{solve_poses, Line};
+use fixplan_core::segments::{Feature, LineFeature, Segment};
 use fixplan_core::{prepare, Case};
 use std::hint::black_box;
 
@@ -84,6 +87,53 @@ fn pieces(c: &mut Criterion) {
     ];
     c.bench_function("metric_max_force_256", |b| {
         b.iter(|| m.score(black_box(&contacts)))
+    });
+    c.bench_function("clearance_capped_body_vs_57_edges", |b| {
+        b.iter(|| polygon_clearance_below(black_box(&body), black_box(&part), 1e-6))
+    });
+    sweep(c);
+}
+
+/// The setup pruning: the angle set of two contacts and the region of the
+/// third locator, per `L2`.
+fn sweep(c: &mut Criterion) {
+    c.bench_function("angle_bands_intersected", |b| {
+        b.iter(|| {
+            let a = AngleSet::sinusoid_band(black_box(0.3), 2.5, 0.7, 0.0, 4.0, 1e-7);
+            let o = AngleSet::sinusoid_band(black_box(-1.0), 2.5, 2.1, -3.0, 1.0, 1e-7);
+            a.intersect(&o)
+        })
+    });
+    let line = |o: [f64; 2], dir: f64, len: f64| {
+        let u = v2(dir.cos(), dir.sin());
+        let n = v2(u.y, -u.x);
+        let origin = v2(o[0], o[1]);
+        Segment {
+            edge: 0,
+            s0: 0.0,
+            s1: len,
+            feature: Feature::Line(LineFeature {
+                origin,
+                u,
+                n,
+                c: n.dot(&origin),
+            }),
+        }
+    };
+    let segs = [
+        line([0.0, 0.0], 0.0, 6.0),
+        line([6.0, 0.0], 1.9, 5.0),
+        line([3.0, 5.0], 3.6, 4.0),
+    ];
+    let dirs = [segs[0].direction_angle(), segs[1].direction_angle()];
+    let sweep = LineSweep::new([&segs[0], &segs[1], &segs[2]], dirs, false, 9.0).expect("lines");
+    let mut scratch = SweepScratch::default();
+    c.bench_function("third_locator_region_per_l2", |b| {
+        b.iter(|| {
+            let mut n = 0;
+            sweep.for_each_third_locator(black_box([4, 3]), 1, &mut scratch, |_, _| n += 1);
+            n
+        })
     });
 }
 

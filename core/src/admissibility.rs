@@ -4,7 +4,7 @@
 //! nothing once warm.
 
 use crate::geometry::{
-    polygon_clearance, polygon_disk_clearance, rot90, rot90i, v2, Aabb, BORDERLINE, EPS, V2,
+    polygon_clearance_below, polygon_disk_clearance, rot90, rot90i, v2, Aabb, BORDERLINE, EPS, V2,
 };
 use crate::prepare::{ClampGeom, PreparedPart};
 use crate::setups::{lattice_point, Setup};
@@ -127,7 +127,7 @@ impl Scratch {
                     margin = margin.min(gap - need);
                     continue;
                 }
-                let d = polygon_clearance(poly, obst)?;
+                let d = polygon_clearance_below(poly, obst, need + BORDERLINE)?;
                 if d < need - EPS {
                     return None;
                 }

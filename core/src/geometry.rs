@@ -160,9 +160,15 @@ impl Aabb {
 
     /// Lower bound of the distance between anything in `self` and in `o`.
     pub fn gap(&self, o: &Aabb) -> f64 {
+        self.gap2(o).sqrt()
+    }
+
+    /// Square of [`Self::gap`].
+    #[inline]
+    pub fn gap2(&self, o: &Aabb) -> f64 {
         let dx = (o.min.x - self.max.x).max(self.min.x - o.max.x).max(0.0);
         let dy = (o.min.y - self.max.y).max(self.min.y - o.max.y).max(0.0);
-        (dx * dx + dy * dy).sqrt()
+        dx * dx + dy * dy
     }
 }
 
@@ -173,12 +179,32 @@ impl Aabb {
 /// `min_clearance = 0` can allow touching and forbid overlap as SPEC asks.
 /// Both polygons must be counter-clockwise.
 pub fn polygon_clearance(p: &[V2], q: &[V2]) -> Option<f64> {
+    polygon_clearance_below(p, q, f64::INFINITY)
+}
+
+/// [`polygon_clearance`] when only clearances up to `cap` matter: edges of
+/// `q` whose box is farther than `cap` from `p`'s box are skipped (they can
+/// neither cross `p` nor be the closest), so a clearance above `cap` may
+/// come back as any value above `cap`. The clamp test needs the exact value
+/// only near `min_clearance`, where it decides borderline fixtures; a part
+/// edge far from the clamp then costs a box test instead of `|p|` distance
+/// computations. Give the small polygon as `p`.
+pub fn polygon_clearance_below(p: &[V2], q: &[V2], cap: f64) -> Option<f64> {
     let (n, m) = (p.len(), q.len());
+    let pb = Aabb::of(p);
+    let cap2 = cap * cap;
     let mut best2 = f64::INFINITY;
-    for i in 0..n {
-        let (a, b) = (p[i], p[(i + 1) % n]);
-        for j in 0..m {
-            let (c, d) = (q[j], q[(j + 1) % m]);
+    for j in 0..m {
+        let (c, d) = (q[j], q[(j + 1) % m]);
+        let eb = Aabb {
+            min: c.inf(&d),
+            max: c.sup(&d),
+        };
+        if pb.gap2(&eb) > cap2 {
+            continue;
+        }
+        for i in 0..n {
+            let (a, b) = (p[i], p[(i + 1) % n]);
             if proper_crossing(a, b, c, d) {
                 return None;
             }

@@ -7,6 +7,7 @@
 //! one part and returns the result format of SPEC Appendix A.
 
 pub mod admissibility;
+pub mod angle_set;
 pub mod arc;
 pub mod clamp;
 pub mod combinations;
@@ -15,6 +16,7 @@ pub mod enumerate;
 pub mod form_closure;
 pub mod geometry;
 pub mod input;
+pub mod locator_sweep;
 pub mod metric;
 pub mod outline;
 pub mod plate;

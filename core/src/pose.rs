@@ -49,6 +49,18 @@ pub struct Line {
 /// Up to two poses; degenerate configurations (all normals parallel, or a
 /// locator triangle that leaves the angle free) give none.
 pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
+    solve_poses_where(lines, locs, |_| true)
+}
+
+/// [`solve_poses`] keeping only the roots whose angle (in `[0, 2 pi)`)
+/// passes `keep`, which is asked before the translation is worked out: the
+/// setup search knows the angles at which two of the contacts stay on
+/// their segments and skips the rest.
+pub fn solve_poses_where(
+    lines: &[Line; 3],
+    locs: &[V2; 3],
+    keep: impl Fn(f64) -> bool,
+) -> ([Pose; 2], usize) {
     let empty = Pose {
         theta: 0.0,
         cos: 1.0,
@@ -103,11 +115,15 @@ pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
         .max_by(|x, y| lam[x.2].abs().total_cmp(&lam[y.2].abs()))
         .unwrap_or((0, 1, 2));
     let det = cross(lines[i].n, lines[j].n);
-    for (slot, &th) in out.iter_mut().zip(thetas.iter()).take(count) {
+    let mut kept = 0;
+    for &th in thetas.iter().take(count) {
         let mut theta = th.rem_euclid(std::f64::consts::TAU);
         if theta >= std::f64::consts::TAU {
             // rem_euclid of a tiny negative angle rounds up to 2 pi.
             theta = 0.0;
+        }
+        if !keep(theta) {
+            continue;
         }
         let (s, co) = theta.sin_cos();
         // n_k . w = n_k . (R^T L_k) - c_k
@@ -118,14 +134,15 @@ pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
         let (ei, ej) = (e(i), e(j));
         let (ni, nj) = (lines[i].n, lines[j].n);
         let w = V2::new((ei * nj.y - ej * ni.y) / det, (ni.x * ej - nj.x * ei) / det);
-        *slot = Pose {
+        out[kept] = Pose {
             theta,
             cos: co,
             sin: s,
             t: rot(co, s, w),
         };
+        kept += 1;
     }
-    (out, count)
+    (out, kept)
 }
 
 #[cfg(test)]

@@ -168,6 +168,9 @@ pub struct PreparedPart {
     pub(crate) metric: Arc<dyn Metric>,
     /// `pair[a * n + b]`: distance range between segments a and b.
     pub(crate) pair: Vec<PairBounds>,
+    /// Angle of each line segment's direction (0 for arcs), so the setup
+    /// sweep needs no `atan2` per combination.
+    pub(crate) directions: Vec<f64>,
     pub(crate) setting: Setting,
 }
 
@@ -300,6 +303,7 @@ pub fn prepare(
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
     let pair = pair_bounds(&segments);
+    let directions = segments.iter().map(Segment::direction_angle).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
         spacing: l,
@@ -312,6 +316,7 @@ pub fn prepare(
         segments,
         metric,
         pair,
+        directions,
         setting,
     })
 }

@@ -9,7 +9,8 @@
 use crate::contact_pose::solve_contact_poses;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
-use crate::pose::{solve_poses, Line, Pose};
+use crate::locator_sweep::{LineSweep, SweepScratch};
+use crate::pose::{solve_poses_where, Line, Pose};
 use crate::prepare::{PairBounds, PreparedPart};
 use crate::segments::{Feature, Segment};
 
@@ -52,6 +53,19 @@ impl PreparedPart {
         combo: [usize; 3],
         l2: [i64; 2],
         l3: [i64; 2],
+        visit: impl FnMut(&Setup),
+    ) -> usize {
+        self.setups_for_locators_where(combo, l2, l3, |_| true, visit)
+    }
+
+    /// [`Self::setups_for_locators`] solving, on three lines, only the
+    /// poses whose angle passes `keep` (arcs ignore it).
+    fn setups_for_locators_where(
+        &self,
+        combo: [usize; 3],
+        l2: [i64; 2],
+        l3: [i64; 2],
+        keep: impl Fn(f64) -> bool,
         mut visit: impl FnMut(&Setup),
     ) -> usize {
         if l3 == [0, 0] || l3 == l2 || l2 == [0, 0] {
@@ -66,7 +80,7 @@ impl PreparedPart {
         });
         if let [Some(a), Some(b), Some(c)] = lines {
             // Polygons: SPEC 3's closed form, as before arcs.
-            let (poses, count) = solve_poses(&[a, b, c], &locs);
+            let (poses, count) = solve_poses_where(&[a, b, c], &locs, keep);
             for pose in &poses[..count] {
                 self.visit_pose(combo, &segs, locs_i, &locs, pose, false, &mut visit);
             }
@@ -132,7 +146,8 @@ impl PreparedPart {
         });
     }
 
-    /// Every setup of one combination, pruned by annuli.
+    /// Every setup of one combination, pruned by annuli and the swept
+    /// region of [`crate::locator_sweep`].
     pub fn setups_of_combination(
         &self,
         combo: [usize; 3],
@@ -146,6 +161,14 @@ impl PreparedPart {
         let g = self.setting.grid_step;
         let (lo2, hi2) = annulus_sq(ab);
         let imax = ab.dmax.floor() as i64 + 1;
+        let segs = combo.map(|i| &self.segments[i]);
+        let sweep = LineSweep::new(
+            segs,
+            [self.directions[a], self.directions[b]],
+            a == b,
+            ac.dmax,
+        );
+        let mut scratch = SweepScratch::default();
         // L2 in Q = {i > 0, j >= 0}.
         let mut i = g;
         while i <= imax {
@@ -157,7 +180,15 @@ impl PreparedPart {
                     break;
                 }
                 if d2 >= lo2 && self.locator_point_allowed(l2) {
-                    self.third_locators(combo, l2, ac, bc, &mut stats, &mut visit);
+                    let listed = sweep.is_some_and(|sw| {
+                        sw.for_each_third_locator(l2, g, &mut scratch, |l3, angles| {
+                            let keep = |t: f64| angles.contains(t);
+                            self.solve_triple(combo, l2, l3, keep, &mut stats, &mut visit)
+                        })
+                    });
+                    if !listed {
+                        self.third_locators(combo, l2, ac, bc, &mut stats, &mut visit);
+                    }
                 }
                 j += g;
             }
@@ -166,6 +197,26 @@ impl PreparedPart {
         stats
     }
 
+    /// Solves one locator triple that survived pruning, with statistics.
+    #[inline]
+    fn solve_triple(
+        &self,
+        combo: [usize; 3],
+        l2: [i64; 2],
+        l3: [i64; 2],
+        keep: impl Fn(f64) -> bool,
+        stats: &mut SearchStats,
+        visit: &mut impl FnMut(&Setup),
+    ) {
+        if l3 != [0, 0] && l3 != l2 && self.locator_point_allowed(l3) {
+            stats.locator_triples += 1;
+            stats.pose_solutions +=
+                self.setups_for_locators_where(combo, l2, l3, keep, &mut *visit) as u64;
+        }
+    }
+
+    /// `L3` from the annuli around `L1` and `L2`: arcs, and lines the
+    /// sweep does not handle.
     fn third_locators(
         &self,
         combo: [usize; 3],
@@ -197,15 +248,8 @@ impl PreparedPart {
                     let da = (x * x + y * y) as f64;
                     let q = v2(xf, y as f64) - p2;
                     let db = q.norm_squared();
-                    if da >= lo_a
-                        && da <= hi_a
-                        && db >= lo_b
-                        && db <= hi_b
-                        && self.locator_point_allowed(l3)
-                    {
-                        stats.locator_triples += 1;
-                        stats.pose_solutions +=
-                            self.setups_for_locators(combo, l2, l3, &mut *visit) as u64;
+                    if da >= lo_a && da <= hi_a && db >= lo_b && db <= hi_b {
+                        self.solve_triple(combo, l2, l3, |_| true, stats, visit);
                     }
                     y += g;
                 }

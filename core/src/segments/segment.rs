@@ -112,6 +112,14 @@ impl Segment {
         }
     }
 
+    /// Angle of a line segment's direction `u` (0 on an arc).
+    pub fn direction_angle(&self) -> f64 {
+        match &self.feature {
+            Feature::Line(l) => l.u.y.atan2(l.u.x),
+            Feature::Arc(_) => 0.0,
+        }
+    }
+
     /// Whether `s` lies strictly inside (by more than eps), and by how much.
     #[inline]
     pub fn inner_margin(&self, s: f64) -> f64 {

@@ -1,0 +1,243 @@
+//! Sets of rotation angles, as sorted closed intervals of `[0, 2 pi]`: where
+//! a part may turn while its contacts stay on their segments. Setup pruning
+//! intersects them, so they must never lose an angle: every operation
+//! returns a superset of the exact set, by at most the slack it is given.
+
+use std::f64::consts::{PI, TAU};
+
+/// Most intervals a set holds: a sinusoid band is at most three pieces of
+/// `[0, 2 pi]`, the intersection of two at most five.
+const CAPACITY: usize = 6;
+
+/// A finite union of closed angle intervals in `[0, 2 pi]`, sorted and
+/// disjoint. An interval that crosses `0` is stored as two pieces. Held
+/// inline: pruning builds two per lattice point, where a heap allocation
+/// cost more than the arithmetic.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AngleSet {
+    intervals: [[f64; 2]; CAPACITY],
+    len: usize,
+}
+
+impl Default for AngleSet {
+    fn default() -> Self {
+        AngleSet {
+            intervals: [[0.0; 2]; CAPACITY],
+            len: 0,
+        }
+    }
+}
+
+impl AngleSet {
+    /// Every angle.
+    pub fn full() -> Self {
+        let mut s = AngleSet::default();
+        s.push([0.0, TAU]);
+        s
+    }
+
+    /// No angle.
+    pub fn empty() -> Self {
+        AngleSet::default()
+    }
+
+    fn push(&mut self, iv: [f64; 2]) {
+        // Capacity holds by construction (see `CAPACITY`); an overflow
+        // would mean a bug, and dropping an interval would lose setups.
+        assert!(self.len < CAPACITY, "angle set overflow");
+        self.intervals[self.len] = iv;
+        self.len += 1;
+    }
+
+    /// The angles `theta` with `lo <= alpha + beta cos(theta) + gamma
+    /// sin(theta) <= hi`, widened by `slack` radians at every end.
+    pub fn sinusoid_between(
+        alpha: f64,
+        beta: f64,
+        gamma: f64,
+        lo: f64,
+        hi: f64,
+        slack: f64,
+    ) -> Self {
+        let amp = (beta * beta + gamma * gamma).sqrt();
+        Self::sinusoid_band(alpha, amp, gamma.atan2(beta), lo, hi, slack)
+    }
+
+    /// The angles `theta` with `lo <= alpha + amp cos(theta - phi) <= hi`,
+    /// widened by `slack` radians at every end (`amp >= 0`).
+    pub fn sinusoid_band(alpha: f64, amp: f64, phi: f64, lo: f64, hi: f64, slack: f64) -> Self {
+        // A zero (or NaN) amplitude: the value is alpha at every angle.
+        if amp.is_nan() || amp <= 1e-300 {
+            return if (lo..=hi).contains(&alpha) {
+                AngleSet::full()
+            } else {
+                AngleSet::empty()
+            };
+        }
+        // alpha + amp cos(theta - phi): with x = theta - phi in (-pi, pi],
+        // cos x >= l iff |x| <= acos(l), cos x <= h iff |x| >= acos(h).
+        let l = (lo - alpha) / amp;
+        let h = (hi - alpha) / amp;
+        if l > 1.0 || h < -1.0 || l > h {
+            return AngleSet::empty();
+        }
+        if l <= -1.0 && h >= 1.0 {
+            return AngleSet::full();
+        }
+        let outer = if l <= -1.0 { PI } else { l.acos() } + slack;
+        let inner = if h >= 1.0 { 0.0 } else { h.acos() } - slack;
+        let mut set = AngleSet::empty();
+        if inner <= 0.0 {
+            set.add_wrapped(phi - outer, phi + outer);
+        } else {
+            set.add_wrapped(phi - outer, phi - inner);
+            set.add_wrapped(phi + inner, phi + outer);
+        }
+        set.normalise();
+        set
+    }
+
+    /// The angles in both sets.
+    pub fn intersect(&self, o: &AngleSet) -> AngleSet {
+        let mut out = AngleSet::empty();
+        let (a, b) = (self.intervals(), o.intervals());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            let [a0, a1] = a[i];
+            let [b0, b1] = b[j];
+            let (lo, hi) = (a0.max(b0), a1.min(b1));
+            if lo <= hi {
+                out.push([lo, hi]);
+            }
+            if a1 < b1 {
+                i += 1;
+            } else {
+                j += 1;
+            }
+        }
+        out
+    }
+
+    /// Whether `theta` (in `[0, 2 pi)`) is in the set.
+    pub fn contains(&self, theta: f64) -> bool {
+        self.intervals()
+            .iter()
+            .any(|&[lo, hi]| lo <= theta && theta <= hi)
+    }
+
+    /// Whether the set has no angle.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The intervals, sorted.
+    pub fn intervals(&self) -> &[[f64; 2]] {
+        &self.intervals[..self.len]
+    }
+
+    /// Adds `[lo, hi]` (any real angles, `hi - lo < 2 pi` or the whole
+    /// circle), cut at `0` into pieces of `[0, 2 pi]`.
+    fn add_wrapped(&mut self, lo: f64, hi: f64) {
+        if hi - lo >= TAU {
+            self.push([0.0, TAU]);
+            return;
+        }
+        let shift = (lo / TAU).floor() * TAU;
+        let (lo, hi) = (lo - shift, hi - shift);
+        if hi <= TAU {
+            self.push([lo, hi.min(TAU)]);
+        } else {
+            self.push([lo, TAU]);
+            self.push([0.0, hi - TAU]);
+        }
+    }
+
+    /// Sorts and merges overlapping intervals.
+    fn normalise(&mut self) {
+        // At most a few intervals: insertion sort beats the library's.
+        for k in 1..self.len {
+            let mut j = k;
+            while j > 0 && self.intervals[j - 1][0] > self.intervals[j][0] {
+                self.intervals.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+        let mut n = 0;
+        for k in 0..self.len {
+            let [lo, hi] = self.intervals[k];
+            if n > 0 && lo <= self.intervals[n - 1][1] {
+                self.intervals[n - 1][1] = self.intervals[n - 1][1].max(hi);
+            } else {
+                self.intervals[n] = [lo, hi];
+                n += 1;
+            }
+        }
+        self.len = n;
+    }
+}
+
+/// `theta` reduced to `[0, 2 pi)`.
+pub fn wrap_angle(theta: f64) -> f64 {
+    let t = theta.rem_euclid(TAU);
+    if t >= TAU {
+        0.0
+    } else {
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn value(a: f64, b: f64, g: f64, t: f64) -> f64 {
+        a + b * t.cos() + g * t.sin()
+    }
+
+    #[test]
+    fn sinusoid_sets_hold_exactly_the_angles_that_satisfy_the_bounds() {
+        // Dense sampling: every angle inside the bounds is in the set, and
+        // every angle in the set is within the slack of the bounds.
+        let cases = [
+            (0.3, 1.0, 0.5, -0.2, 0.9),
+            (0.0, -2.0, 1.0, -0.5, 0.5),
+            (1.0, 0.5, -0.5, 0.0, 5.0),
+            (0.0, 1.0, 0.0, -2.0, 2.0),
+            (0.0, 1.0, 0.0, 1.5, 2.0),
+            (0.0, 0.0, 0.0, -1.0, 1.0),
+            (0.2, 0.0, 1.0, 0.9, 1.2),
+        ];
+        for (a, b, g, lo, hi) in cases {
+            let set = AngleSet::sinusoid_between(a, b, g, lo, hi, 1e-12);
+            for k in 0..20_000 {
+                let t = TAU * k as f64 / 20_000.0;
+                let v = value(a, b, g, t);
+                if v >= lo + 1e-9 && v <= hi - 1e-9 {
+                    assert!(set.contains(t), "{t} value {v} missing from {set:?}");
+                }
+                if set.contains(t) {
+                    assert!(v >= lo - 1e-6 && v <= hi + 1e-6, "{t} value {v} in {set:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn intersection_keeps_common_angles_only() {
+        let a = AngleSet::sinusoid_between(0.0, 1.0, 0.0, 0.0, 1.0, 0.0); // |t| <= pi/2
+        let b = AngleSet::sinusoid_between(0.0, 0.0, 1.0, 0.0, 1.0, 0.0); // t in [0, pi]
+        let c = a.intersect(&b);
+        assert!(c.contains(0.3) && c.contains(1.5));
+        assert!(!c.contains(2.0) && !c.contains(6.0));
+        assert!(AngleSet::empty().intersect(&a).is_empty());
+        assert_eq!(AngleSet::full().intersect(&a), a);
+    }
+
+    #[test]
+    fn intervals_across_zero_are_split() {
+        let s = AngleSet::sinusoid_between(0.0, 1.0, 0.0, 0.9, 2.0, 0.0);
+        assert_eq!(s.intervals().len(), 2);
+        assert!(s.contains(0.0) && s.contains(TAU - 0.1) && !s.contains(PI));
+        assert_eq!(wrap_angle(-1e-18), 0.0);
+    }
+}

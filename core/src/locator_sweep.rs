@@ -1,0 +1,606 @@
+//! Where locator 3 can be once locators 1 and 2 touch their segments
+//! (issue 15's pruning, SPEC 3 allows any pruning that keeps the set).
+//!
+//! With `L1` at the origin on grown line `a` and `L2` on grown line `b`, the
+//! part has one degree of freedom left. Over the angles at which both
+//! contacts stay on their segments, segment `c` sweeps a region of the
+//! plate; `L3` must be a lattice point of that region. The annuli that
+//! pruned before bound only the distances to `L1` and `L2`, so most lattice
+//! points they let through gave poses that failed the segment test (about
+//! 50 pose solutions per setup kept on `housing-57`).
+//!
+//! The region is covered by quadrilaterals grown by a margin, each exact up
+//! to the margin: for a piece `[t0, t1]` of the angle set, every point of
+//! `c` moves along a smooth path whose distance from its chord is at most
+//! `(t1 - t0)^2 / 8` times a bound on its second derivative, and the chords
+//! of all points of `c` fill the convex hull of `c` posed at `t0` and `t1`.
+//! So no setup is lost; the pose solver and the segment test still decide.
+
+use crate::angle_set::AngleSet;
+use crate::geometry::{cross, rot, EPS, V2};
+use crate::segments::{Feature, LineFeature, Segment};
+
+/// Contact-parameter slack of the angle sets (lattice units). The pose
+/// solver's contacts and the sinusoids here are the same quantities
+/// computed two ways; near a tangent (double) root the solver snaps the
+/// angle and its contacts move by up to about `EPS` over the determinant,
+/// so the slack is far above both that and rounding.
+const S_SLACK: f64 = 1e-6;
+
+/// Angle slack of the angle sets, radians.
+const ANGLE_SLACK: f64 = 1e-7;
+
+/// Added to every quadrilateral's margin: covers rounding in the poses
+/// (lattice units).
+const QUAD_SLACK: f64 = 1e-6;
+
+/// Largest margin a piece may add around its quadrilateral (lattice
+/// units): smaller means more pieces, larger more lattice points solved
+/// for nothing.
+const TARGET_MARGIN: f64 = 0.25;
+
+/// Beyond this many pieces for one `L2` the annuli are cheaper.
+const MAX_PIECES: usize = 48;
+
+/// `|u_a x u_b|` at or below which lines `a` and `b` count as parallel:
+/// the part then slides without turning. Between this and
+/// [`NEAR_PARALLEL`] neither model is accurate enough and the caller falls
+/// back to the annuli.
+const PARALLEL: f64 = 1e-12;
+
+/// See [`PARALLEL`].
+const NEAR_PARALLEL: f64 = 1e-4;
+
+/// A convex region of the plate: the hull of four points grown by `margin`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Quad {
+    /// Corners, any order.
+    pub pts: [V2; 4],
+    /// How far outside the hull points may still lie.
+    pub margin: f64,
+}
+
+/// A segment on a grown line with its contact range.
+#[derive(Debug, Clone, Copy)]
+struct LinePiece {
+    line: LineFeature,
+    s0: f64,
+    s1: f64,
+}
+
+impl LinePiece {
+    fn of(s: &Segment) -> Option<LinePiece> {
+        match s.feature {
+            Feature::Line(line) => Some(LinePiece {
+                line,
+                s0: s.s0,
+                s1: s.s1,
+            }),
+            Feature::Arc(_) => None,
+        }
+    }
+
+    fn point(&self, s: f64) -> V2 {
+        self.line.origin + self.line.u * s
+    }
+}
+
+/// What the sweep of one combination of three line segments needs, worked
+/// out once per combination: per `L2` only the part that depends on `L2` is
+/// left (one `atan2`, at most four `acos` and two `sin_cos`).
+#[derive(Debug, Clone, Copy)]
+pub struct LineSweep {
+    a: LinePiece,
+    b: LinePiece,
+    c: LinePiece,
+    same_ab: bool,
+    mode: Mode,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Mode {
+    /// No setup at all: the three normals are parallel (degenerate for the
+    /// pose solver too).
+    Degenerate,
+    /// `a` and `b` parallel: the part slides.
+    Sliding,
+    /// `a` and `b` cross: the part turns. `s_a(theta) = alpha_a + |L2| /
+    /// |D| cos(theta - phi_L2 - kappa_a)`, likewise `s_b`.
+    Turning {
+        alpha: [f64; 2],
+        kappa: [f64; 2],
+        inv_d: f64,
+        dmax_ac: f64,
+    },
+}
+
+impl LineSweep {
+    /// `None` when this pruning does not apply (a segment is an arc, or
+    /// lines `a` and `b` nearly but not exactly parallel) and the caller
+    /// must use the annuli. `dmax_ac` bounds the distance between points of
+    /// `a` and `c`.
+    pub fn new(
+        segs: [&Segment; 3],
+        directions: [f64; 2],
+        same_ab: bool,
+        dmax_ac: f64,
+    ) -> Option<LineSweep> {
+        let a = LinePiece::of(segs[0])?;
+        let b = LinePiece::of(segs[1])?;
+        let c = LinePiece::of(segs[2])?;
+        let (na, nb, nc) = (a.line.n, b.line.n, c.line.n);
+        let d = cross(a.line.u, b.line.u);
+        let mode = if [cross(nb, nc), cross(nc, na), cross(na, nb)]
+            .iter()
+            .all(|x| x.abs() <= EPS)
+        {
+            Mode::Degenerate
+        } else if d.abs() <= PARALLEL {
+            Mode::Sliding
+        } else if d.abs() < NEAR_PARALLEL {
+            return None;
+        } else {
+            // p2 - p1 = R^T L2 gives s_a = cross(u_b, q) / D and s_b =
+            // cross(u_a, q) / D for q = R^T L2 + o_a - o_b; the L2 terms
+            // are |L2| cos(theta - phi_L2 + phi_u - sign(D) pi / 2) / |D|.
+            let oab = a.line.origin - b.line.origin;
+            let quarter = d.signum() * std::f64::consts::FRAC_PI_2;
+            Mode::Turning {
+                alpha: [cross(b.line.u, oab) / d, cross(a.line.u, oab) / d],
+                kappa: [-directions[1] - quarter, -directions[0] - quarter],
+                inv_d: 1.0 / d.abs(),
+                dmax_ac,
+            }
+        };
+        Some(LineSweep {
+            a,
+            b,
+            c,
+            same_ab,
+            mode,
+        })
+    }
+
+    /// The region where `L3` may lie for `L1 = 0` on `a` and `L2 = l2` on
+    /// `b`, as quadrilaterals pushed onto `out`, and in `angles` the part
+    /// angles that keep contacts 1 and 2 on their segments (every angle
+    /// when the part slides); `false` when it needs too many pieces and
+    /// the caller should use the annuli.
+    pub fn region(&self, l2: V2, out: &mut Vec<Quad>, angles: &mut AngleSet) -> bool {
+        match self.mode {
+            Mode::Degenerate => true,
+            Mode::Sliding => {
+                *angles = AngleSet::full();
+                sliding_region(&self.a, &self.b, &self.c, self.same_ab, l2, out);
+                true
+            }
+            Mode::Turning {
+                alpha,
+                kappa,
+                inv_d,
+                dmax_ac,
+            } => {
+                let phi = lattice_angle(l2);
+                let amp = l2.norm() * inv_d;
+                let band = |k: usize, p: &LinePiece| {
+                    AngleSet::sinusoid_band(
+                        alpha[k],
+                        amp,
+                        phi + kappa[k],
+                        p.s0 - S_SLACK,
+                        p.s1 + S_SLACK,
+                        ANGLE_SLACK,
+                    )
+                };
+                let on_a = band(0, &self.a);
+                *angles = if on_a.is_empty() {
+                    on_a
+                } else {
+                    on_a.intersect(&band(1, &self.b))
+                };
+                turning_region(self, angles, [alpha[0], amp, phi + kappa[0]], dmax_ac, out)
+            }
+        }
+    }
+}
+
+/// Lines `a` and `b` not parallel: the part turns through `angles`, and
+/// `s_a(theta) = sa[0] + sa[1] cos(theta - sa[2])`.
+fn turning_region(
+    sweep: &LineSweep,
+    angles: &AngleSet,
+    sa: [f64; 3],
+    dmax_ac: f64,
+    out: &mut Vec<Quad>,
+) -> bool {
+    let (a, c) = (&sweep.a, &sweep.c);
+    let h = sa[1];
+    // |F''| <= |p - p1| + 2 |p1'| + |p1''| for F = R (p - p1); the widened
+    // angles may carry p1 past a's ends by `ANGLE_SLACK h`.
+    let k2 = dmax_ac + 3.0 * h + ANGLE_SLACK * h + 1e-6;
+    let step = (8.0 * TARGET_MARGIN / k2).sqrt();
+    let (sin_p, cos_p) = sa[2].sin_cos();
+    let mut pieces = 0;
+    for &[t0, t1] in angles.intervals() {
+        let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
+        pieces += n;
+        if pieces > MAX_PIECES {
+            return false;
+        }
+        let w = (t1 - t0) / n as f64;
+        let margin = w * w / 8.0 * k2 + QUAD_SLACK;
+        let posed = |(sin, cos): (f64, f64)| {
+            // cos(theta - phi) = cos cos_p + sin sin_p.
+            let p1 = a.point(sa[0] + sa[1] * (cos * cos_p + sin * sin_p));
+            let f = |s: f64| rot(cos, sin, c.point(s) - p1);
+            [f(c.s0), f(c.s1)]
+        };
+        let mut sc = t0.sin_cos();
+        let mut prev = posed(sc);
+        // Piece ends by turning the previous one: the rounding this adds,
+        // n * 1e-16, is far below QUAD_SLACK.
+        let step_sc = if n > 1 { w.sin_cos() } else { (0.0, 1.0) };
+        for k in 1..=n {
+            sc = if k == n {
+                t1.sin_cos()
+            } else {
+                (
+                    sc.0 * step_sc.1 + sc.1 * step_sc.0,
+                    sc.1 * step_sc.1 - sc.0 * step_sc.0,
+                )
+            };
+            let next = posed(sc);
+            out.push(Quad {
+                pts: [prev[0], prev[1], next[0], next[1]],
+                margin,
+            });
+            prev = next;
+        }
+    }
+    true
+}
+
+/// Lines `a` and `b` parallel (or one segment twice): the ladder `L1 L2`
+/// spans the gap between them at one or two angles, and the part slides
+/// along them. Each angle gives a parallelogram.
+fn sliding_region(
+    a: &LinePiece,
+    b: &LinePiece,
+    c: &LinePiece,
+    same_ab: bool,
+    l2: V2,
+    out: &mut Vec<Quad>,
+) {
+    let (ua, na) = (a.line.u, a.line.n);
+    let sigma = if na.dot(&b.line.n) >= 0.0 { 1.0 } else { -1.0 };
+    // n_a . (p2 - p1) is the signed gap; the rest of R^T L2 runs along a.
+    let gap = sigma * b.line.c - a.line.c;
+    // A ladder a hair shorter than the gap may still be a tangent pose
+    // for the solver: keep it, at tau = 0.
+    if l2.norm() < gap.abs() - 1e-6 {
+        return;
+    }
+    let tau = (l2.norm_squared() - gap * gap).max(0.0).sqrt();
+    // On one segment, locator 2 comes after locator 1 along it.
+    let taus: &[f64] = if same_ab { &[1.0] } else { &[1.0, -1.0] };
+    for &sign in taus {
+        let tau = sign * tau;
+        let v = na * gap + ua * tau;
+        let theta = l2.y.atan2(l2.x) - v.y.atan2(v.x);
+        let (sin, cos) = theta.sin_cos();
+        // s_b = sigma (s_a + k): the range of s_a keeping both on.
+        let k = ua.dot(&(a.line.origin - b.line.origin)) + tau;
+        let (b_lo, b_hi) = if sigma > 0.0 {
+            (b.s0 - k, b.s1 - k)
+        } else {
+            (-b.s1 - k, -b.s0 - k)
+        };
+        let lo = a.s0.max(b_lo) - S_SLACK;
+        let hi = a.s1.min(b_hi) + S_SLACK;
+        if lo > hi {
+            continue;
+        }
+        let f = |s1: f64, s: f64| rot(cos, sin, c.point(s) - a.point(s1));
+        out.push(Quad {
+            pts: [f(lo, c.s0), f(lo, c.s1), f(hi, c.s0), f(hi, c.s1)],
+            margin: QUAD_SLACK,
+        });
+    }
+}
+
+/// A horizontal run of the plate, `y` a lattice row, `x` in `[lo, hi]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Span {
+    /// Row.
+    pub y: i64,
+    /// Smallest x.
+    pub lo: f64,
+    /// Largest x.
+    pub hi: f64,
+}
+
+/// Pushes, for every lattice row (multiple of `g`) that `q` reaches, the
+/// x range of `q` on that row (a superset: the hull clipped to the strip
+/// `|y - row| <= margin`, widened by the margin).
+pub fn quad_spans(q: &Quad, g: i64, out: &mut Vec<Span>) {
+    let e = q.margin;
+    let gf = g as f64;
+    let (xs, ys) = (q.pts.map(|p| p.x), q.pts.map(|p| p.y));
+    let x_min = xs.iter().copied().fold(f64::INFINITY, f64::min) - e;
+    let x_max = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
+    // Most regions are slivers between lattice columns or rows.
+    if (x_min / gf).ceil() * gf > x_max {
+        return;
+    }
+    let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min) - e;
+    let y_max = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
+    let mut y = (y_min / gf).ceil() as i64 * g;
+    while (y as f64) <= y_max {
+        let (s_lo, s_hi) = (y as f64 - e, y as f64 + e);
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for i in 0..4 {
+            for j in i + 1..4 {
+                if let Some((x0, x1)) = clip_to_strip(q.pts[i], q.pts[j], s_lo, s_hi) {
+                    lo = lo.min(x0);
+                    hi = hi.max(x1);
+                }
+            }
+        }
+        if lo <= hi {
+            out.push(Span {
+                y,
+                lo: lo - e,
+                hi: hi + e,
+            });
+        }
+        y += g;
+    }
+}
+
+/// The x range of the part of segment `p q` with `y` in `[y0, y1]`.
+fn clip_to_strip(p: V2, q: V2, y0: f64, y1: f64) -> Option<(f64, f64)> {
+    let dy = q.y - p.y;
+    let (t0, t1) = if dy.abs() < 1e-300 {
+        if p.y < y0 || p.y > y1 {
+            return None;
+        }
+        (0.0, 1.0)
+    } else {
+        let (ta, tb) = ((y0 - p.y) / dy, (y1 - p.y) / dy);
+        (ta.min(tb).max(0.0), ta.max(tb).min(1.0))
+    };
+    if t0 > t1 {
+        return None;
+    }
+    let (xa, xb) = (p.x + (q.x - p.x) * t0, p.x + (q.x - p.x) * t1);
+    Some((xa.min(xb), xa.max(xb)))
+}
+
+/// Buffers of [`LineSweep::for_each_third_locator`], reused across `L2`.
+#[derive(Debug, Default)]
+pub struct SweepScratch {
+    quads: Vec<Quad>,
+    spans: Vec<Span>,
+    angles: AngleSet,
+}
+
+impl LineSweep {
+    /// Calls `visit` once for every lattice point (multiples of `g`) of the
+    /// region of `L3` for `L2 = l2`, row by row, with the angles at which
+    /// contacts 1 and 2 stay on their segments; `false` (and no call)
+    /// when the region needs too many pieces and the caller should scan
+    /// the annuli instead.
+    pub fn for_each_third_locator(
+        &self,
+        l2: [i64; 2],
+        g: i64,
+        scratch: &mut SweepScratch,
+        mut visit: impl FnMut([i64; 2], &AngleSet),
+    ) -> bool {
+        let SweepScratch {
+            quads,
+            spans,
+            angles,
+        } = scratch;
+        quads.clear();
+        spans.clear();
+        if !self.region(V2::new(l2[0] as f64, l2[1] as f64), quads, angles) {
+            return false;
+        }
+        for q in quads.iter() {
+            quad_spans(q, g, spans);
+        }
+        spans.sort_unstable_by(|a, b| a.y.cmp(&b.y).then(a.lo.total_cmp(&b.lo)));
+        let gf = g as f64;
+        let mut row = i64::MIN;
+        let mut next_x = i64::MIN;
+        for s in spans.iter() {
+            if s.y != row {
+                row = s.y;
+                next_x = i64::MIN;
+            }
+            let mut x = ((s.lo / gf).ceil() as i64 * g).max(next_x);
+            while (x as f64) <= s.hi {
+                visit([x, s.y], angles);
+                x += g;
+            }
+            next_x = next_x.max(x);
+        }
+        true
+    }
+}
+
+/// Largest lattice coordinate with a tabulated angle.
+const ANGLE_TABLE: i64 = 64;
+
+/// `atan2` of a lattice point `L2` (first quadrant, integer coordinates),
+/// from a table built once: each `L2` is visited by many combinations.
+fn lattice_angle(l2: V2) -> f64 {
+    use std::sync::OnceLock;
+    static TABLE: OnceLock<Vec<f64>> = OnceLock::new();
+    let (i, j) = (l2.x as i64, l2.y as i64);
+    let n = ANGLE_TABLE + 1;
+    if (0..n).contains(&i) && (0..n).contains(&j) && i as f64 == l2.x && j as f64 == l2.y {
+        let table = TABLE.get_or_init(|| {
+            (0..n * n)
+                .map(|k| ((k % n) as f64).atan2((k / n) as f64))
+                .collect()
+        });
+        table[(i * n + j) as usize]
+    } else {
+        l2.y.atan2(l2.x)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::v2;
+
+    #[test]
+    fn spans_cover_every_lattice_point_near_the_quad() {
+        let q = Quad {
+            pts: [v2(0.2, 0.1), v2(3.7, 1.2), v2(0.5, 2.9), v2(3.1, 4.4)],
+            margin: 0.3,
+        };
+        let mut spans = Vec::new();
+        quad_spans(&q, 1, &mut spans);
+        let mut inside = 0;
+        for x in -2..7 {
+            for y in -2..7 {
+                let d = hull_distance(&q.pts, v2(x as f64, y as f64));
+                // Within the margin: listed. Far outside (the spans are a
+                // box-shaped superset, up to sqrt 2 margins): not listed.
+                if d <= q.margin {
+                    assert!(contains(&spans, [x, y]), "{x},{y}");
+                    inside += 1;
+                } else if d > 1.5 * q.margin {
+                    assert!(!contains(&spans, [x, y]), "{x},{y} at {d}");
+                }
+            }
+        }
+        assert!(inside > 5);
+    }
+
+    /// A segment of the line through `origin` with direction angle `dir`,
+    /// contacts in `[s0, s1]`.
+    fn line(origin: V2, dir: f64, s0: f64, s1: f64) -> Segment {
+        let u = v2(dir.cos(), dir.sin());
+        let n = v2(u.y, -u.x);
+        Segment {
+            edge: 0,
+            s0,
+            s1,
+            feature: Feature::Line(LineFeature {
+                origin,
+                u,
+                n,
+                c: n.dot(&origin),
+            }),
+        }
+    }
+
+    /// Checks that a known setup's `L3` lies in the region built from its
+    /// `L2`, and its angle in the angle set.
+    fn assert_covered(segs: [&Segment; 3], same_ab: bool, s: [f64; 3], theta: f64) {
+        let p = [0, 1, 2].map(|k| segs[k].point(s[k]));
+        let (sin, cos) = theta.sin_cos();
+        let l2 = rot(cos, sin, p[1] - p[0]);
+        let l3 = rot(cos, sin, p[2] - p[0]);
+        let dirs = [0, 1].map(|k| segs[k].direction_angle());
+        let dmax_ac = crate::segments::distance_range(segs[0], segs[2]).1;
+        let Some(sweep) = LineSweep::new(segs, dirs, same_ab, dmax_ac) else {
+            return; // nearly parallel: the caller scans annuli
+        };
+        if matches!(sweep.mode, Mode::Degenerate) {
+            return;
+        }
+        let mut quads = Vec::new();
+        let mut angles = AngleSet::empty();
+        if !sweep.region(l2, &mut quads, &mut angles) {
+            return; // too many pieces: annuli
+        }
+        let best = quads
+            .iter()
+            .map(|q| hull_distance(&q.pts, l3) - q.margin)
+            .fold(f64::INFINITY, f64::min);
+        assert!(best <= 1e-9, "L3 {l3:?} outside by {best}: {quads:?}");
+        let t = crate::angle_set::wrap_angle(theta);
+        assert!(angles.contains(t), "angle {t} not in {angles:?}");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig {
+            cases: 3000,
+            failure_persistence: None,
+            ..Default::default()
+        })]
+
+        /// Soundness of the pruning: for random segments and a random pose
+        /// that puts three contacts on them, the region built from `L2`
+        /// holds `L3`, whether the part turns or slides.
+        #[test]
+        fn every_setup_lies_in_its_region(
+            o in proptest::array::uniform3((-5.0f64..5.0, -5.0f64..5.0)),
+            dirs in proptest::array::uniform3(0.0f64..std::f64::consts::TAU),
+            lens in proptest::array::uniform3(0.5f64..8.0),
+            fr in proptest::array::uniform3(0.0f64..1.0),
+            theta in 0.0f64..std::f64::consts::TAU,
+            kind in 0u8..4,
+        ) {
+            let mut dirs = dirs;
+            match kind {
+                1 => dirs[1] = dirs[0],                        // parallel, same way
+                2 => dirs[1] = dirs[0] + std::f64::consts::PI, // facing
+                _ => {}
+            }
+            let seg = |k: usize| line(v2(o[k].0, o[k].1), dirs[k], 0.0, lens[k]);
+            let (a, b, c) = (seg(0), seg(1), seg(2));
+            let s = [0, 1, 2].map(|k| fr[k] * [&a, &b, &c][k].s1);
+            if kind == 3 {
+                // Locators 1 and 2 on one segment, in order along it.
+                let s1 = fr[1] * a.s1;
+                let (lo, hi) = (s[0].min(s1), s[0].max(s1));
+                proptest::prop_assume!(hi - lo > 1e-3);
+                assert_covered([&a, &a, &c], true, [lo, hi, s[2]], theta);
+            } else {
+                assert_covered([&a, &b, &c], false, s, theta);
+            }
+        }
+    }
+
+    fn contains(spans: &[Span], p: [i64; 2]) -> bool {
+        let x = p[0] as f64;
+        spans.iter().any(|s| s.y == p[1] && s.lo <= x && x <= s.hi)
+    }
+
+    /// Distance from `p` to the convex hull of four points (brute force:
+    /// inside one of the triangles, else the nearest of the six sides).
+    fn hull_distance(pts: &[V2; 4], p: V2) -> f64 {
+        let tri = |a: V2, b: V2, c: V2| {
+            let s = [
+                cross(b - a, p - a),
+                cross(c - b, p - b),
+                cross(a - c, p - c),
+            ];
+            s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)
+        };
+        for i in 0..4 {
+            for j in 0..4 {
+                for k in 0..4 {
+                    if i != j && j != k && i != k && tri(pts[i], pts[j], pts[k]) {
+                        return 0.0;
+                    }
+                }
+            }
+        }
+        let mut best = f64::INFINITY;
+        for i in 0..4 {
+            for j in i + 1..4 {
+                best = best.min(crate::geometry::point_segment_dist2(p, pts[i], pts[j]).sqrt());
+            }
+        }
+        best
+    }
+}
