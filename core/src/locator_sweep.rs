@@ -85,14 +85,85 @@ impl LinePiece {
     }
 }
 
-/// What the sweep of one combination of three line segments needs, worked
+/// Most chords an arc of segment `c` is cut into (a quarter of a quarter
+/// turn each at most, for a whole circle).
+const MAX_CHORDS: usize = 8;
+
+/// Segment `c` as a polyline within `margin` of it: itself for a line;
+/// chords of at most an eighth of a turn for an arc, within their sagitta.
+/// The sweep of a set grown by `margin` is the sweep grown by `margin`
+/// (the motion is rigid), so chords serve arcs soundly.
+#[derive(Debug, Clone, Copy)]
+struct ThirdPiece {
+    pts: [V2; MAX_CHORDS + 1],
+    chords: usize,
+    margin: f64,
+}
+
+impl ThirdPiece {
+    fn of(seg: &Segment) -> ThirdPiece {
+        let mut pts = [V2::zeros(); MAX_CHORDS + 1];
+        let (chords, margin) = match &seg.feature {
+            Feature::Line(_) => (1, 0.0),
+            Feature::Arc(arc) => {
+                let len = seg.s1 - seg.s0;
+                let eighth = arc.radius * std::f64::consts::FRAC_PI_4;
+                let k = ((len / eighth).ceil() as usize).clamp(1, MAX_CHORDS);
+                let half_angle = len / k as f64 / arc.radius / 2.0;
+                (k, arc.radius * (1.0 - half_angle.cos()) + 1e-9)
+            }
+        };
+        for (j, p) in pts.iter_mut().enumerate().take(chords + 1) {
+            let s = if j == chords {
+                seg.s1
+            } else {
+                seg.s0 + (seg.s1 - seg.s0) * j as f64 / chords as f64
+            };
+            *p = seg.point(s);
+        }
+        ThirdPiece {
+            pts,
+            chords,
+            margin,
+        }
+    }
+
+    /// Pushes the quadrilaterals of every chord between two placements of
+    /// the chord points.
+    fn push_quads(
+        &self,
+        from: &[V2; MAX_CHORDS + 1],
+        to: &[V2; MAX_CHORDS + 1],
+        margin: f64,
+        out: &mut Vec<Quad>,
+    ) {
+        for j in 0..self.chords {
+            out.push(Quad {
+                pts: [from[j], from[j + 1], to[j], to[j + 1]],
+                margin: margin + self.margin,
+            });
+        }
+    }
+
+    /// The chord points under the map `f`.
+    fn map(&self, f: impl Fn(V2) -> V2) -> [V2; MAX_CHORDS + 1] {
+        let mut out = [V2::zeros(); MAX_CHORDS + 1];
+        for (o, p) in out.iter_mut().zip(&self.pts).take(self.chords + 1) {
+            *o = f(*p);
+        }
+        out
+    }
+}
+
+/// What the sweep of one combination needs (`a`, `b` lines, `c` a line or
+/// an arc), worked
 /// out once per combination: per `L2` only the part that depends on `L2` is
 /// left (one `atan2`, at most four `acos` and two `sin_cos`).
 #[derive(Debug, Clone, Copy)]
 pub struct LineSweep {
     a: LinePiece,
     b: LinePiece,
-    c: LinePiece,
+    c: ThirdPiece,
     same_ab: bool,
     mode: Mode,
 }
@@ -115,7 +186,7 @@ enum Mode {
 }
 
 impl LineSweep {
-    /// `None` when this pruning does not apply (a segment is an arc, or
+    /// `None` when this pruning does not apply (`a` or `b` is an arc, or
     /// lines `a` and `b` nearly but not exactly parallel) and the caller
     /// must use the annuli. `dmax_ac` bounds the distance between points of
     /// `a` and `c`.
@@ -127,13 +198,19 @@ impl LineSweep {
     ) -> Option<LineSweep> {
         let a = LinePiece::of(segs[0])?;
         let b = LinePiece::of(segs[1])?;
-        let c = LinePiece::of(segs[2])?;
-        let (na, nb, nc) = (a.line.n, b.line.n, c.line.n);
+        let c = ThirdPiece::of(segs[2]);
+        let (na, nb) = (a.line.n, b.line.n);
         let d = cross(a.line.u, b.line.u);
-        let mode = if [cross(nb, nc), cross(nc, na), cross(na, nb)]
-            .iter()
-            .all(|x| x.abs() <= EPS)
-        {
+        let three_parallel = match &segs[2].feature {
+            Feature::Line(lc) => {
+                let nc = lc.n;
+                [cross(nb, nc), cross(nc, na), cross(na, nb)]
+                    .iter()
+                    .all(|x| x.abs() <= EPS)
+            }
+            Feature::Arc(_) => false,
+        };
+        let mode = if three_parallel {
             Mode::Degenerate
         } else if d.abs() <= PARALLEL {
             Mode::Sliding
@@ -217,7 +294,7 @@ fn turning_region(
     let h = sa[1];
     // |F''| <= |p - p1| + 2 |p1'| + |p1''| for F = R (p - p1); the widened
     // angles may carry p1 past a's ends by `ANGLE_SLACK h`.
-    let k2 = dmax_ac + 3.0 * h + ANGLE_SLACK * h + 1e-6;
+    let k2 = dmax_ac + c.margin + 3.0 * h + ANGLE_SLACK * h + 1e-6;
     let step = (8.0 * TARGET_MARGIN / k2).sqrt();
     let (sin_p, cos_p) = sa[2].sin_cos();
     let mut pieces = 0;
@@ -232,8 +309,7 @@ fn turning_region(
         let posed = |(sin, cos): (f64, f64)| {
             // cos(theta - phi) = cos cos_p + sin sin_p.
             let p1 = a.point(sa[0] + sa[1] * (cos * cos_p + sin * sin_p));
-            let f = |s: f64| rot(cos, sin, c.point(s) - p1);
-            [f(c.s0), f(c.s1)]
+            c.map(|p| rot(cos, sin, p - p1))
         };
         let mut sc = t0.sin_cos();
         let mut prev = posed(sc);
@@ -250,10 +326,7 @@ fn turning_region(
                 )
             };
             let next = posed(sc);
-            out.push(Quad {
-                pts: [prev[0], prev[1], next[0], next[1]],
-                margin,
-            });
+            c.push_quads(&prev, &next, margin, out);
             prev = next;
         }
     }
@@ -266,7 +339,7 @@ fn turning_region(
 fn sliding_region(
     a: &LinePiece,
     b: &LinePiece,
-    c: &LinePiece,
+    c: &ThirdPiece,
     same_ab: bool,
     l2: V2,
     out: &mut Vec<Quad>,
@@ -300,11 +373,8 @@ fn sliding_region(
         if lo > hi {
             continue;
         }
-        let f = |s1: f64, s: f64| rot(cos, sin, c.point(s) - a.point(s1));
-        out.push(Quad {
-            pts: [f(lo, c.s0), f(lo, c.s1), f(hi, c.s0), f(hi, c.s1)],
-            margin: QUAD_SLACK,
-        });
+        let at = |s1: f64| c.map(|p| rot(cos, sin, p - a.point(s1)));
+        c.push_quads(&at(lo), &at(hi), QUAD_SLACK, out);
     }
 }
 
@@ -547,17 +617,38 @@ mod tests {
             lens in proptest::array::uniform3(0.5f64..8.0),
             fr in proptest::array::uniform3(0.0f64..1.0),
             theta in 0.0f64..std::f64::consts::TAU,
-            kind in 0u8..4,
+            kind in 0u8..6,
+            sweep in -6.0f64..6.0,
         ) {
             let mut dirs = dirs;
             match kind {
-                1 => dirs[1] = dirs[0],                        // parallel, same way
+                1 | 5 => dirs[1] = dirs[0],                    // parallel, same way
                 2 => dirs[1] = dirs[0] + std::f64::consts::PI, // facing
                 _ => {}
             }
             let seg = |k: usize| line(v2(o[k].0, o[k].1), dirs[k], 0.0, lens[k]);
-            let (a, b, c) = (seg(0), seg(1), seg(2));
-            let s = [0, 1, 2].map(|k| fr[k] * [&a, &b, &c][k].s1);
+            let (a, b, mut c) = (seg(0), seg(1), seg(2));
+            if kind >= 4 {
+                // An arc for c (convex or concave, up to almost a full
+                // turn), contacts on a piece of it.
+                proptest::prop_assume!(sweep.abs() > 1e-3);
+                let arc = crate::arc::GrownArc {
+                    center: v2(o[2].0, o[2].1),
+                    radius: lens[2] / 2.0,
+                    start_angle: dirs[2],
+                    sweep,
+                };
+                c = Segment {
+                    edge: 0,
+                    s0: 0.1 * arc.length(),
+                    s1: 0.9 * arc.length(),
+                    feature: Feature::Arc(arc),
+                };
+            }
+            let s = [0, 1, 2].map(|k| {
+                let g = [&a, &b, &c][k];
+                g.s0 + fr[k] * (g.s1 - g.s0)
+            });
             if kind == 3 {
                 // Locators 1 and 2 on one segment, in order along it.
                 let s1 = fr[1] * a.s1;

@@ -17,7 +17,12 @@ fn case(name: &str) -> fixplan_core::PreparedPart {
 
 #[test]
 fn polygon_bench_cases_solve_at_most_three_poses_per_setup() {
-    for name in ["gluegun-28", "housing-57", "rectangle-mm", "bracket-flattened"] {
+    for name in [
+        "gluegun-28",
+        "housing-57",
+        "rectangle-mm",
+        "bracket-flattened",
+    ] {
         let p = case(name);
         let (res, profile) = p.enumerate_range_profiled(0..p.combination_count(), false);
         let setups = res.counts.setups;
