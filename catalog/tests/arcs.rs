@@ -329,14 +329,16 @@ id = "boss"
 file = "boss.dxf"
 "#;
 
-fn arc_catalogue(arcs_line: &str) -> std::path::PathBuf {
+/// The manifest's path, and its directory (kept alive by the caller).
+fn arc_catalogue(arcs_line: &str) -> (std::path::PathBuf, TempDir) {
     let d = temp_dir("arcs");
     write(
         &d,
         "boss.dxf",
         &dxf(&[(0, "CIRCLE"), (8, "0"), (10, "0"), (20, "0"), (40, "10")]),
     );
-    write(&d, "catalog.toml", &ARC_MANIFEST.replace("ARCS", arcs_line))
+    let m = write(&d, "catalog.toml", &ARC_MANIFEST.replace("ARCS", arcs_line));
+    (m, d)
 }
 
 #[test]
@@ -350,12 +352,12 @@ fn manifest_arcs_option_and_load_options_override() {
             })
             .collect()
     };
-    let m = arc_catalogue("");
+    let (m, _dir) = arc_catalogue("");
     let exact_cat = load_catalog(&m).unwrap();
     assert_eq!(count(&exact_cat), [(4, 2), (2, 2)]);
     let slot = exact_cat.parts[0].part.as_ref().unwrap();
     assert!(close(true_area(slot), 800.0 + 100.0 * PI, 1e-9));
-    let m = arc_catalogue("arcs = \"flatten\"");
+    let (m, _dir) = arc_catalogue("arcs = \"flatten\"");
     let flat_cat = load_catalog(&m).unwrap();
     for (n, a) in count(&flat_cat) {
         assert!(n > 20 && a == 0, "{n} {a}");
@@ -366,7 +368,7 @@ fn manifest_arcs_option_and_load_options_override() {
         ..Default::default()
     };
     assert_eq!(count(&load_catalog_with(&m, &o).unwrap()), [(4, 2), (2, 2)]);
-    let m = arc_catalogue("arcs = \"EXACT\"");
+    let (m, _dir) = arc_catalogue("arcs = \"EXACT\"");
     let o = LoadOptions {
         arcs: Some(ArcMode::Flatten),
         ..Default::default()
@@ -387,13 +389,13 @@ fn manifest_arcs_option_and_load_options_override() {
 
 #[test]
 fn manifest_arcs_errors_are_clear() {
-    let m = arc_catalogue("arcs = \"chords\"");
+    let (m, _dir) = arc_catalogue("arcs = \"chords\"");
     let e = load_catalog(&m).unwrap_err().to_string();
     assert!(
         e.contains("arcs = \"chords\": expected \"exact\"") && e.contains("\"flatten\""),
         "{e}"
     );
-    let m = arc_catalogue("arcs = true");
+    let (m, _dir) = arc_catalogue("arcs = true");
     let e = load_catalog(&m).unwrap_err().to_string();
     assert!(e.contains("arcs true is not a string"), "{e}");
     assert_eq!("flatten".parse::<ArcMode>(), Ok(ArcMode::Flatten));

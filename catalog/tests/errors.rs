@@ -130,7 +130,7 @@ outline = [[0, 0], [1, 0], [1, 1]]
 units = "in"
 "#;
 
-fn manifest_dir() -> std::path::PathBuf {
+fn manifest_dir() -> TempDir {
     let d = temp_dir("errors");
     write(&d, "parts/open.dxf", DXF_OPEN);
     write(&d, "parts/empty.dxf", DXF_EMPTY);
