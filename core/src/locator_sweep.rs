@@ -145,13 +145,12 @@ impl ThirdPiece {
         }
     }
 
-    /// The chord points under the map `f`.
-    fn map(&self, f: impl Fn(V2) -> V2) -> [V2; MAX_CHORDS + 1] {
-        let mut out = [V2::zeros(); MAX_CHORDS + 1];
+    /// The chord points under the map `f`, into `out`.
+    #[inline]
+    fn map_into(&self, f: impl Fn(V2) -> V2, out: &mut [V2; MAX_CHORDS + 1]) {
         for (o, p) in out.iter_mut().zip(&self.pts).take(self.chords + 1) {
             *o = f(*p);
         }
-        out
     }
 }
 
@@ -180,6 +179,8 @@ enum Mode {
     Turning {
         alpha: [f64; 2],
         kappa: [f64; 2],
+        /// `(sin, cos)` of `kappa_a`, so `phi_a`'s need no `sin_cos` per `L2`.
+        kappa_a_sc: (f64, f64),
         inv_d: f64,
         dmax_ac: f64,
     },
@@ -225,6 +226,7 @@ impl LineSweep {
             Mode::Turning {
                 alpha: [cross(b.line.u, oab) / d, cross(a.line.u, oab) / d],
                 kappa: [-directions[1] - quarter, -directions[0] - quarter],
+                kappa_a_sc: (-directions[1] - quarter).sin_cos(),
                 inv_d: 1.0 / d.abs(),
                 dmax_ac,
             }
@@ -254,6 +256,7 @@ impl LineSweep {
             Mode::Turning {
                 alpha,
                 kappa,
+                kappa_a_sc,
                 inv_d,
                 dmax_ac,
             } => {
@@ -275,18 +278,25 @@ impl LineSweep {
                 } else {
                     on_a.intersect(&band(1, &self.b))
                 };
-                turning_region(self, angles, [alpha[0], amp, phi + kappa[0]], dmax_ac, out)
+                // (sin, cos) of phi_a = phi_L2 + kappa_a by turning L2's
+                // direction.
+                let (sk, ck) = kappa_a_sc;
+                let (sl, cl) = (l2.y / l2.norm(), l2.x / l2.norm());
+                let phi_a_sc = (sl * ck + cl * sk, cl * ck - sl * sk);
+                turning_region(self, angles, [alpha[0], amp], phi_a_sc, dmax_ac, out)
             }
         }
     }
 }
 
 /// Lines `a` and `b` not parallel: the part turns through `angles`, and
-/// `s_a(theta) = sa[0] + sa[1] cos(theta - sa[2])`.
+/// `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)`, `phi_a_sc` the
+/// `(sin, cos)` of `phi_a`.
 fn turning_region(
     sweep: &LineSweep,
     angles: &AngleSet,
-    sa: [f64; 3],
+    sa: [f64; 2],
+    phi_a_sc: (f64, f64),
     dmax_ac: f64,
     out: &mut Vec<Quad>,
 ) -> bool {
@@ -296,7 +306,7 @@ fn turning_region(
     // angles may carry p1 past a's ends by `ANGLE_SLACK h`.
     let k2 = dmax_ac + c.margin + 3.0 * h + ANGLE_SLACK * h + 1e-6;
     let step = (8.0 * TARGET_MARGIN / k2).sqrt();
-    let (sin_p, cos_p) = sa[2].sin_cos();
+    let (sin_p, cos_p) = phi_a_sc;
     let mut pieces = 0;
     for &[t0, t1] in angles.intervals() {
         let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
@@ -306,13 +316,15 @@ fn turning_region(
         }
         let w = (t1 - t0) / n as f64;
         let margin = w * w / 8.0 * k2 + QUAD_SLACK;
-        let posed = |(sin, cos): (f64, f64)| {
+        let posed = |(sin, cos): (f64, f64), out: &mut [V2; MAX_CHORDS + 1]| {
             // cos(theta - phi) = cos cos_p + sin sin_p.
             let p1 = a.point(sa[0] + sa[1] * (cos * cos_p + sin * sin_p));
-            c.map(|p| rot(cos, sin, p - p1))
+            c.map_into(|p| rot(cos, sin, p - p1), out);
         };
         let mut sc = t0.sin_cos();
-        let mut prev = posed(sc);
+        let mut prev = [V2::zeros(); MAX_CHORDS + 1];
+        let mut next = prev;
+        posed(sc, &mut prev);
         // Piece ends by turning the previous one: the rounding this adds,
         // n * 1e-16, is far below QUAD_SLACK.
         let step_sc = if n > 1 { w.sin_cos() } else { (0.0, 1.0) };
@@ -325,9 +337,9 @@ fn turning_region(
                     sc.1 * step_sc.1 - sc.0 * step_sc.0,
                 )
             };
-            let next = posed(sc);
+            posed(sc, &mut next);
             c.push_quads(&prev, &next, margin, out);
-            prev = next;
+            std::mem::swap(&mut prev, &mut next);
         }
     }
     true
@@ -373,8 +385,11 @@ fn sliding_region(
         if lo > hi {
             continue;
         }
-        let at = |s1: f64| c.map(|p| rot(cos, sin, p - a.point(s1)));
-        c.push_quads(&at(lo), &at(hi), QUAD_SLACK, out);
+        let mut ends = [[V2::zeros(); MAX_CHORDS + 1]; 2];
+        for (e, s1) in ends.iter_mut().zip([lo, hi]) {
+            c.map_into(|p| rot(cos, sin, p - a.point(s1)), e);
+        }
+        c.push_quads(&ends[0], &ends[1], QUAD_SLACK, out);
     }
 }
 

@@ -180,7 +180,7 @@ impl PreparedPart {
                     break;
                 }
                 if d2 >= lo2 && self.locator_point_allowed(l2) {
-                    let listed = sweep.is_some_and(|sw| {
+                    let listed = sweep.as_ref().is_some_and(|sw| {
                         sw.for_each_third_locator(l2, g, &mut scratch, |l3, angles| {
                             let keep = |t: f64| angles.contains(t);
                             self.solve_triple(combo, l2, l3, keep, &mut stats, &mut visit)
