@@ -341,3 +341,37 @@ fn svg_arc_flags_put_the_arc_on_the_right_side() {
         );
     }
 }
+
+/// The scene as a run writes it (plate holes copied from a per-thread
+/// cache) is the serialised [`scene_update`], byte for byte: with and
+/// without a fixture, in two units, and again once the cache is warm.
+#[test]
+fn the_scene_json_is_the_serialised_scene_update() {
+    use super::scene::scene_json;
+    let run = run_msg();
+    let rec = record(&run, "half-round", arc_plate());
+    let f = &rec.fixtures.result.fixtures[0];
+    let outline = &rec.part.outline;
+    let (inch, _) = fixplan_catalog::kit::builtin_kit("paper-inch").unwrap();
+    for _warm in 0..2 {
+        for (units, kit) in [(Units::Mm, &run.kit), (Units::Inch, &inch)] {
+            for best in [Ok(f), Err("half-round: no fixture")] {
+                let want = serde_json::to_vec(&scene_update(
+                    7,
+                    "half-round",
+                    units,
+                    kit,
+                    outline,
+                    &[],
+                    best,
+                ))
+                .unwrap();
+                let got = scene_json(7, "half-round", units, kit, outline, &[], best).unwrap();
+                assert_eq!(
+                    String::from_utf8(got).unwrap(),
+                    String::from_utf8(want).unwrap()
+                );
+            }
+        }
+    }
+}
