@@ -90,6 +90,26 @@ impl Distributed {
         Some((i, r.and_then(MergedPart::prepared)))
     }
 
+    /// Every part finished by now (at least one: waits for it), prepared
+    /// here in parallel if the run did not need to: preparing a part sent
+    /// whole is most of the coordinator's own work on it, so on a host with
+    /// several cores the coordinator keeps up with more workers. `None` once
+    /// all parts are out (the run is ended then).
+    pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<MergedPart, PartError>)>> {
+        let first = self.next_delivery()?;
+        let more = self.ready.len().min(self.total - self.delivered);
+        self.delivered += more;
+        let batch: Vec<Delivery> = std::iter::once(first)
+            .chain(self.ready.drain(..more))
+            .collect();
+        Some(
+            batch
+                .into_par_iter()
+                .map(|(i, r)| (i, r.and_then(MergedPart::prepared)))
+                .collect(),
+        )
+    }
+
     /// The next finished part; `None` once all are (the run is ended then).
     fn next_delivery(&mut self) -> Option<Delivery> {
         if self.delivered >= self.total {
