@@ -102,12 +102,9 @@ impl Distributed {
         let batch: Vec<Delivery> = std::iter::once(first)
             .chain(self.ready.drain(..more))
             .collect();
-        Some(
-            batch
-                .into_par_iter()
-                .map(|(i, r)| (i, r.and_then(MergedPart::prepared)))
-                .collect(),
-        )
+        Some(map_batch(batch, |(i, r)| {
+            (i, r.and_then(MergedPart::prepared))
+        }))
     }
 
     /// The next finished part; `None` once all are (the run is ended then).
@@ -132,6 +129,23 @@ impl Distributed {
                 Err(RecvTimeoutError::Disconnected) => return None,
             }
         }
+    }
+}
+
+/// Parts that came back together are worked on in parallel from this
+/// many: for fewer, waking rayon's threads (which spin a while before they
+/// sleep, on the coordinator's CPU) costs more than it saves.
+const PARALLEL_FROM: usize = 8;
+
+/// `items` mapped by `f`, on rayon's threads when there are enough of them.
+pub(crate) fn map_batch<T: Send, U: Send>(
+    items: Vec<T>,
+    f: impl Fn(T) -> U + Sync + Send,
+) -> Vec<U> {
+    if items.len() < PARALLEL_FROM {
+        items.into_iter().map(f).collect()
+    } else {
+        items.into_par_iter().map(f).collect()
     }
 }
 

@@ -3,6 +3,7 @@
 //! the embedded search's; unreadable parts never leave this process.
 
 use super::backend::PartJob;
+use crate::cluster::distributed::map_batch;
 use crate::cluster::{
     run_distributed, ClusterError, ClusterOptions, Distributed, MergedPart, PartError,
 };
@@ -11,7 +12,6 @@ use crate::job::solve::Preparation;
 use crate::job::{part_params, solve_part, SearchInfo, Solved, StepSummary, Timing};
 use fixplan_core::{report, SolveResult, Status};
 use fixplan_worker::part_input::PartInput;
-use rayon::prelude::*;
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -148,13 +148,10 @@ impl ClusterJobs {
             let ms = (now - t_prev).as_secs_f64() * 1e3 / parts.len() as f64;
             t_prev = now;
             let map = &self.map;
-            let outs: Vec<(usize, usize, StepOut)> = parts
-                .into_par_iter()
-                .map(|(n, r)| {
-                    let (i, k) = map[n];
-                    (i, k, step_out(&jobs[i], r, ms))
-                })
-                .collect();
+            let outs = map_batch(parts, |(n, r)| {
+                let (i, k) = map[n];
+                (i, k, step_out(&jobs[i], r, ms))
+            });
             let done: Vec<(usize, Vec<StepOut>)> = outs
                 .into_iter()
                 .filter_map(|(i, k, out)| {
@@ -171,11 +168,11 @@ impl ClusterJobs {
                     })
                 })
                 .collect();
-            let taken = done.into_par_iter().all(|(i, done)| {
+            let taken = map_batch(done, |(i, done)| {
                 let ms = done.iter().map(|s| s.2).sum();
                 send(i, from_steps(&jobs[i], done, ms))
             });
-            if !taken {
+            if !taken.into_iter().all(|t| t) {
                 break;
             }
         }
