@@ -354,7 +354,7 @@ fn the_scene_json_is_the_serialised_scene_update() {
     let outline = &rec.part.outline;
     let (inch, _) = fixplan_catalog::kit::builtin_kit("paper-inch").unwrap();
     for _warm in 0..2 {
-        for (units, kit) in [(Units::Mm, &run.kit), (Units::Inch, &inch)] {
+        for (units, kit) in [(Units::Mm, &run.kit), (Units::In, &inch)] {
             for best in [Ok(f), Err("half-round: no fixture")] {
                 let want = serde_json::to_vec(&scene_update(
                     7,
