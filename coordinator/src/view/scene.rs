@@ -394,31 +394,44 @@ fn near_fixture(kit: &Kit, [lo, hi]: [Point; 2], at: Point) -> bool {
         && at[1] <= hi[1] + 1.5 * l
 }
 
+/// What the scene of a part shows: part `index` (its log time), its id,
+/// the catalogue's unit, the kit, the outline and access regions (part
+/// frame), and its best fixture or the caption saying why there is none.
+#[derive(Clone, Copy)]
+pub struct PartScene<'a> {
+    /// Position in the catalogue.
+    pub index: usize,
+    /// Catalogue id.
+    pub id: &'a str,
+    /// The catalogue's unit.
+    pub units: Units,
+    /// The run's kit.
+    pub kit: &'a Kit,
+    /// The outline (as read, for an invalid part).
+    pub outline: &'a [Vertex],
+    /// Access regions.
+    pub access: &'a [Vec<Point>],
+    /// The best fixture, or no fixture and why.
+    pub best: Result<&'a FixtureReport, &'a str>,
+}
+
 /// The scene of part `index`: with a fixture, the part posed on the plate
 /// with the best fixture; without, the outline alone in the part frame
 /// (for an invalid part, the outline as read) and `best`'s caption: no
 /// fixture, or the error. Arcs are drawn as chords within `1e-3` of the
 /// part's size (and 5 degrees of turn); contacts on arcs, as on lines, are
 /// arrows along the reported inward normal.
-pub fn scene_update(
-    index: usize,
-    id: &str,
-    units: Units,
-    kit: &Kit,
-    outline: &[Vertex],
-    access: &[Vec<Point>],
-    best: Result<&FixtureReport, &str>,
-) -> SceneUpdate<'static> {
-    let s = Scene::of(index, units, outline);
-    let entities = match best {
-        Err(caption) => s.unplaced(caption, outline, access),
+pub fn scene_update(p: PartScene) -> SceneUpdate<'static> {
+    let s = Scene::of(p.index, p.units, p.outline);
+    let entities = match p.best {
+        Err(caption) => s.unplaced(caption, p.outline, p.access),
         Ok(f) => {
-            let d = fixture_drawing(kit, outline, access, f);
+            let d = fixture_drawing(p.kit, p.outline, p.access, f);
             let extent = d.bounds();
             vec![
-                s.plate(kit, extent),
-                s.posed_part(id, &d, extent[1], f),
-                s.fixture(kit, &d),
+                s.plate(p.kit, extent),
+                s.posed_part(p.id, &d, extent[1], f),
+                s.fixture(p.kit, &d),
             ]
         }
     };
@@ -480,21 +493,14 @@ const BEFORE_HOLES: &[u8] = br#"{"deletions":[],"entities":[{"arrows":[],"cubes"
 /// the scene is serialised with no plate hole, and the holes near the
 /// fixture are copied in from this thread's [`HoleCache`] where serde_json
 /// would have written them.
-pub fn scene_json(
-    index: usize,
-    id: &str,
-    units: Units,
-    kit: &Kit,
-    outline: &[Vertex],
-    access: &[Vec<Point>],
-    best: Result<&FixtureReport, &str>,
-) -> serde_json::Result<Vec<u8>> {
-    let whole = || serde_json::to_vec(&scene_update(index, id, units, kit, outline, access, best));
-    let Ok(f) = best else {
+pub fn scene_json(p: PartScene) -> serde_json::Result<Vec<u8>> {
+    let whole = || serde_json::to_vec(&scene_update(p));
+    let Ok(f) = p.best else {
         return whole();
     };
-    let s = Scene::of(index, units, outline);
-    let d = fixture_drawing(kit, outline, access, f);
+    let (id, kit) = (p.id, p.kit);
+    let s = Scene::of(p.index, p.units, p.outline);
+    let d = fixture_drawing(kit, p.outline, p.access, f);
     let extent = d.bounds();
     let holeless = serde_json::to_vec(&SceneUpdate {
         deletions: [],
