@@ -148,7 +148,8 @@ pub struct WorkerArgs {
     /// Enumeration threads (default: all cores).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
-    /// Stay for the next run instead of exiting when a run is over.
+    /// Stay for the next run instead of exiting when a run is over (or
+    /// when its coordinator is gone for 10 s).
     #[arg(long)]
     pub stay: bool,
     /// Name in logs (default: HOST-PID-NONCE).
