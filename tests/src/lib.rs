@@ -135,10 +135,16 @@ pub fn ok(out: std::process::Output) -> std::process::Output {
 /// The fixtures channel of a complete results file, part by part: what
 /// must be byte-identical however the run was split.
 pub fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
+    channels(path).into_iter().map(|(f, _)| f).collect()
+}
+
+/// The fixtures and scene messages of a complete results file, part by
+/// part: the channels that do not depend on timing.
+pub fn channels(path: &Path) -> Vec<(Vec<u8>, Vec<u8>)> {
     let f = fixplan_coordinator::output::ResultsFile::open(path).unwrap();
     let mut v = Vec::new();
     let c = f.for_each_part(|_, m| {
-        v.push(m.fixtures.clone());
+        v.push((m.fixtures, m.scene));
         true
     });
     assert!(c.unwrap().complete);

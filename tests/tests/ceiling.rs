@@ -1,6 +1,6 @@
 //! `fixplan bench-coordinator`'s replay mode: simulated workers in this
 //! process answer from recorded results, and the coordinator's results
-//! file holds the same fixtures as the embedded run's. Loopback only (a
+//! file holds the same fixtures and scenes as the embedded run's. Loopback only (a
 //! unix socket and iceoryx2 under a fresh prefix), a few seconds.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
@@ -8,7 +8,7 @@ use fixplan_coordinator::bench::ceiling::{run_once, CeilingArgs};
 use fixplan_coordinator::cluster::{TransportChoice, VerifyPolicy};
 use fixplan_coordinator::run::backend::Backend;
 use fixplan_coordinator::run::{run_catalog, RunOptions};
-use fixplan_tests::{catalog, fixtures_channel};
+use fixplan_tests::{catalog, channels};
 use fixplan_worker::replay::Replay;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -49,8 +49,9 @@ fn replayed_run_equals_embedded() {
         arcs: None,
     };
     run_catalog(&cat, &spec, &opts).unwrap();
-    let e = fixtures_channel(&embedded);
+    // Fixtures and scenes (made with the plate holes cached), byte for byte.
+    let e = channels(&embedded);
     assert_eq!(e.len(), cat.parts.len());
-    assert_eq!(fixtures_channel(&warm), e);
-    assert_eq!(fixtures_channel(&replayed), e);
+    assert_eq!(channels(&warm), e);
+    assert_eq!(channels(&replayed), e);
 }

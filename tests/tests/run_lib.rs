@@ -12,7 +12,9 @@ use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Status, Units};
 use std::path::{Path, PathBuf};
 
-use fixplan_tests::{catalog, fixtures_channel, part};
+use fixplan_coordinator::run::run_parts;
+use fixplan_coordinator::run::slice::{merge_files, Slice};
+use fixplan_tests::{catalog, channels, fixtures_channel, part};
 
 fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
     RunOptions {
@@ -143,4 +145,37 @@ fn arc_parts_through_show_and_render() {
         svg.contains("<path d=\"M") && svg.contains(" 0 1 1 "),
         "{svg}"
     );
+}
+
+/// A catalogue in three slices, one run each (as three coordinators),
+/// merged in any order: the whole run's fixtures and scenes, byte for
+/// byte. A missing slice, or one given twice, is refused.
+#[test]
+fn slices_merge_into_the_whole_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let whole = dir.path().join("whole.mcap");
+    run_catalog(&cat, &spec, &opts(&whole, 2, None)).unwrap();
+    let slices: Vec<PathBuf> = (1..=3)
+        .map(|k| {
+            let out = dir.path().join(format!("slice-{k}.mcap"));
+            let parts = Slice { k, n: 3 }.parts(cat.parts.len());
+            let t = run_parts(&cat, &spec, &opts(&out, 1, None), parts.clone()).unwrap();
+            assert_eq!(t.parts(), parts.len());
+            out
+        })
+        .collect();
+    let merged = dir.path().join("merged.mcap");
+    let order = [slices[2].clone(), slices[0].clone(), slices[1].clone()];
+    let m = merge_files(&order, &merged).unwrap();
+    assert_eq!((m.files, m.parts), (3, cat.parts.len()));
+    assert_eq!(channels(&merged), channels(&whole));
+
+    let bad = dir.path().join("bad.mcap");
+    let missing = merge_files(&slices[..2], &bad).unwrap_err().to_string();
+    assert!(missing.contains("a slice is missing"), "{missing}");
+    let twice = [slices[0].clone(), slices[1].clone(), slices[1].clone()];
+    let again = merge_files(&twice, &bad).unwrap_err().to_string();
+    assert!(again.contains("comes again"), "{again}");
+    assert!(!bad.exists() && !dir.path().join("bad.mcap.partial").exists());
 }

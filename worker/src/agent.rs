@@ -351,6 +351,9 @@ impl Agent {
         let mut waiting_since = Instant::now();
         let mut said_waiting = false;
         let mut finished_run: Option<String> = None;
+        // Whether this worker took part in a run that it lost (without
+        // `stay`, it ends once the coordinator is gone for good).
+        let mut was_in_run = false;
         loop {
             let welcome = match self.join() {
                 Ok(Frame::Msg(Msg::Welcome(w))) => w,
@@ -376,6 +379,13 @@ impl Agent {
                     )));
                 }
                 Err(e) => {
+                    if was_in_run && !self.opts.stay && waiting_since.elapsed() > GONE_AFTER {
+                        // Its run ended while it was rejoining (the
+                        // coordinator told the others), or the coordinator
+                        // died: a worker without `stay` does not wait forever.
+                        info!(role = self.role, "the coordinator is gone ({e}); stopping");
+                        return Ok(());
+                    }
                     if !said_waiting && waiting_since.elapsed() > Duration::from_secs(2) {
                         info!(
                             role = self.role,
@@ -422,6 +432,7 @@ impl Agent {
                     DataLink::Iox(_) => "iceoryx2",
                 }
             );
+            was_in_run = true;
             if self.serve_run(link)? {
                 info!(
                     role = self.role,
@@ -438,6 +449,11 @@ impl Agent {
         }
     }
 }
+
+/// How long a worker without `stay` that lost its run keeps looking for
+/// the coordinator: the zenoh link lease, so a coordinator that is only
+/// slow to answer is not given up on.
+const GONE_AFTER: Duration = Duration::from_secs(10);
 
 /// Runs a worker until its run is over (or forever with `stay`).
 pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {

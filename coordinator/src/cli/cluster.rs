@@ -6,7 +6,7 @@ use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
 use crate::job::SearchOptions;
 use crate::run::backend::Backend;
 use crate::run::progress::Totals;
-use crate::run::{run_catalog, RunOptions};
+use crate::run::{run_parts, RunOptions};
 use anyhow::{Context, Result};
 use clap::Args;
 use fixplan_catalog::{load_kit, ArcMode};
@@ -107,6 +107,12 @@ pub struct CoordinatorArgs {
     /// Continue the interrupted run found in OUT.partial.
     #[arg(long)]
     pub resume: bool,
+    /// Only the K-th of N consecutive slices of the catalogue's parts, one
+    /// slice per coordinator when one does not keep all the workers busy
+    /// (deploy/README.md); `fixplan merge` joins the slices' files into
+    /// the whole run's.
+    #[arg(long, value_name = "K/N")]
+    pub slice: Option<crate::run::slice::Slice>,
     /// Segment combinations per shard (default: from a cost estimate).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub shard_size: Option<u64>,
@@ -142,7 +148,8 @@ pub struct WorkerArgs {
     /// Enumeration threads (default: all cores).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
-    /// Stay for the next run instead of exiting when a run is over.
+    /// Stay for the next run instead of exiting when a run is over (or
+    /// when its coordinator is gone for 10 s).
     #[arg(long)]
     pub stay: bool,
     /// Name in logs (default: HOST-PID-NONCE).
@@ -269,7 +276,11 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         backend: Backend::Cluster(copts),
         arcs: a.arcs,
     };
-    run_catalog(&catalog, &spec, &opts).context("coordinator")
+    let parts = match a.slice {
+        Some(s) => s.parts(catalog.parts.len()),
+        None => 0..catalog.parts.len(),
+    };
+    run_parts(&catalog, &spec, &opts, parts).context("coordinator")
 }
 
 /// `fixplan worker`: exit code 3 when refused.

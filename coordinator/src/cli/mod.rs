@@ -181,6 +181,17 @@ enum Cmd {
         #[arg(long, value_name = "N", default_value_t = 5)]
         top: usize,
     },
+    /// Join the results files of a catalogue's slices (`fixplan
+    /// coordinator --slice K/N`, one coordinator per slice) into the file
+    /// one coordinator would have written: the same run, every part once.
+    Merge {
+        /// The slices' results files, in any order.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The merged results file.
+        #[arg(short, long, value_name = "FILE")]
+        output: PathBuf,
+    },
     /// Print a results file as JSON lines, one per part:
     /// `{"part": ID, "status": ..., "counts": ..., "fixtures": [...]}`
     /// (the result format of SPEC Appendix A, plus contacts and plate
@@ -259,6 +270,7 @@ fn quiet_logs(cmd: &Cmd) -> bool {
         | Cmd::Bench { .. }
         | Cmd::Show { .. }
         | Cmd::Export { .. }
+        | Cmd::Merge { .. }
         | Cmd::Render { .. } => false,
     }
 }
@@ -323,6 +335,15 @@ fn real_main() -> Result<()> {
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             crate::view::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
+        }
+        Cmd::Merge { files, output } => {
+            let m = crate::run::slice::merge_files(&files, &output)?;
+            eprintln!(
+                "{} parts from {} files in {}",
+                m.parts,
+                m.files,
+                output.display()
+            );
         }
         Cmd::Export {
             results,

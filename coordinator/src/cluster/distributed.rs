@@ -90,6 +90,23 @@ impl Distributed {
         Some((i, r.and_then(MergedPart::prepared)))
     }
 
+    /// Every part finished by now (at least one: waits for it), prepared
+    /// here in parallel if the run did not need to: preparing a part sent
+    /// whole is most of the coordinator's own work on it, so on a host with
+    /// several cores the coordinator keeps up with more workers. `None` once
+    /// all parts are out (the run is ended then).
+    pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<MergedPart, PartError>)>> {
+        let first = self.next_delivery()?;
+        let more = self.ready.len().min(self.total - self.delivered);
+        self.delivered += more;
+        let batch: Vec<Delivery> = std::iter::once(first)
+            .chain(self.ready.drain(..more))
+            .collect();
+        Some(map_batch(batch, |(i, r)| {
+            (i, r.and_then(MergedPart::prepared))
+        }))
+    }
+
     /// The next finished part; `None` once all are (the run is ended then).
     fn next_delivery(&mut self) -> Option<Delivery> {
         if self.delivered >= self.total {
@@ -112,6 +129,23 @@ impl Distributed {
                 Err(RecvTimeoutError::Disconnected) => return None,
             }
         }
+    }
+}
+
+/// Parts that came back together are worked on in parallel from this
+/// many: for fewer, waking rayon's threads (which spin a while before they
+/// sleep, on the coordinator's CPU) costs more than it saves.
+const PARALLEL_FROM: usize = 8;
+
+/// `items` mapped by `f`, on rayon's threads when there are enough of them.
+pub(crate) fn map_batch<T: Send, U: Send>(
+    items: Vec<T>,
+    f: impl Fn(T) -> U + Sync + Send,
+) -> Vec<U> {
+    if items.len() < PARALLEL_FROM {
+        items.into_iter().map(f).collect()
+    } else {
+        items.into_par_iter().map(f).collect()
     }
 }
 

@@ -1,7 +1,8 @@
-//! Writing a results file: MCAP, zstd chunks, summary and indexes. Every
-//! part is written as one chunk (three messages: part, fixtures, scene) and
-//! flushed, so a run killed at any moment leaves a file whose complete
-//! chunks hold whole parts; `--resume` reads them back.
+//! Writing a results file: MCAP, zstd chunks, summary and indexes. A chunk
+//! holds whole parts (three messages each: part, fixtures, scene), a few
+//! of them ([`CHUNK_BYTES`], [`CHUNK_PARTS`]), and is flushed when closed,
+//! so a run killed at any moment leaves a file whose complete chunks hold
+//! whole parts; `--resume` reads them back.
 
 use super::messages::*;
 use super::schemas::{fixtures_schema, part_schema, run_schema, scene_schema};
@@ -35,7 +36,19 @@ pub struct PartMessages {
     pub scene: Vec<u8>,
 }
 
-/// A results file being written, one flushed chunk per part, so a run
+/// A chunk is closed once its parts' fixtures and scene messages hold this
+/// many bytes. A chunk per part made zstd's per-chunk start (tables,
+/// headers, indexes) and the flush most of the coordinator's cost of
+/// writing; a few parts together also compress better (their scenes share
+/// the plate). Counted on those two channels only, whose bytes do not
+/// depend on timing, so chunks close at the same parts in every run.
+pub const CHUNK_BYTES: usize = 256 * 1024;
+
+/// At most this many parts in a chunk: what a run killed at the wrong
+/// moment has to redo at most, when parts are small.
+pub const CHUNK_PARTS: usize = 16;
+
+/// A results file being written, whole parts per flushed chunk, so a run
 /// killed at any moment leaves whole parts behind.
 pub struct ResultsWriter {
     w: Writer<BufWriter<File>>,
@@ -43,15 +56,19 @@ pub struct ResultsWriter {
     part: u16,
     fixtures: u16,
     scene: u16,
+    /// Parts in the open chunk, and their fixtures and scene bytes.
+    open: (usize, usize),
 }
 
-/// The write options of every results file (deterministic: single-threaded
-/// zstd, chunks closed only at part boundaries).
+/// The write options of every results file, embedded or distributed
+/// (deterministic: single-threaded zstd, chunks closed only by
+/// [`ResultsWriter`] at part boundaries).
 pub fn write_options() -> WriteOptions {
     WriteOptions::new()
         .compression(Some(Compression::Zstd))
         .chunk_size(None)
         .compression_threads(0)
+        .compression_level(1)
         .profile("")
         .library(format!("fixplan {}", env!("CARGO_PKG_VERSION")))
 }
@@ -105,6 +122,7 @@ impl ResultsWriter {
             part,
             fixtures,
             scene,
+            open: (0, 0),
         };
         let data = serde_json::to_vec(run)?;
         out.message(out.run, 0, 0, &data)?;
@@ -131,14 +149,20 @@ impl ResultsWriter {
         Ok(())
     }
 
-    /// Writes one part's messages as one chunk and flushes it to the file.
+    /// Writes one part's messages into the open chunk, and closes and
+    /// flushes the chunk once it is full ([`CHUNK_BYTES`], [`CHUNK_PARTS`]).
     pub fn write_part(&mut self, m: &PartMessages) -> Result<(), OutError> {
         let t = m.index as u64 * NS_PER_PART;
         let seq = m.index as u32;
         self.message(self.part, seq, t, &m.part)?;
         self.message(self.fixtures, seq, t, &m.fixtures)?;
         self.message(self.scene, seq, t, &m.scene)?;
-        self.w.flush()?;
+        let (parts, bytes) = self.open;
+        self.open = (parts + 1, bytes + m.fixtures.len() + m.scene.len());
+        if self.open.0 >= CHUNK_PARTS || self.open.1 >= CHUNK_BYTES {
+            self.w.flush()?;
+            self.open = (0, 0);
+        }
         Ok(())
     }
 

@@ -3,7 +3,10 @@
 //! the embedded search's; unreadable parts never leave this process.
 
 use super::backend::PartJob;
-use crate::cluster::{run_distributed, ClusterError, ClusterOptions, Distributed};
+use crate::cluster::distributed::map_batch;
+use crate::cluster::{
+    run_distributed, ClusterError, ClusterOptions, Distributed, MergedPart, PartError,
+};
 use crate::job::search::step_summary;
 use crate::job::solve::Preparation;
 use crate::job::{part_params, solve_part, SearchInfo, Solved, StepSummary, Timing};
@@ -109,11 +112,26 @@ fn from_steps(job: &PartJob, steps: Vec<StepOut>, ms: f64) -> Solved {
     }
 }
 
+/// A part's step as it came back, reported as the embedded run reports it
+/// (its fixtures in catalogue units, placed on the plate).
+fn step_out(job: &PartJob, r: Result<MergedPart, PartError>, ms: f64) -> StepOut {
+    match r {
+        Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
+        Err(msg) => {
+            let msg = format!("{}: {msg}", job.part.id);
+            (SolveResult::invalid(msg), None, ms)
+        }
+    }
+}
+
 impl ClusterJobs {
     /// Hands every job's result to `send` (the unreadable ones first, the
     /// others as their last grid step comes back), then ends the run. Stops early
-    /// when `send` returns false (the caller is gone).
-    pub fn deliver(mut self, jobs: &[PartJob], send: &dyn Fn(usize, Solved) -> bool) {
+    /// when `send` returns false (the caller is gone). The parts that came
+    /// back together are prepared, reported and handed over in parallel
+    /// (`send` makes their messages): the coordinator's work per part is
+    /// what limits how many workers it serves.
+    pub fn deliver(mut self, jobs: &[PartJob], send: &(dyn Fn(usize, Solved) -> bool + Sync)) {
         for &i in &self.direct {
             let job = &jobs[i];
             if !send(i, solve_part(job.ctx, job.part, Preparation::Fresh)) {
@@ -123,28 +141,38 @@ impl ClusterJobs {
         let mut t_prev = Instant::now();
         // Steps of a part, by step index, until all of them are in.
         let mut steps: HashMap<usize, Vec<Option<StepOut>>> = HashMap::new();
-        while let Some((n, r)) = self.dist.next_part() {
-            let (i, k) = self.map[n];
-            let job = &jobs[i];
+        while let Some(parts) = self.dist.next_parts() {
             let now = Instant::now();
-            let ms = (now - t_prev).as_secs_f64() * 1e3;
+            // The time since the results before, shared by those that came
+            // back together.
+            let ms = (now - t_prev).as_secs_f64() * 1e3 / parts.len() as f64;
             t_prev = now;
-            let out = match r {
-                Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
-                Err(msg) => {
-                    let msg = format!("{}: {msg}", job.part.id);
-                    (SolveResult::invalid(msg), None, ms)
-                }
-            };
-            let n_steps = steps_of(job).len();
-            let have = steps.entry(i).or_insert_with(|| vec![None; n_steps]);
-            have[k] = Some(out);
-            if have.iter().any(Option::is_none) {
-                continue;
-            }
-            let done: Vec<StepOut> = steps.remove(&i).into_iter().flatten().flatten().collect();
-            let ms = done.iter().map(|s| s.2).sum();
-            if !send(i, from_steps(job, done, ms)) {
+            let map = &self.map;
+            let outs = map_batch(parts, |(n, r)| {
+                let (i, k) = map[n];
+                (i, k, step_out(&jobs[i], r, ms))
+            });
+            let done: Vec<(usize, Vec<StepOut>)> = outs
+                .into_iter()
+                .filter_map(|(i, k, out)| {
+                    let have = steps
+                        .entry(i)
+                        .or_insert_with(|| vec![None; steps_of(&jobs[i]).len()]);
+                    have[k] = Some(out);
+                    let complete = have.iter().all(Option::is_some);
+                    complete.then(|| {
+                        (
+                            i,
+                            steps.remove(&i).into_iter().flatten().flatten().collect(),
+                        )
+                    })
+                })
+                .collect();
+            let taken = map_batch(done, |(i, done)| {
+                let ms = done.iter().map(|s| s.2).sum();
+                send(i, from_steps(&jobs[i], done, ms))
+            });
+            if !taken.into_iter().all(|t| t) {
                 break;
             }
         }

@@ -16,6 +16,7 @@ pub mod ordered;
 pub mod outcome;
 pub mod progress;
 pub mod resume;
+pub mod slice;
 pub mod solve;
 
 use crate::job::solve::Preparation;
@@ -107,10 +108,23 @@ fn run_message(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> RunMsg {
 /// run (`fixplan run`, `run --workers`, `fixplan coordinator`). Returns the
 /// totals, also printed as a table unless quiet.
 pub fn run_catalog(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> Result<Totals> {
+    run_parts(catalog, spec, opts, 0..catalog.parts.len())
+}
+
+/// [`run_catalog`] of the catalogue's parts `parts` only (`fixplan
+/// coordinator --slice`): the file holds them under their places in the
+/// whole catalogue, after the whole run's message, so `fixplan merge` of
+/// the slices' files is the whole run's file.
+pub fn run_parts(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    opts: &RunOptions,
+    parts: std::ops::Range<usize>,
+) -> Result<Totals> {
     fixplan_core::prepare::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
     opts.search.validate()?;
     let run_msg = run_message(catalog, spec, opts);
-    let n = catalog.parts.len();
+    let n = parts.len();
     let mut progress = Progress::new(n, opts.quiet);
     progress.log(&format!(
         "fixplan run: {} parts of {} ({}) with kit {} on {} threads",
@@ -120,8 +134,13 @@ pub fn run_catalog(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> Resu
         spec.name,
         opts.backend.threads()
     ));
-    let (mut writer, start) =
-        resume::open_output(&opts.output, opts.resume, &run_msg, &mut progress)?;
+    let (mut writer, start) = resume::open_output(
+        &opts.output,
+        opts.resume,
+        &run_msg,
+        parts.clone(),
+        &mut progress,
+    )?;
     let ctx = JobContext {
         kit: &spec.kit,
         params: &run_msg.params,
@@ -129,7 +148,7 @@ pub fn run_catalog(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> Resu
         shard_size: opts.shard_size,
         search: &opts.search,
     };
-    let jobs: Vec<PartJob> = catalog.parts[start..]
+    let jobs: Vec<PartJob> = catalog.parts[start..parts.end]
         .iter()
         .map(|part| PartJob {
             part,

@@ -4,7 +4,7 @@
 use crate::job::{JobContext, Solved};
 use crate::output::messages::{FixturesMsg, PartMsg, STOPPED_GOOD_ENOUGH};
 use crate::output::PartMessages;
-use crate::view::scene::scene_update;
+use crate::view::scene::{scene_json, PartScene};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::Status;
 
@@ -75,9 +75,16 @@ pub fn part_outcome(
         None => format!("{}: no fixture", cp.id),
     };
     let shown = best.ok_or(caption.as_str());
-    let scene = scene_update(index, &cp.id, ctx.units, ctx.kit, &outline, &access, shown);
+    let scene = scene_json(PartScene {
+        index,
+        id: &cp.id,
+        units: ctx.units,
+        kit: ctx.kit,
+        outline: &outline,
+        access: &access,
+        best: shown,
+    })?;
     let part = serde_json::to_vec(&part_msg)?;
-    let scene = serde_json::to_vec(&scene)?;
     let (status, error) = (result.status, result.error.clone());
     let admissible = result.counts.map_or(0, |c| c.admissible);
     let kept = result.fixtures.len();

@@ -8,6 +8,7 @@ use crate::output::messages::{PartMsg, RunMsg};
 use crate::output::{PartMessages, ReadError, ResultsFile, ResultsWriter};
 use anyhow::{bail, Context, Result};
 use std::fs::File;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 /// `OUT.partial`: where an unfinished run writes.
@@ -18,17 +19,19 @@ pub fn partial_path(output: &Path) -> PathBuf {
 }
 
 /// The writer of this run and the index of the first part it still has to
-/// solve: a fresh `OUT.partial`, or with `resume` the one found there,
-/// its finished parts kept.
+/// solve: a fresh `OUT.partial` (the run's `parts`: not all of them for a
+/// slice), or with `resume` the one found there, its finished parts kept.
 pub fn open_output(
     output: &Path,
     resume: bool,
     run_msg: &RunMsg,
+    parts: Range<usize>,
     progress: &mut Progress,
 ) -> Result<(ResultsWriter, usize)> {
     let partial = partial_path(output);
+    let first = parts.start;
     if resume && partial.exists() {
-        if let Some(r) = resume_from(&partial, run_msg, progress)? {
+        if let Some(r) = resume_from(&partial, run_msg, parts, progress)? {
             return Ok(r);
         }
     } else if resume {
@@ -44,7 +47,7 @@ pub fn open_output(
     }
     let file =
         File::create(&partial).with_context(|| format!("{}: cannot create", partial.display()))?;
-    Ok((ResultsWriter::create(file, run_msg)?, 0))
+    Ok((ResultsWriter::create(file, run_msg)?, first))
 }
 
 /// Finishes the writer and renames `OUT.partial` to `OUT`.
@@ -66,20 +69,22 @@ pub fn close_output(writer: ResultsWriter, output: &Path) -> Result<()> {
 
 /// What copying the finished parts of an old file ended on.
 enum Copied {
-    /// `next` parts copied, in order.
+    /// The parts up to `next` (excluded) copied, in order.
     Parts(usize),
     /// The file was written by another run.
     OtherRun,
 }
 
-/// Copies the parts of `old` that are complete and in order into `w`.
+/// Copies the parts of `old` that are complete and in order, of the run's
+/// `parts`, into `w`.
 fn copy_finished(
     old: &ResultsFile,
     run_msg: &RunMsg,
+    parts: Range<usize>,
     w: &mut ResultsWriter,
     progress: &mut Progress,
 ) -> Result<Result<Copied, ReadError>> {
-    let mut next = 0usize;
+    let mut next = parts.start;
     let mut other_run = false;
     let mut write_err = None;
     let read = old.for_each_part(|run, m: PartMessages| {
@@ -87,7 +92,7 @@ fn copy_finished(
             other_run = true;
             return false;
         }
-        if m.index != next {
+        if m.index != next || !parts.contains(&next) {
             return false;
         }
         if let Err(e) = w.write_part(&m) {
@@ -118,8 +123,10 @@ fn copy_finished(
 fn resume_from(
     partial: &Path,
     run_msg: &RunMsg,
+    parts: Range<usize>,
     progress: &mut Progress,
 ) -> Result<Option<(ResultsWriter, usize)>> {
+    let first = parts.start;
     let old = match ResultsFile::open(partial) {
         Ok(f) => f,
         Err(e) => bail!("{e}"),
@@ -130,7 +137,7 @@ fn resume_from(
     let file = File::create(&new_path)
         .with_context(|| format!("{}: cannot create", new_path.display()))?;
     let mut w = ResultsWriter::create(file, run_msg)?;
-    let next = match copy_finished(&old, run_msg, &mut w, progress)? {
+    let next = match copy_finished(&old, run_msg, parts, &mut w, progress)? {
         Err(ReadError::Format { message, .. }) => {
             progress.log(&format!(
                 "{}: nothing usable to resume ({message}); starting from the beginning",
@@ -158,8 +165,9 @@ fn resume_from(
         )
     })?;
     progress.log(&format!(
-        "resuming {}: {next} parts already done",
-        partial.display()
+        "resuming {}: {} parts already done",
+        partial.display(),
+        next - first
     ));
     Ok(Some((w, next)))
 }

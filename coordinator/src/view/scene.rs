@@ -8,12 +8,15 @@
 //! (~400 us a part). Fields are declared in alphabetical order, which is
 //! the order a `Value` map wrote them in, so the bytes did not change.
 
-use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, Circle, FixtureDrawing};
+use super::draw::{
+    bounds, fixture_drawing, plate_holes, plate_outline, Circle, FixtureDrawing, Hole,
+};
 use super::outline::{extent_points, flattened};
 use crate::output::messages::NS_PER_PART;
 use fixplan_core::outline::Vertex;
 use fixplan_core::{FixtureReport, Kit, Point, Units};
 use serde::Serialize;
+use std::cell::RefCell;
 
 /// The frame every entity is drawn in: the plate, hole `[0, 0]` at the
 /// origin, the same for every part so that scenes replace each other.
@@ -289,28 +292,30 @@ impl Scene {
         ]
     }
 
+    /// The disk of one plate hole: the same for every part of a run.
+    fn hole_disk(&self, kit: &Kit, h: &Hole) -> Cylinder {
+        let hole_r = kit.locator_radius.min(0.3 * kit.spacing);
+        let c = if h.dowel {
+            color(0.55, 0.55, 0.55, 1.0)
+        } else {
+            color(0.35, 0.35, 0.4, 1.0)
+        };
+        self.disk(&Circle { c: h.at, r: hole_r }, 0.0005, c)
+    }
+
     /// The plate: its edge and the holes within 1.5 spacings of the
     /// fixture's bounds `[lo, hi]` (a whole plate is hundreds of disks a
     /// part).
-    fn plate(&self, kit: &Kit, [lo, hi]: [Point; 2]) -> Entity<'static> {
-        let l = kit.spacing;
-        let hole_r = kit.locator_radius.min(0.3 * l);
+    fn plate(&self, kit: &Kit, extent: [Point; 2]) -> Entity<'static> {
         let holes = plate_holes(kit)
-            .filter(|h| {
-                h.at[0] >= lo[0] - 1.5 * l
-                    && h.at[0] <= hi[0] + 1.5 * l
-                    && h.at[1] >= lo[1] - 1.5 * l
-                    && h.at[1] <= hi[1] + 1.5 * l
-            })
-            .map(|h| {
-                let c = if h.dowel {
-                    color(0.55, 0.55, 0.55, 1.0)
-                } else {
-                    color(0.35, 0.35, 0.4, 1.0)
-                };
-                self.disk(&Circle { c: h.at, r: hole_r }, 0.0005, c)
-            })
+            .filter(|h| near_fixture(kit, extent, h.at))
+            .map(|h| self.hole_disk(kit, &h))
             .collect();
+        self.plate_with(kit, holes)
+    }
+
+    /// The plate entity with these hole disks.
+    fn plate_with(&self, kit: &Kit, holes: Vec<Cylinder>) -> Entity<'static> {
         self.entity(
             "plate",
             Shapes {
@@ -379,37 +384,54 @@ impl Scene {
     }
 }
 
+/// Whether the hole at `at` is drawn with a fixture of bounds `[lo, hi]`:
+/// within 1.5 spacings of them.
+fn near_fixture(kit: &Kit, [lo, hi]: [Point; 2], at: Point) -> bool {
+    let l = kit.spacing;
+    at[0] >= lo[0] - 1.5 * l
+        && at[0] <= hi[0] + 1.5 * l
+        && at[1] >= lo[1] - 1.5 * l
+        && at[1] <= hi[1] + 1.5 * l
+}
+
+/// What the scene of a part shows: part `index` (its log time), its id,
+/// the catalogue's unit, the kit, the outline and access regions (part
+/// frame), and its best fixture or the caption saying why there is none.
+#[derive(Clone, Copy)]
+pub struct PartScene<'a> {
+    /// Position in the catalogue.
+    pub index: usize,
+    /// Catalogue id.
+    pub id: &'a str,
+    /// The catalogue's unit.
+    pub units: Units,
+    /// The run's kit.
+    pub kit: &'a Kit,
+    /// The outline (as read, for an invalid part).
+    pub outline: &'a [Vertex],
+    /// Access regions.
+    pub access: &'a [Vec<Point>],
+    /// The best fixture, or no fixture and why.
+    pub best: Result<&'a FixtureReport, &'a str>,
+}
+
 /// The scene of part `index`: with a fixture, the part posed on the plate
 /// with the best fixture; without, the outline alone in the part frame
 /// (for an invalid part, the outline as read) and `best`'s caption: no
 /// fixture, or the error. Arcs are drawn as chords within `1e-3` of the
 /// part's size (and 5 degrees of turn); contacts on arcs, as on lines, are
 /// arrows along the reported inward normal.
-pub fn scene_update(
-    index: usize,
-    id: &str,
-    units: Units,
-    kit: &Kit,
-    outline: &[Vertex],
-    access: &[Vec<Point>],
-    best: Result<&FixtureReport, &str>,
-) -> SceneUpdate<'static> {
-    let size =
-        bounds(&extent_points(outline)).map_or(0.0, |[lo, hi]| (hi[0] - lo[0]).max(hi[1] - lo[1]));
-    let s = Scene {
-        m: units.mm_per_unit() / 1000.0,
-        ns: index as u64 * NS_PER_PART,
-        chord_error: 1e-3 * size,
-    };
-    let entities = match best {
-        Err(caption) => s.unplaced(caption, outline, access),
+pub fn scene_update(p: PartScene) -> SceneUpdate<'static> {
+    let s = Scene::of(p.index, p.units, p.outline);
+    let entities = match p.best {
+        Err(caption) => s.unplaced(caption, p.outline, p.access),
         Ok(f) => {
-            let d = fixture_drawing(kit, outline, access, f);
-            let [lo, hi] = d.bounds();
+            let d = fixture_drawing(p.kit, p.outline, p.access, f);
+            let extent = d.bounds();
             vec![
-                s.plate(kit, [lo, hi]),
-                s.posed_part(id, &d, hi, f),
-                s.fixture(kit, &d),
+                s.plate(p.kit, extent),
+                s.posed_part(p.id, &d, extent[1], f),
+                s.fixture(p.kit, &d),
             ]
         }
     };
@@ -417,4 +439,100 @@ pub fn scene_update(
         deletions: [],
         entities,
     }
+}
+
+impl Scene {
+    /// The scale and time of part `index`'s scene.
+    fn of(index: usize, units: Units, outline: &[Vertex]) -> Scene {
+        let size = bounds(&extent_points(outline))
+            .map_or(0.0, |[lo, hi]| (hi[0] - lo[0]).max(hi[1] - lo[1]));
+        Scene {
+            m: units.mm_per_unit() / 1000.0,
+            ns: index as u64 * NS_PER_PART,
+            chord_error: 1e-3 * size,
+        }
+    }
+}
+
+/// The plate holes of one kit and unit as JSON, made once per thread: the
+/// hole disks are most of a scene's bytes (hundreds of floats a part to
+/// format) and the same for every part of a run, so a run copies them.
+struct HoleCache {
+    kit: Kit,
+    m: f64,
+    /// Each hole's centre (plate frame) and its disk's JSON.
+    holes: Vec<(Point, Vec<u8>)>,
+}
+
+impl HoleCache {
+    fn new(s: &Scene, kit: &Kit) -> serde_json::Result<HoleCache> {
+        let holes = plate_holes(kit)
+            .map(|h| Ok((h.at, serde_json::to_vec(&s.hole_disk(kit, &h))?)))
+            .collect::<serde_json::Result<_>>()?;
+        Ok(HoleCache {
+            kit: kit.clone(),
+            m: s.m,
+            holes,
+        })
+    }
+
+    fn serves(&self, s: &Scene, kit: &Kit) -> bool {
+        self.m.to_bits() == s.m.to_bits() && self.kit == *kit
+    }
+}
+
+thread_local! {
+    static HOLES: RefCell<Option<HoleCache>> = const { RefCell::new(None) };
+}
+
+/// What serde_json writes of a scene with a fixture before the first plate
+/// hole: the plate is the first entity, and it has no arrows or cubes.
+const BEFORE_HOLES: &[u8] = br#"{"deletions":[],"entities":[{"arrows":[],"cubes":[],"cylinders":["#;
+
+/// The JSON of [`scene_update`], byte for byte, at a fraction of the cost:
+/// the scene is serialised with no plate hole, and the holes near the
+/// fixture are copied in from this thread's [`HoleCache`] where serde_json
+/// would have written them.
+pub fn scene_json(p: PartScene) -> serde_json::Result<Vec<u8>> {
+    let whole = || serde_json::to_vec(&scene_update(p));
+    let Ok(f) = p.best else {
+        return whole();
+    };
+    let (id, kit) = (p.id, p.kit);
+    let s = Scene::of(p.index, p.units, p.outline);
+    let d = fixture_drawing(kit, p.outline, p.access, f);
+    let extent = d.bounds();
+    let holeless = serde_json::to_vec(&SceneUpdate {
+        deletions: [],
+        entities: vec![
+            s.plate_with(kit, Vec::new()),
+            s.posed_part(id, &d, extent[1], f),
+            s.fixture(kit, &d),
+        ],
+    })?;
+    let Some(rest) = holeless.strip_prefix(BEFORE_HOLES) else {
+        // Only if the layout of a scene changed: slower, still right.
+        return whole();
+    };
+    HOLES.with_borrow_mut(|cache| {
+        let c = match cache.take() {
+            Some(c) if c.serves(&s, kit) => c,
+            _ => HoleCache::new(&s, kit)?,
+        };
+        let mut out = Vec::with_capacity(holeless.len() + 64 * 1024);
+        out.extend_from_slice(BEFORE_HOLES);
+        let near = c
+            .holes
+            .iter()
+            .filter(|(at, _)| near_fixture(kit, extent, *at));
+        for (i, (_, json)) in near.enumerate() {
+            if i > 0 {
+                out.push(b',');
+            }
+            out.extend_from_slice(json);
+        }
+        out.extend_from_slice(rest);
+        *cache = Some(c);
+        Ok(out)
+    })
 }

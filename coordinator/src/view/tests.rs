@@ -5,7 +5,7 @@
 
 use super::draw::fixture_drawing;
 use super::picture::{fixture_svg, part_svg};
-use super::scene::scene_update;
+use super::scene::{scene_update, PartScene};
 use super::show::print_part;
 use crate::output::messages::{CatalogInfo, FixturesMsg, PartMsg, RunMsg};
 use crate::output::reader::PartRecord;
@@ -224,16 +224,17 @@ fn the_scene_draws_arcs_as_fine_line_strips_on_the_circle() {
     let rec = record(&run, "half-round", arc_plate());
     let f = &rec.fixtures.result.fixtures[0];
     let outline = &rec.part.outline;
-    let placed = scene_update(0, "half-round", Units::Mm, &run.kit, outline, &[], Ok(f));
-    let alone = scene_update(
-        0,
-        "half-round",
-        Units::Mm,
-        &run.kit,
+    let shown = |best| PartScene {
+        index: 0,
+        id: "half-round",
+        units: Units::Mm,
+        kit: &run.kit,
         outline,
-        &[],
-        Err("none"),
-    );
+        access: &[],
+        best,
+    };
+    let placed = scene_update(shown(Ok(f)));
+    let alone = scene_update(shown(Err("none")));
     let d = fixture_drawing(&run.kit, outline, &[], f);
     let posed_centre = [
         (d.part[1].x + d.part[2].x) / 2.0,
@@ -339,5 +340,39 @@ fn svg_arc_flags_put_the_arc_on_the_right_side() {
             dist(got, want) < 0.05,
             "bulge {bulge}: {got:?} != {want:?} in {d}"
         );
+    }
+}
+
+/// The scene as a run writes it (plate holes copied from a per-thread
+/// cache) is the serialised [`scene_update`], byte for byte: with and
+/// without a fixture, in two units, and again once the cache is warm.
+#[test]
+fn the_scene_json_is_the_serialised_scene_update() {
+    use super::scene::scene_json;
+    let run = run_msg();
+    let rec = record(&run, "half-round", arc_plate());
+    let f = &rec.fixtures.result.fixtures[0];
+    let outline = &rec.part.outline;
+    let (inch, _) = fixplan_catalog::kit::builtin_kit("paper-inch").unwrap();
+    for _warm in 0..2 {
+        for (units, kit) in [(Units::Mm, &run.kit), (Units::In, &inch)] {
+            for best in [Ok(f), Err("half-round: no fixture")] {
+                let p = PartScene {
+                    index: 7,
+                    id: "half-round",
+                    units,
+                    kit,
+                    outline,
+                    access: &[],
+                    best,
+                };
+                let want = serde_json::to_vec(&scene_update(p)).unwrap();
+                let got = scene_json(p).unwrap();
+                assert_eq!(
+                    String::from_utf8(got).unwrap(),
+                    String::from_utf8(want).unwrap()
+                );
+            }
+        }
     }
 }
