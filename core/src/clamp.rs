@@ -11,7 +11,7 @@ use crate::metric::PartContact;
 use crate::plate::Placement;
 use crate::pose::Pose;
 use crate::prepare::PreparedPart;
-use crate::ranking::{Fixture, TopK};
+use crate::ranking::{Fixture, RankPrefix, TopK};
 use crate::report::Counts;
 use crate::segments::{arc_inward_normal, Feature, LineFeature, Segment};
 use crate::setups::{lattice_point, Setup};
@@ -27,16 +27,60 @@ pub struct Accumulator {
     pub top: TopK,
     /// Lowest score admitted so far (for `--good-enough`).
     pub best_score: f64,
+    /// Top-k mode: skip what cannot enter `top` (see [`Self::top_k_mode`]).
+    prune: bool,
+    /// What the work was (not part of the result).
+    pub work: Work,
+}
+
+/// How much of the work a top-k mode skipped (for `fixplan bench`): it
+/// depends on the order candidates come in, hence on how the work was
+/// split, so it is a measurement, never part of a result.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Work {
+    /// Setups whose locators alone score above the k-th fixture: their
+    /// candidates were counted, not scored.
+    pub setups_floored: u64,
+    /// Candidates whose metric was computed (in full mode, those with a
+    /// mount).
+    pub scored: u64,
+    /// ...of which the metric stopped early, above the k-th score.
+    pub score_cut: u64,
+    /// Candidates whose mount search (clearance, plate fit) ran.
+    pub mount_searches: u64,
+}
+
+impl Work {
+    /// Sums the work of pieces (threads, shards).
+    pub fn add(&mut self, o: &Work) {
+        self.setups_floored += o.setups_floored;
+        self.scored += o.scored;
+        self.score_cut += o.score_cut;
+        self.mount_searches += o.mount_searches;
+    }
 }
 
 impl Accumulator {
-    /// Empty, keeping the best `top_k` fixtures (0: all).
+    /// Empty, keeping the best `top_k` fixtures (0: all), every candidate
+    /// checked: the admissible count is exact.
     pub fn new(top_k: usize) -> Self {
         Accumulator {
             counts: Counts::default(),
             top: TopK::new(top_k),
             best_score: f64::INFINITY,
+            prune: false,
+            work: Work::default(),
         }
+    }
+
+    /// Empty, keeping the best `top_k` (> 0) and skipping the mount search
+    /// of every candidate that cannot enter them: the fixtures are those
+    /// of [`Self::new`], the admissible count is not counted.
+    pub fn top_k_mode(top_k: usize) -> Self {
+        let mut acc = Accumulator::new(top_k);
+        acc.prune = top_k > 0;
+        acc.counts.exact = !acc.prune;
+        acc
     }
 }
 
@@ -67,6 +111,11 @@ struct SetupContext<'a> {
     base_margin: f64,
     /// Only this clamp rotation (re-deriving one fixture).
     only_rotation: Option<u8>,
+    /// The locator contacts in the part frame, as the metric takes them.
+    part_locators: [PartContact; 3],
+    /// Top-k mode, and the locators alone score above the k-th fixture:
+    /// candidates are only counted.
+    count_only: bool,
 }
 
 /// The clamp mount the search settled on.
@@ -125,12 +174,16 @@ impl PreparedPart {
         let Some(lw) = LocatorWrenches::new(ws) else {
             return;
         };
+        let part_locators = self.part_locators(setup);
+        let count_only = acc.prune && self.locators_too_weak(&part_locators, acc);
         let ctx = SetupContext {
             setup,
             normals,
             lw,
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
+            part_locators,
+            count_only,
         };
         scratch.reset_pose();
         for (j, seg) in self.segments.iter().enumerate() {
@@ -295,6 +348,15 @@ impl PreparedPart {
         (c > EPS && c >= limit - EPS).then(|| (c - limit.max(0.0)).abs().min(c - EPS))
     }
 
+    /// Whether no candidate of a setup with these locators can enter the
+    /// top-k held: the metric's floor for them is above the k-th score.
+    fn locators_too_weak(&self, locators: &[PartContact; 3], acc: &mut Accumulator) -> bool {
+        let bound = acc.top.score_bound();
+        let weak = bound.is_finite() && self.metric.locator_floor(locators) > bound;
+        acc.work.setups_floored += weak as u64;
+        weak
+    }
+
     /// Counts a candidate, and the fixture if it is admissible.
     #[inline]
     fn offer(
@@ -305,8 +367,55 @@ impl PreparedPart {
         scratch: &mut Scratch,
     ) {
         acc.counts.candidates += 1;
-        if let Some(fx) = self.admit(ctx.setup, &ctx.normals, cand, scratch) {
+        if ctx.count_only {
+            return;
+        }
+        if acc.prune {
+            return self.offer_top_k(ctx, cand, acc, scratch);
+        }
+        acc.work.mount_searches += 1;
+        if let Some(fx) = self.admit(ctx, cand, scratch, None) {
+            acc.work.scored += 1;
             acc.counts.admissible += 1;
+            acc.best_score = acc.best_score.min(fx.score);
+            acc.top.push(fx);
+        }
+    }
+
+    /// Top-k mode: the score first (it does not depend on the mount), and
+    /// the mount search only if the candidate could enter the top-k, that
+    /// is unless its score, then its key up to the mount, rank after the
+    /// k-th fixture held. Those skipped would not have entered, so the
+    /// top-k is the full enumeration's.
+    fn offer_top_k(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        let bound = acc.top.score_bound();
+        let score = self.score(ctx, cand, scratch, bound);
+        acc.work.scored += 1;
+        if score > bound {
+            acc.work.score_cut += 1;
+            return;
+        }
+        let pose = ctx.setup.pose;
+        let prefix = RankPrefix {
+            score,
+            segments: ctx.setup.combo,
+            locators: ctx.setup.locators,
+            theta: pose.theta,
+            t: [pose.t.x, pose.t.y],
+            clamp_segment: cand.segment,
+            rotation: cand.rotation,
+        };
+        if !acc.top.could_enter(&prefix) {
+            return;
+        }
+        acc.work.mount_searches += 1;
+        if let Some(fx) = self.admit(ctx, cand, scratch, Some(score)) {
             acc.best_score = acc.best_score.min(fx.score);
             acc.top.push(fx);
         }
@@ -314,14 +423,16 @@ impl PreparedPart {
 
     /// A candidate made a fixture: the tip must clear the locators, then
     /// the first mount of [`Self::first_mount`] decides. `None` if the
-    /// candidate is not admissible.
-    pub(crate) fn admit(
+    /// candidate is not admissible. `score` when already known.
+    fn admit(
         &self,
-        setup: &Setup,
-        normals: &[V2; 3],
+        ctx: &SetupContext,
         cand: &Candidate,
         scratch: &mut Scratch,
+        score: Option<f64>,
     ) -> Option<Fixture> {
+        let setup = ctx.setup;
+        let normals = &ctx.normals;
         let locs = setup.locators.map(lattice_point);
         let mut margin = cand.margin;
         for l in &locs {
@@ -336,7 +447,7 @@ impl PreparedPart {
         let t = mount.t;
         let t_margin = (t - c.t_min).min(c.t_max - t).abs();
         let margin = margin.min(mount.clear_margin).min(t_margin);
-        let score = self.score(setup, cand, scratch);
+        let score = score.unwrap_or_else(|| self.score(ctx, cand, scratch, f64::INFINITY));
         let pose = setup.pose;
         Some(Fixture {
             score,
@@ -420,26 +531,46 @@ impl PreparedPart {
         })
     }
 
-    /// The metric's score of the four contacts, in the part frame so it
-    /// does not depend on where the part sits on the plate.
-    #[inline]
-    fn score(&self, setup: &Setup, cand: &Candidate, scratch: &mut Scratch) -> f64 {
-        let locs = setup.locators.map(lattice_point);
+    /// The locator contacts in the part frame, where the metric scores
+    /// them so that a score does not depend on where the part sits on
+    /// the plate.
+    fn part_locators(&self, setup: &Setup) -> [PartContact; 3] {
         let pose = setup.pose;
-        let contacts = [0, 1, 2, 3].map(|i| {
-            let (q, seg) = if i < 3 {
-                (locs[i], setup.combo[i])
-            } else {
-                (cand.q, cand.segment)
-            };
-            let q = pose.inverse_apply(q);
-            PartContact {
-                q,
-                f: self.segments[seg].inward_normal(q),
-            }
-        });
+        [0, 1, 2]
+            .map(|i| self.part_contact(&pose, lattice_point(setup.locators[i]), setup.combo[i]))
+    }
+
+    #[inline]
+    fn part_contact(&self, pose: &Pose, q: V2, seg: usize) -> PartContact {
+        let q = pose.inverse_apply(q);
+        PartContact {
+            q,
+            f: self.segments[seg].inward_normal(q),
+        }
+    }
+
+    /// The metric's score of the four contacts (exact when at most
+    /// `bound`, otherwise above it, see [`crate::metric::Metric::score_bounded`]).
+    #[inline]
+    fn score(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        scratch: &mut Scratch,
+        bound: f64,
+    ) -> f64 {
+        let [a, b, c] = ctx.part_locators;
+        let contacts = [
+            a,
+            b,
+            c,
+            self.part_contact(&ctx.setup.pose, cand.q, cand.segment),
+        ];
         let clock = scratch.timing.is_some().then(std::time::Instant::now);
-        let score = self.metric.score(&contacts).unwrap_or(f64::INFINITY);
+        let score = self
+            .metric
+            .score_bounded(&contacts, bound, &mut scratch.metric_hint)
+            .unwrap_or(f64::INFINITY);
         let ns = lap(clock);
         if let Some(tm) = scratch.timing.as_mut() {
             tm.metric_ns += ns;

@@ -39,20 +39,71 @@ pub struct Fixture {
 }
 
 impl Fixture {
-    /// SPEC's canonical key `(a, b, c, L2, L3, theta, clamp segment, k, m)`.
+    /// SPEC's canonical key `(a, b, c, L2, L3, theta, x, y, clamp segment,
+    /// k, m)`.
     pub fn key_cmp(&self, o: &Fixture) -> Ordering {
-        self.segments
-            .cmp(&o.segments)
-            .then(self.locators[1].cmp(&o.locators[1]))
-            .then(self.locators[2].cmp(&o.locators[2]))
-            .then(self.theta.total_cmp(&o.theta))
-            .then(self.clamp_segment.cmp(&o.clamp_segment))
-            .then(self.rotation.cmp(&o.rotation))
+        self.prefix()
+            .key_cmp(&o.prefix())
             .then(self.mount.cmp(&o.mount))
     }
 
     /// Ascending score, then the canonical key.
     pub fn rank_cmp(&self, o: &Fixture) -> Ordering {
+        self.score.total_cmp(&o.score).then_with(|| self.key_cmp(o))
+    }
+
+    /// Its rank but for the clamp mount.
+    pub fn prefix(&self) -> RankPrefix {
+        RankPrefix {
+            score: self.score,
+            segments: self.segments,
+            locators: self.locators,
+            theta: self.theta,
+            t: self.t,
+            clamp_segment: self.clamp_segment,
+            rotation: self.rotation,
+        }
+    }
+}
+
+/// What a candidate's rank is known to be before its mount search: every
+/// ranking key but the last, the mount `m`. It decides whether the search
+/// can change a top-k: a candidate whose prefix ranks after the k-th
+/// fixture's ranks after it whatever mount it finds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RankPrefix {
+    /// See [`Fixture`].
+    pub score: f64,
+    /// See [`Fixture`].
+    pub segments: [usize; 3],
+    /// See [`Fixture`].
+    pub locators: [[i64; 2]; 3],
+    /// See [`Fixture`].
+    pub theta: f64,
+    /// See [`Fixture`].
+    pub t: [f64; 2],
+    /// See [`Fixture`].
+    pub clamp_segment: usize,
+    /// See [`Fixture`].
+    pub rotation: u8,
+}
+
+impl RankPrefix {
+    /// The canonical key up to the clamp rotation (score left out).
+    fn key_cmp(&self, o: &RankPrefix) -> Ordering {
+        self.segments
+            .cmp(&o.segments)
+            .then(self.locators[1].cmp(&o.locators[1]))
+            .then(self.locators[2].cmp(&o.locators[2]))
+            .then(self.theta.total_cmp(&o.theta))
+            .then(self.t[0].total_cmp(&o.t[0]))
+            .then(self.t[1].total_cmp(&o.t[1]))
+            .then(self.clamp_segment.cmp(&o.clamp_segment))
+            .then(self.rotation.cmp(&o.rotation))
+    }
+
+    /// Score, then the key: `Equal` means only the mount can tell.
+    pub fn rank_cmp(&self, o: &RankPrefix) -> Ordering {
         self.score.total_cmp(&o.score).then_with(|| self.key_cmp(o))
     }
 }
@@ -106,6 +157,30 @@ impl TopK {
             self.heap.pop();
         }
         self.heap.push(Ranked(f));
+    }
+
+    /// The score above which nothing can enter: the k-th fixture's once
+    /// `k` are held, infinity before (and when keeping all).
+    pub fn score_bound(&self) -> f64 {
+        self.kth().map_or(f64::INFINITY, |w| w.score)
+    }
+
+    /// Whether a fixture with this rank prefix could enter, whatever its
+    /// mount: `false` only when it ranks after the k-th fixture already
+    /// held, since then it cannot be among the best `k` of anything
+    /// containing what was seen (the k-th only gets better).
+    pub fn could_enter(&self, p: &RankPrefix) -> bool {
+        self.kth()
+            .is_none_or(|w| p.rank_cmp(&w.prefix()) != Ordering::Greater)
+    }
+
+    /// The worst fixture held, once there are `k` (`None` when keeping
+    /// all).
+    fn kth(&self) -> Option<&Fixture> {
+        if self.k == 0 || self.heap.len() < self.k {
+            return None;
+        }
+        self.heap.peek().map(|r| &r.0)
     }
 
     /// Sorted best first.

@@ -50,6 +50,7 @@ pub fn params(max_angle: f64, grid_step: u32) -> Params {
         min_clearance: Some(0.05),
         grid_step,
         top_k: 0,
+        full_counts: false,
         wrenches: None,
     }
 }
