@@ -11,7 +11,7 @@ use crate::metric::PartContact;
 use crate::plate::Placement;
 use crate::pose::Pose;
 use crate::prepare::PreparedPart;
-use crate::ranking::{Fixture, RankPrefix, TopK};
+use crate::ranking::{Fixture, TopK};
 use crate::report::Counts;
 use crate::segments::{arc_inward_normal, Feature, LineFeature, Segment};
 use crate::setups::{lattice_point, Setup};
@@ -73,6 +73,12 @@ impl Accumulator {
         }
     }
 
+    /// Keeps a fixture if it is among the best so far.
+    fn keep(&mut self, f: Fixture) {
+        self.best_score = self.best_score.min(f.score);
+        self.top.push(f);
+    }
+
     /// Empty, keeping the best `top_k` (> 0) and skipping the mount search
     /// of every candidate that cannot enter them: the fixtures are those
     /// of [`Self::new`], the admissible count is not counted.
@@ -127,6 +133,21 @@ struct Mount {
     /// Smallest clearance margin of body and plunger.
     clear_margin: f64,
     placement: Placement,
+}
+
+impl Mount {
+    /// Before the search: a mount that ranks before any real one (the
+    /// last key of a fixture's rank), for the best rank a candidate
+    /// could reach.
+    const LOWEST: Mount = Mount {
+        m: [i64::MIN; 2],
+        t: f64::NAN,
+        clear_margin: f64::INFINITY,
+        placement: Placement {
+            rotation: 0,
+            offset: [0, 0],
+        },
+    };
 }
 
 impl PreparedPart {
@@ -374,11 +395,11 @@ impl PreparedPart {
             return self.offer_top_k(ctx, cand, acc, scratch);
         }
         acc.work.mount_searches += 1;
-        if let Some(fx) = self.admit(ctx, cand, scratch, None) {
+        if let Some((mount, margin)) = self.admit(ctx.setup, cand, scratch) {
+            let score = self.score(ctx, cand, scratch, f64::INFINITY);
             acc.work.scored += 1;
             acc.counts.admissible += 1;
-            acc.best_score = acc.best_score.min(fx.score);
-            acc.top.push(fx);
+            acc.keep(self.fixture(ctx, cand, score, &mount, margin));
         }
     }
 
@@ -401,38 +422,27 @@ impl PreparedPart {
             acc.work.score_cut += 1;
             return;
         }
-        let pose = ctx.setup.pose;
-        let prefix = RankPrefix {
-            score,
-            segments: ctx.setup.combo,
-            locators: ctx.setup.locators,
-            theta: pose.theta,
-            t: [pose.t.x, pose.t.y],
-            clamp_segment: cand.segment,
-            rotation: cand.rotation,
-        };
-        if !acc.top.could_enter(&prefix) {
+        // Its rank with the smallest mount there is: whatever mount the
+        // search finds ranks at or after it.
+        let best_case = self.fixture(ctx, cand, score, &Mount::LOWEST, f64::INFINITY);
+        if !acc.top.could_enter(&best_case) {
             return;
         }
         acc.work.mount_searches += 1;
-        if let Some(fx) = self.admit(ctx, cand, scratch, Some(score)) {
-            acc.best_score = acc.best_score.min(fx.score);
-            acc.top.push(fx);
+        if let Some((mount, margin)) = self.admit(ctx.setup, cand, scratch) {
+            acc.keep(self.fixture(ctx, cand, score, &mount, margin));
         }
     }
 
-    /// A candidate made a fixture: the tip must clear the locators, then
-    /// the first mount of [`Self::first_mount`] decides. `None` if the
-    /// candidate is not admissible. `score` when already known.
+    /// Whether a candidate is admissible: the tip must clear the locators,
+    /// then the first mount of [`Self::first_mount`] decides. The mount
+    /// and the smallest decision margin so far, or `None`.
     fn admit(
         &self,
-        ctx: &SetupContext,
+        setup: &Setup,
         cand: &Candidate,
         scratch: &mut Scratch,
-        score: Option<f64>,
-    ) -> Option<Fixture> {
-        let setup = ctx.setup;
-        let normals = &ctx.normals;
+    ) -> Option<(Mount, f64)> {
         let locs = setup.locators.map(lattice_point);
         let mut margin = cand.margin;
         for l in &locs {
@@ -444,12 +454,23 @@ impl PreparedPart {
         }
         let mount = self.first_mount(setup, cand, scratch)?;
         let c = &self.setting.clamp;
-        let t = mount.t;
-        let t_margin = (t - c.t_min).min(c.t_max - t).abs();
+        let t_margin = (mount.t - c.t_min).min(c.t_max - mount.t).abs();
         let margin = margin.min(mount.clear_margin).min(t_margin);
-        let score = score.unwrap_or_else(|| self.score(ctx, cand, scratch, f64::INFINITY));
+        Some((mount, margin))
+    }
+
+    /// The fixture a candidate makes with its score and mount.
+    fn fixture(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        score: f64,
+        mount: &Mount,
+        margin: f64,
+    ) -> Fixture {
+        let (setup, normals) = (ctx.setup, &ctx.normals);
         let pose = setup.pose;
-        Some(Fixture {
+        Fixture {
             score,
             segments: setup.combo,
             locators: setup.locators,
@@ -458,7 +479,7 @@ impl PreparedPart {
             clamp_segment: cand.segment,
             rotation: cand.rotation,
             mount: mount.m,
-            extension: t,
+            extension: mount.t,
             contact: [cand.q.x, cand.q.y],
             normals: [
                 [normals[0].x, normals[0].y],
@@ -467,8 +488,8 @@ impl PreparedPart {
                 [cand.f.x, cand.f.y],
             ],
             borderline: margin < BORDERLINE,
-            placement: mount.placement,
-        })
+            placement: mount.placement.clone(),
+        }
     }
 
     /// The mount search of SPEC 4: mounts on the candidate's axis line by

@@ -98,15 +98,20 @@ pub fn fibonacci_sphere(n: usize) -> Vec<Vector3<f64>> {
         .collect()
 }
 
-impl MaxForceMetric {
-    fn wrench(&self, c: &PartContact) -> Vector3<f64> {
-        Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho)
-    }
+/// A metric of the max-force family: the largest contact force over a
+/// set of applied wrenches, for contact wrenches written in its own way.
+/// Every such metric gets [`Metric`], early stop and locator floor
+/// included.
+pub trait MaxForce: Send + Sync + std::fmt::Debug {
+    /// The wrench of a contact, in the space of the applied wrenches.
+    fn wrench(&self, c: &PartContact) -> Vector3<f64>;
+    /// The applied wrenches to resist.
+    fn applied(&self) -> &[Vector3<f64>];
 }
 
-impl Metric for MaxForceMetric {
+impl<T: MaxForce> Metric for T {
     fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
-        max_force(&contacts.map(|c| self.wrench(&c)), &self.directions)
+        max_force(&contacts.map(|c| self.wrench(&c)), self.applied())
     }
 
     fn score_bounded(
@@ -116,11 +121,21 @@ impl Metric for MaxForceMetric {
         hint: &mut usize,
     ) -> Option<f64> {
         let w = contacts.map(|c| self.wrench(&c));
-        max_force_bounded(&w, &self.directions, bound, hint)
+        max_force_bounded(&w, self.applied(), bound, hint)
     }
 
     fn locator_floor(&self, locators: &[PartContact; 3]) -> f64 {
-        max_force_floor(&locators.map(|c| self.wrench(&c)), &self.directions)
+        max_force_floor(&locators.map(|c| self.wrench(&c)), self.applied())
+    }
+}
+
+impl MaxForce for MaxForceMetric {
+    fn wrench(&self, c: &PartContact) -> Vector3<f64> {
+        Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho)
+    }
+
+    fn applied(&self) -> &[Vector3<f64>] {
+        &self.directions
     }
 }
 
@@ -147,29 +162,13 @@ impl WrenchListMetric {
     }
 }
 
-impl WrenchListMetric {
+impl MaxForce for WrenchListMetric {
     fn wrench(&self, c: &PartContact) -> Vector3<f64> {
         Vector3::new(c.f.x, c.f.y, cross(c.q * self.spacing, c.f))
     }
-}
 
-impl Metric for WrenchListMetric {
-    fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
-        max_force(&contacts.map(|c| self.wrench(&c)), &self.wrenches)
-    }
-
-    fn score_bounded(
-        &self,
-        contacts: &[PartContact; 4],
-        bound: f64,
-        hint: &mut usize,
-    ) -> Option<f64> {
-        let w = contacts.map(|c| self.wrench(&c));
-        max_force_bounded(&w, &self.wrenches, bound, hint)
-    }
-
-    fn locator_floor(&self, locators: &[PartContact; 3]) -> f64 {
-        max_force_floor(&locators.map(|c| self.wrench(&c)), &self.wrenches)
+    fn applied(&self) -> &[Vector3<f64>] {
+        &self.wrenches
     }
 }
 

@@ -42,55 +42,6 @@ impl Fixture {
     /// SPEC's canonical key `(a, b, c, L2, L3, theta, x, y, clamp segment,
     /// k, m)`.
     pub fn key_cmp(&self, o: &Fixture) -> Ordering {
-        self.prefix()
-            .key_cmp(&o.prefix())
-            .then(self.mount.cmp(&o.mount))
-    }
-
-    /// Ascending score, then the canonical key.
-    pub fn rank_cmp(&self, o: &Fixture) -> Ordering {
-        self.score.total_cmp(&o.score).then_with(|| self.key_cmp(o))
-    }
-
-    /// Its rank but for the clamp mount.
-    pub fn prefix(&self) -> RankPrefix {
-        RankPrefix {
-            score: self.score,
-            segments: self.segments,
-            locators: self.locators,
-            theta: self.theta,
-            t: self.t,
-            clamp_segment: self.clamp_segment,
-            rotation: self.rotation,
-        }
-    }
-}
-
-/// What a candidate's rank is known to be before its mount search: every
-/// ranking key but the last, the mount `m`. It decides whether the search
-/// can change a top-k: a candidate whose prefix ranks after the k-th
-/// fixture's ranks after it whatever mount it finds.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RankPrefix {
-    /// See [`Fixture`].
-    pub score: f64,
-    /// See [`Fixture`].
-    pub segments: [usize; 3],
-    /// See [`Fixture`].
-    pub locators: [[i64; 2]; 3],
-    /// See [`Fixture`].
-    pub theta: f64,
-    /// See [`Fixture`].
-    pub t: [f64; 2],
-    /// See [`Fixture`].
-    pub clamp_segment: usize,
-    /// See [`Fixture`].
-    pub rotation: u8,
-}
-
-impl RankPrefix {
-    /// The canonical key up to the clamp rotation (score left out).
-    fn key_cmp(&self, o: &RankPrefix) -> Ordering {
         self.segments
             .cmp(&o.segments)
             .then(self.locators[1].cmp(&o.locators[1]))
@@ -100,10 +51,11 @@ impl RankPrefix {
             .then(self.t[1].total_cmp(&o.t[1]))
             .then(self.clamp_segment.cmp(&o.clamp_segment))
             .then(self.rotation.cmp(&o.rotation))
+            .then(self.mount.cmp(&o.mount))
     }
 
-    /// Score, then the key: `Equal` means only the mount can tell.
-    pub fn rank_cmp(&self, o: &RankPrefix) -> Ordering {
+    /// Ascending score, then the canonical key.
+    pub fn rank_cmp(&self, o: &Fixture) -> Ordering {
         self.score.total_cmp(&o.score).then_with(|| self.key_cmp(o))
     }
 }
@@ -148,12 +100,10 @@ impl TopK {
     /// Offers a fixture; it stays only while among the best `k`, so memory
     /// is bounded by `k` however many fixtures a part has.
     pub fn push(&mut self, f: Fixture) {
-        if self.k != 0 && self.heap.len() >= self.k {
-            if let Some(worst) = self.heap.peek() {
-                if f.rank_cmp(&worst.0) != Ordering::Less {
-                    return;
-                }
-            }
+        if !self.could_enter(&f) {
+            return;
+        }
+        if self.kth().is_some() {
             self.heap.pop();
         }
         self.heap.push(Ranked(f));
@@ -165,13 +115,11 @@ impl TopK {
         self.kth().map_or(f64::INFINITY, |w| w.score)
     }
 
-    /// Whether a fixture with this rank prefix could enter, whatever its
-    /// mount: `false` only when it ranks after the k-th fixture already
-    /// held, since then it cannot be among the best `k` of anything
-    /// containing what was seen (the k-th only gets better).
-    pub fn could_enter(&self, p: &RankPrefix) -> bool {
-        self.kth()
-            .is_none_or(|w| p.rank_cmp(&w.prefix()) != Ordering::Greater)
+    /// Whether `f` would enter now ([`Self::push`] keeps it). A fixture
+    /// that would not can never be among the best `k` of anything that
+    /// contains what was seen: the k-th only gets better.
+    pub fn could_enter(&self, f: &Fixture) -> bool {
+        self.kth().is_none_or(|w| f.rank_cmp(w) == Ordering::Less)
     }
 
     /// The worst fixture held, once there are `k` (`None` when keeping
