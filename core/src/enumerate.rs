@@ -202,11 +202,21 @@ impl PreparedPart {
 
     /// `range` (clipped to the part) cut into rayon tasks of [`CHUNK`]
     /// combinations: fixed cuts, so no result depends on the thread count.
+    /// In top-k mode a piece's result is its range's exact top-k whatever
+    /// the cuts, so the pieces are made as few as the threads allow: each
+    /// starts with an empty top-k that lets every candidate through, and
+    /// small pieces would search mounts for most of them.
     fn chunks(&self, range: &Range<u64>) -> Vec<Range<u64>> {
         let end = range.end.min(self.combination_count()).max(range.start);
+        let size = if self.setting.prune_to_top_k {
+            let pieces = 4 * rayon::current_num_threads() as u64;
+            (end - range.start).div_ceil(pieces).max(CHUNK)
+        } else {
+            CHUNK
+        };
         (range.start..end)
-            .step_by(CHUNK as usize)
-            .map(|s| s..(s + CHUNK).min(end))
+            .step_by(size as usize)
+            .map(|s| s..(s + size).min(end))
             .collect()
     }
 
