@@ -88,6 +88,18 @@ fn pieces(c: &mut Criterion) {
     c.bench_function("metric_max_force_256", |b| {
         b.iter(|| m.score(black_box(&contacts)))
     });
+    // Top-k mode: a candidate whose score is above the k-th stops at the
+    // first applied wrench past it (here half the score, found at once
+    // thanks to the hint), and a setup is tested on its locators alone.
+    let half = m.score(&contacts).unwrap_or(0.0) / 2.0;
+    let mut hint = 0;
+    c.bench_function("metric_max_force_256_cut_at_half", |b| {
+        b.iter(|| m.score_bounded(black_box(&contacts), half, &mut hint))
+    });
+    let [l1, l2, l3, _] = contacts;
+    c.bench_function("metric_locator_floor_256", |b| {
+        b.iter(|| m.locator_floor(black_box(&[l1, l2, l3])))
+    });
     c.bench_function("clearance_capped_body_vs_57_edges", |b| {
         b.iter(|| polygon_clearance_below(black_box(&body), black_box(&part), 1e-6))
     });
@@ -145,6 +157,10 @@ fn whole_parts(c: &mut Criterion) {
         let p = prepare(&k.part(), &k.kit, &k.params, k.units).expect("valid case");
         let n = p.combination_count();
         g.bench_function(name, |b| b.iter(|| p.enumerate_range_serial(0..n)));
+        let top10 = p.with_top_k(10, false);
+        g.bench_function(format!("{name}_top10_mode"), |b| {
+            b.iter(|| top10.enumerate_range_serial(0..n))
+        });
     }
     g.finish();
 }

@@ -41,6 +41,9 @@ pub(crate) fn lap(t: Option<std::time::Instant>) -> u64 {
 pub struct Scratch {
     /// Collect [`Timing`] (off by default: it costs a clock read per step).
     pub timing: Option<Timing>,
+    /// The metric's state between candidates (see
+    /// [`crate::metric::Metric::score_bounded`]).
+    pub(crate) metric_hint: usize,
     posed: bool,
     part: Vec<V2>,
     part_box: Option<Aabb>,

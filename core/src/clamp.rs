@@ -27,16 +27,66 @@ pub struct Accumulator {
     pub top: TopK,
     /// Lowest score admitted so far (for `--good-enough`).
     pub best_score: f64,
+    /// Top-k mode: skip what cannot enter `top` (see [`Self::top_k_mode`]).
+    prune: bool,
+    /// What the work was (not part of the result).
+    pub work: Work,
+}
+
+/// How much of the work a top-k mode skipped (for `fixplan bench`): it
+/// depends on the order candidates come in, hence on how the work was
+/// split, so it is a measurement, never part of a result.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Work {
+    /// Setups whose locators alone score above the k-th fixture: their
+    /// candidates were counted, not scored.
+    pub setups_floored: u64,
+    /// Candidates whose metric was computed (in full mode, those with a
+    /// mount).
+    pub scored: u64,
+    /// ...of which the metric stopped early, above the k-th score.
+    pub score_cut: u64,
+    /// Candidates whose mount search (clearance, plate fit) ran.
+    pub mount_searches: u64,
+}
+
+impl Work {
+    /// Sums the work of pieces (threads, shards).
+    pub fn add(&mut self, o: &Work) {
+        self.setups_floored += o.setups_floored;
+        self.scored += o.scored;
+        self.score_cut += o.score_cut;
+        self.mount_searches += o.mount_searches;
+    }
 }
 
 impl Accumulator {
-    /// Empty, keeping the best `top_k` fixtures (0: all).
+    /// Empty, keeping the best `top_k` fixtures (0: all), every candidate
+    /// checked: the admissible count is exact.
     pub fn new(top_k: usize) -> Self {
         Accumulator {
             counts: Counts::default(),
             top: TopK::new(top_k),
             best_score: f64::INFINITY,
+            prune: false,
+            work: Work::default(),
         }
+    }
+
+    /// Keeps a fixture if it is among the best so far.
+    fn keep(&mut self, f: Fixture) {
+        self.best_score = self.best_score.min(f.score);
+        self.top.push(f);
+    }
+
+    /// Empty, keeping the best `top_k` (> 0) and skipping the mount search
+    /// of every candidate that cannot enter them: the fixtures are those
+    /// of [`Self::new`], the admissible count is not counted.
+    pub fn top_k_mode(top_k: usize) -> Self {
+        let mut acc = Accumulator::new(top_k);
+        acc.prune = top_k > 0;
+        acc.counts.exact = !acc.prune;
+        acc
     }
 }
 
@@ -67,6 +117,11 @@ struct SetupContext<'a> {
     base_margin: f64,
     /// Only this clamp rotation (re-deriving one fixture).
     only_rotation: Option<u8>,
+    /// The locator contacts in the part frame, as the metric takes them.
+    part_locators: [PartContact; 3],
+    /// Top-k mode, and the locators alone score above the k-th fixture:
+    /// candidates are only counted.
+    count_only: bool,
 }
 
 /// The clamp mount the search settled on.
@@ -78,6 +133,21 @@ struct Mount {
     /// Smallest clearance margin of body and plunger.
     clear_margin: f64,
     placement: Placement,
+}
+
+impl Mount {
+    /// Before the search: a mount that ranks before any real one (the
+    /// last key of a fixture's rank), for the best rank a candidate
+    /// could reach.
+    const LOWEST: Mount = Mount {
+        m: [i64::MIN; 2],
+        t: f64::NAN,
+        clear_margin: f64::INFINITY,
+        placement: Placement {
+            rotation: 0,
+            offset: [0, 0],
+        },
+    };
 }
 
 impl PreparedPart {
@@ -125,12 +195,16 @@ impl PreparedPart {
         let Some(lw) = LocatorWrenches::new(ws) else {
             return;
         };
+        let part_locators = self.part_locators(setup);
+        let count_only = acc.prune && self.locators_too_weak(&part_locators, acc);
         let ctx = SetupContext {
             setup,
             normals,
             lw,
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
+            part_locators,
+            count_only,
         };
         scratch.reset_pose();
         for (j, seg) in self.segments.iter().enumerate() {
@@ -295,6 +369,15 @@ impl PreparedPart {
         (c > EPS && c >= limit - EPS).then(|| (c - limit.max(0.0)).abs().min(c - EPS))
     }
 
+    /// Whether no candidate of a setup with these locators can enter the
+    /// top-k held: the metric's floor for them is above the k-th score.
+    fn locators_too_weak(&self, locators: &[PartContact; 3], acc: &mut Accumulator) -> bool {
+        let bound = acc.top.score_bound();
+        let weak = bound.is_finite() && self.metric.locator_floor(locators) > bound;
+        acc.work.setups_floored += weak as u64;
+        weak
+    }
+
     /// Counts a candidate, and the fixture if it is admissible.
     #[inline]
     fn offer(
@@ -305,23 +388,61 @@ impl PreparedPart {
         scratch: &mut Scratch,
     ) {
         acc.counts.candidates += 1;
-        if let Some(fx) = self.admit(ctx.setup, &ctx.normals, cand, scratch) {
+        if ctx.count_only {
+            return;
+        }
+        if acc.prune {
+            return self.offer_top_k(ctx, cand, acc, scratch);
+        }
+        acc.work.mount_searches += 1;
+        if let Some((mount, margin)) = self.admit(ctx.setup, cand, scratch) {
+            let score = self.score(ctx, cand, scratch, f64::INFINITY);
+            acc.work.scored += 1;
             acc.counts.admissible += 1;
-            acc.best_score = acc.best_score.min(fx.score);
-            acc.top.push(fx);
+            acc.keep(self.fixture(ctx, cand, score, &mount, margin));
         }
     }
 
-    /// A candidate made a fixture: the tip must clear the locators, then
-    /// the first mount of [`Self::first_mount`] decides. `None` if the
-    /// candidate is not admissible.
-    pub(crate) fn admit(
+    /// Top-k mode: the score first (it does not depend on the mount), and
+    /// the mount search only if the candidate could enter the top-k, that
+    /// is unless its score, then its key up to the mount, rank after the
+    /// k-th fixture held. Those skipped would not have entered, so the
+    /// top-k is the full enumeration's.
+    fn offer_top_k(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        let bound = acc.top.score_bound();
+        let score = self.score(ctx, cand, scratch, bound);
+        acc.work.scored += 1;
+        if score > bound {
+            acc.work.score_cut += 1;
+            return;
+        }
+        // Its rank with the smallest mount there is: whatever mount the
+        // search finds ranks at or after it.
+        let best_case = self.fixture(ctx, cand, score, &Mount::LOWEST, f64::INFINITY);
+        if !acc.top.could_enter(&best_case) {
+            return;
+        }
+        acc.work.mount_searches += 1;
+        if let Some((mount, margin)) = self.admit(ctx.setup, cand, scratch) {
+            acc.keep(self.fixture(ctx, cand, score, &mount, margin));
+        }
+    }
+
+    /// Whether a candidate is admissible: the tip must clear the locators,
+    /// then the first mount of [`Self::first_mount`] decides. The mount
+    /// and the smallest decision margin so far, or `None`.
+    fn admit(
         &self,
         setup: &Setup,
-        normals: &[V2; 3],
         cand: &Candidate,
         scratch: &mut Scratch,
-    ) -> Option<Fixture> {
+    ) -> Option<(Mount, f64)> {
         let locs = setup.locators.map(lattice_point);
         let mut margin = cand.margin;
         for l in &locs {
@@ -333,12 +454,23 @@ impl PreparedPart {
         }
         let mount = self.first_mount(setup, cand, scratch)?;
         let c = &self.setting.clamp;
-        let t = mount.t;
-        let t_margin = (t - c.t_min).min(c.t_max - t).abs();
+        let t_margin = (mount.t - c.t_min).min(c.t_max - mount.t).abs();
         let margin = margin.min(mount.clear_margin).min(t_margin);
-        let score = self.score(setup, cand, scratch);
+        Some((mount, margin))
+    }
+
+    /// The fixture a candidate makes with its score and mount.
+    fn fixture(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        score: f64,
+        mount: &Mount,
+        margin: f64,
+    ) -> Fixture {
+        let (setup, normals) = (ctx.setup, &ctx.normals);
         let pose = setup.pose;
-        Some(Fixture {
+        Fixture {
             score,
             segments: setup.combo,
             locators: setup.locators,
@@ -347,7 +479,7 @@ impl PreparedPart {
             clamp_segment: cand.segment,
             rotation: cand.rotation,
             mount: mount.m,
-            extension: t,
+            extension: mount.t,
             contact: [cand.q.x, cand.q.y],
             normals: [
                 [normals[0].x, normals[0].y],
@@ -356,8 +488,8 @@ impl PreparedPart {
                 [cand.f.x, cand.f.y],
             ],
             borderline: margin < BORDERLINE,
-            placement: mount.placement,
-        })
+            placement: mount.placement.clone(),
+        }
     }
 
     /// The mount search of SPEC 4: mounts on the candidate's axis line by
@@ -420,26 +552,46 @@ impl PreparedPart {
         })
     }
 
-    /// The metric's score of the four contacts, in the part frame so it
-    /// does not depend on where the part sits on the plate.
-    #[inline]
-    fn score(&self, setup: &Setup, cand: &Candidate, scratch: &mut Scratch) -> f64 {
-        let locs = setup.locators.map(lattice_point);
+    /// The locator contacts in the part frame, where the metric scores
+    /// them so that a score does not depend on where the part sits on
+    /// the plate.
+    fn part_locators(&self, setup: &Setup) -> [PartContact; 3] {
         let pose = setup.pose;
-        let contacts = [0, 1, 2, 3].map(|i| {
-            let (q, seg) = if i < 3 {
-                (locs[i], setup.combo[i])
-            } else {
-                (cand.q, cand.segment)
-            };
-            let q = pose.inverse_apply(q);
-            PartContact {
-                q,
-                f: self.segments[seg].inward_normal(q),
-            }
-        });
+        [0, 1, 2]
+            .map(|i| self.part_contact(&pose, lattice_point(setup.locators[i]), setup.combo[i]))
+    }
+
+    #[inline]
+    fn part_contact(&self, pose: &Pose, q: V2, seg: usize) -> PartContact {
+        let q = pose.inverse_apply(q);
+        PartContact {
+            q,
+            f: self.segments[seg].inward_normal(q),
+        }
+    }
+
+    /// The metric's score of the four contacts (exact when at most
+    /// `bound`, otherwise above it, see [`crate::metric::Metric::score_bounded`]).
+    #[inline]
+    fn score(
+        &self,
+        ctx: &SetupContext,
+        cand: &Candidate,
+        scratch: &mut Scratch,
+        bound: f64,
+    ) -> f64 {
+        let [a, b, c] = ctx.part_locators;
+        let contacts = [
+            a,
+            b,
+            c,
+            self.part_contact(&ctx.setup.pose, cand.q, cand.segment),
+        ];
         let clock = scratch.timing.is_some().then(std::time::Instant::now);
-        let score = self.metric.score(&contacts).unwrap_or(f64::INFINITY);
+        let score = self
+            .metric
+            .score_bounded(&contacts, bound, &mut scratch.metric_hint)
+            .unwrap_or(f64::INFINITY);
         let ns = lap(clock);
         if let Some(tm) = scratch.timing.as_mut() {
             tm.metric_ns += ns;

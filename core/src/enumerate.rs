@@ -4,7 +4,7 @@
 //! order on fixtures that are each computed from their own inputs only.
 
 use crate::admissibility::{Scratch, Timing};
-use crate::clamp::Accumulator;
+use crate::clamp::{Accumulator, Work};
 use crate::combinations::{combination_count, combinations_in};
 use crate::prepare::PreparedPart;
 use crate::ranking::{merge_ranked, Fixture};
@@ -34,6 +34,8 @@ pub struct Profile {
     pub search: SearchStats,
     /// Time per stage (zero unless asked for).
     pub timing: Timing,
+    /// What the top-k mode skipped.
+    pub work: Work,
     /// Wall time of the whole enumeration, nanoseconds.
     pub total_ns: u64,
 }
@@ -43,6 +45,7 @@ impl Profile {
     pub fn add(&mut self, o: &Profile) {
         self.search.add(&o.search);
         self.timing.add(&o.timing);
+        self.work.add(&o.work);
         self.total_ns += o.total_ns;
     }
 }
@@ -92,7 +95,7 @@ impl PreparedPart {
         good_enough: Option<f64>,
     ) -> (PartialResult, Profile, Option<u64>) {
         let clock = std::time::Instant::now();
-        let mut acc = Accumulator::new(self.setting.top_k);
+        let mut acc = self.accumulator();
         let mut scratch = Scratch::default();
         scratch.timing = timed.then(Timing::default);
         let mut search = SearchStats::default();
@@ -115,6 +118,7 @@ impl PreparedPart {
         let profile = Profile {
             search,
             timing: scratch.timing.unwrap_or_default(),
+            work: acc.work,
             total_ns: clock.elapsed().as_nanos() as u64,
         };
         let res = PartialResult {
@@ -129,6 +133,19 @@ impl PreparedPart {
         (res, profile, hit)
     }
 
+    /// Where a piece of work collects its fixtures: in top-k mode it skips
+    /// the mount search of candidates that cannot enter its own top-k.
+    /// Each piece then still holds the exact top-k of its range, and the
+    /// top-k of a union is the top-k of the pieces' top-ks, so any split
+    /// merges to the full enumeration's top-k.
+    fn accumulator(&self) -> Accumulator {
+        if self.setting.prune_to_top_k {
+            Accumulator::top_k_mode(self.setting.top_k)
+        } else {
+            Accumulator::new(self.setting.top_k)
+        }
+    }
+
     /// Enumerates `range` on the rayon pool (same result as serial).
     pub fn enumerate_range(&self, range: Range<u64>) -> PartialResult {
         let chunks = self.chunks(&range);
@@ -139,6 +156,7 @@ impl PreparedPart {
         let mut out = merge(self.setting.top_k, parts);
         out.range = range;
         out.counts.segments = self.segments.len() as u64;
+        out.counts.exact = self.counts_exact();
         out
     }
 
@@ -178,16 +196,27 @@ impl PreparedPart {
         let mut out = merge(self.setting.top_k, kept);
         out.range = range.start..stop.map_or(range.end, |s| s + 1);
         out.counts.segments = self.segments.len() as u64;
+        out.counts.exact = self.counts_exact();
         (out, stop)
     }
 
     /// `range` (clipped to the part) cut into rayon tasks of [`CHUNK`]
     /// combinations: fixed cuts, so no result depends on the thread count.
+    /// In top-k mode a piece's result is its range's exact top-k whatever
+    /// the cuts, so the pieces are made as few as the threads allow: each
+    /// starts with an empty top-k that lets every candidate through, and
+    /// small pieces would search mounts for most of them.
     fn chunks(&self, range: &Range<u64>) -> Vec<Range<u64>> {
         let end = range.end.min(self.combination_count()).max(range.start);
+        let size = if self.setting.prune_to_top_k {
+            let pieces = 4 * rayon::current_num_threads() as u64;
+            (end - range.start).div_ceil(pieces).max(CHUNK)
+        } else {
+            CHUNK
+        };
         (range.start..end)
-            .step_by(CHUNK as usize)
-            .map(|s| s..(s + CHUNK).min(end))
+            .step_by(size as usize)
+            .map(|s| s..(s + size).min(end))
             .collect()
     }
 

@@ -214,6 +214,13 @@ pub struct Params {
     /// Fixtures kept per part, best first; 0 keeps all.
     #[serde(default = "default_top_k")]
     pub top_k: usize,
+    /// Check every candidate so that the admissible count is exact. Off
+    /// (the default), a part with `top_k > 0` checks the clamp mount only
+    /// of candidates that could still enter its top-k: the same fixtures,
+    /// several times faster on big parts, but the admissible count is
+    /// then unknown (`counts_exact: false`). Ignored when `top_k` is 0.
+    #[serde(default)]
+    pub full_counts: bool,
     /// Expected wrenches `[F_x, F_y, tau]` (part frame, tau about its origin);
     /// `None` selects the default metric of SPEC section 6.
     #[serde(default)]
@@ -238,6 +245,7 @@ impl Default for Params {
             min_clearance: None,
             grid_step: default_grid_step(),
             top_k: default_top_k(),
+            full_counts: false,
             wrenches: None,
         }
     }

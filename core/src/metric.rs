@@ -27,6 +27,31 @@ pub trait Metric: Send + Sync + std::fmt::Debug {
     /// in the part frame, in lattice units. `None` when the contacts do not
     /// hold the part (never for a form-closed fixture).
     fn score(&self, contacts: &[PartContact; 4]) -> Option<f64>;
+
+    /// [`Self::score`] when only a score of at most `bound` matters (the
+    /// top-k mode): the same bits when the score is at most `bound`,
+    /// otherwise any value above `bound` and no larger than the score, so
+    /// a metric may stop as soon as it knows. `hint` is the metric's own
+    /// state from one call to the next on a thread (where a search
+    /// stopped last time, say); it never changes a score.
+    fn score_bounded(
+        &self,
+        contacts: &[PartContact; 4],
+        bound: f64,
+        hint: &mut usize,
+    ) -> Option<f64> {
+        let _ = (bound, hint);
+        self.score(contacts)
+    }
+
+    /// A floor on the score of every fixture with these three locator
+    /// contacts (`None` scores count as infinite), whatever the clamp
+    /// contact: a top-k whose k-th score is below it skips the setup's
+    /// mount searches. Minus infinity (the default) knows nothing.
+    fn locator_floor(&self, locators: &[PartContact; 3]) -> f64 {
+        let _ = locators;
+        f64::NEG_INFINITY
+    }
 }
 
 /// SPEC 6 default: the largest contact force needed to resist any unit
@@ -73,11 +98,44 @@ pub fn fibonacci_sphere(n: usize) -> Vec<Vector3<f64>> {
         .collect()
 }
 
-impl Metric for MaxForceMetric {
+/// A metric of the max-force family: the largest contact force over a
+/// set of applied wrenches, for contact wrenches written in its own way.
+/// Every such metric gets [`Metric`], early stop and locator floor
+/// included.
+pub trait MaxForce: Send + Sync + std::fmt::Debug {
+    /// The wrench of a contact, in the space of the applied wrenches.
+    fn wrench(&self, c: &PartContact) -> Vector3<f64>;
+    /// The applied wrenches to resist.
+    fn applied(&self) -> &[Vector3<f64>];
+}
+
+impl<T: MaxForce> Metric for T {
     fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
-        let w = contacts
-            .map(|c| Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho));
-        max_force(&w, &self.directions)
+        max_force(&contacts.map(|c| self.wrench(&c)), self.applied())
+    }
+
+    fn score_bounded(
+        &self,
+        contacts: &[PartContact; 4],
+        bound: f64,
+        hint: &mut usize,
+    ) -> Option<f64> {
+        let w = contacts.map(|c| self.wrench(&c));
+        max_force_bounded(&w, self.applied(), bound, hint)
+    }
+
+    fn locator_floor(&self, locators: &[PartContact; 3]) -> f64 {
+        max_force_floor(&locators.map(|c| self.wrench(&c)), self.applied())
+    }
+}
+
+impl MaxForce for MaxForceMetric {
+    fn wrench(&self, c: &PartContact) -> Vector3<f64> {
+        Vector3::new(c.f.x, c.f.y, cross(c.q - self.centroid, c.f) / self.rho)
+    }
+
+    fn applied(&self) -> &[Vector3<f64>] {
+        &self.directions
     }
 }
 
@@ -104,15 +162,34 @@ impl WrenchListMetric {
     }
 }
 
-impl Metric for WrenchListMetric {
-    fn score(&self, contacts: &[PartContact; 4]) -> Option<f64> {
-        let w = contacts.map(|c| Vector3::new(c.f.x, c.f.y, cross(c.q * self.spacing, c.f)));
-        max_force(&w, &self.wrenches)
+impl MaxForce for WrenchListMetric {
+    fn wrench(&self, c: &PartContact) -> Vector3<f64> {
+        Vector3::new(c.f.x, c.f.y, cross(c.q * self.spacing, c.f))
+    }
+
+    fn applied(&self) -> &[Vector3<f64>] {
+        &self.wrenches
     }
 }
 
 /// Largest contact force over the applied wrenches, in closed form.
 pub fn max_force(w: &[Vector3<f64>; 4], applied: &[Vector3<f64>]) -> Option<f64> {
+    max_force_bounded(w, applied, f64::INFINITY, &mut 0)
+}
+
+/// [`max_force`], stopping as soon as the largest force so far exceeds
+/// `bound` (then it is returned: above `bound`, at most the score). The
+/// applied wrenches are taken from `*start` on, wrapping around, and
+/// `*start` is left at the one that stopped the search: the wrench that
+/// breaks one fixture tends to break its neighbours. A maximum does not
+/// depend on the order its terms are taken in, so the score is the same
+/// bits whatever `start`.
+pub fn max_force_bounded(
+    w: &[Vector3<f64>; 4],
+    applied: &[Vector3<f64>],
+    bound: f64,
+    start: &mut usize,
+) -> Option<f64> {
     let m = Matrix3::from_columns(&[w[0], w[1], w[2]]);
     let inv = m.try_inverse()?;
     let l = -(inv * w[3]);
@@ -120,20 +197,55 @@ pub fn max_force(w: &[Vector3<f64>; 4], applied: &[Vector3<f64>]) -> Option<f64>
     if mu.iter().any(|&x| x <= 0.0) {
         return None;
     }
+    let first = if *start < applied.len() { *start } else { 0 };
+    let (tail, head) = applied.split_at(first);
     let mut worst = 0.0f64;
-    for p in applied {
-        // lambda0 = (-W^-1 p, 0)
-        let l0 = -(inv * p);
-        let l0 = [l0[0], l0[1], l0[2], 0.0];
-        let mut s = f64::NEG_INFINITY;
-        for i in 0..4 {
-            s = s.max(-l0[i] / mu[i]);
-        }
-        for i in 0..4 {
-            worst = worst.max(l0[i] + s * mu[i]);
+    for (i, p) in head.iter().chain(tail).enumerate() {
+        worst = worst.max(largest_force(&inv, &mu, p));
+        if worst > bound {
+            *start = (first + i) % applied.len();
+            return Some(worst);
         }
     }
     Some(worst)
+}
+
+/// The largest of the four contact forces that resist the applied wrench
+/// `p`: the smallest non-negative point of the ray `lambda0 + s mu`.
+#[inline(always)]
+fn largest_force(inv: &Matrix3<f64>, mu: &[f64; 4], p: &Vector3<f64>) -> f64 {
+    // lambda0 = (-W^-1 p, 0)
+    let l0 = -(inv * p);
+    let l0 = [l0[0], l0[1], l0[2], 0.0];
+    let mut s = f64::NEG_INFINITY;
+    for i in 0..4 {
+        s = s.max(-l0[i] / mu[i]);
+    }
+    let mut worst = 0.0f64;
+    for i in 0..4 {
+        worst = worst.max(l0[i] + s * mu[i]);
+    }
+    worst
+}
+
+/// A floor on [`max_force`] over every fourth wrench, from the first three
+/// alone: the clamp's share `s` is never negative and `mu > 0`, so each
+/// locator force `lambda0_i + s mu_i` is at least `lambda0_i`, which does
+/// not depend on the clamp. Computed with the very operations of
+/// [`max_force`], so the floor is at most the score in floating point too
+/// (adding a non-negative number never rounds below the other). Infinite
+/// when the three are dependent: no fourth wrench gives a score then.
+pub fn max_force_floor(w: &[Vector3<f64>; 3], applied: &[Vector3<f64>]) -> f64 {
+    let m = Matrix3::from_columns(w);
+    let Some(inv) = m.try_inverse() else {
+        return f64::INFINITY;
+    };
+    let mut floor = 0.0f64;
+    for p in applied {
+        let l0 = -(inv * p);
+        floor = floor.max(l0[0]).max(l0[1]).max(l0[2]);
+    }
+    floor
 }
 
 #[cfg(test)]

@@ -95,6 +95,16 @@ pub(crate) struct Setting {
     pub(crate) min_clearance: f64,
     pub(crate) grid_step: i64,
     pub(crate) top_k: usize,
+    /// Top-k mode: skip the mount search of candidates that cannot enter
+    /// the top-k (`top_k > 0` and no `full_counts`).
+    pub(crate) prune_to_top_k: bool,
+}
+
+/// The default whenever a top-k is asked for: the fixtures do not need
+/// the admissible count, and counting it takes a mount search per
+/// candidate, most of a big part's time.
+fn top_k_mode(top_k: usize, full_counts: bool) -> bool {
+    top_k > 0 && !full_counts
 }
 
 impl Setting {
@@ -126,6 +136,7 @@ impl Setting {
             min_clearance: params.min_clearance_or_default(units) / l,
             grid_step: params.grid_step as i64,
             top_k: params.top_k,
+            prune_to_top_k: top_k_mode(params.top_k, params.full_counts),
         })
     }
 }
@@ -446,6 +457,16 @@ impl PreparedPart {
         Ok(p)
     }
 
+    /// The part keeping the best `top_k` (0: all), in top-k mode unless
+    /// `full_counts`: what [`prepare`] gives with those parameters, for a
+    /// bench that measures both modes on one part.
+    pub fn with_top_k(&self, top_k: usize, full_counts: bool) -> PreparedPart {
+        let mut p = self.clone();
+        p.setting.top_k = top_k;
+        p.setting.prune_to_top_k = top_k_mode(top_k, full_counts);
+        p
+    }
+
     /// Distance range between segments `a` and `b` (pruning bound).
     #[inline]
     pub fn pair(&self, a: usize, b: usize) -> PairBounds {
@@ -484,6 +505,14 @@ impl PreparedPart {
     #[inline]
     pub fn top_k(&self) -> usize {
         self.setting.top_k
+    }
+
+    /// Whether results count admissible fixtures: not in top-k mode
+    /// (`top_k > 0` without `full_counts`), which skips the mount search
+    /// of candidates that cannot enter the top-k.
+    #[inline]
+    pub fn counts_exact(&self) -> bool {
+        !self.setting.prune_to_top_k
     }
 
     /// The grid step locators 2 and 3 are enumerated at.

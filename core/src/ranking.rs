@@ -39,13 +39,16 @@ pub struct Fixture {
 }
 
 impl Fixture {
-    /// SPEC's canonical key `(a, b, c, L2, L3, theta, clamp segment, k, m)`.
+    /// SPEC's canonical key `(a, b, c, L2, L3, theta, x, y, clamp segment,
+    /// k, m)`.
     pub fn key_cmp(&self, o: &Fixture) -> Ordering {
         self.segments
             .cmp(&o.segments)
             .then(self.locators[1].cmp(&o.locators[1]))
             .then(self.locators[2].cmp(&o.locators[2]))
             .then(self.theta.total_cmp(&o.theta))
+            .then(self.t[0].total_cmp(&o.t[0]))
+            .then(self.t[1].total_cmp(&o.t[1]))
             .then(self.clamp_segment.cmp(&o.clamp_segment))
             .then(self.rotation.cmp(&o.rotation))
             .then(self.mount.cmp(&o.mount))
@@ -97,15 +100,35 @@ impl TopK {
     /// Offers a fixture; it stays only while among the best `k`, so memory
     /// is bounded by `k` however many fixtures a part has.
     pub fn push(&mut self, f: Fixture) {
-        if self.k != 0 && self.heap.len() >= self.k {
-            if let Some(worst) = self.heap.peek() {
-                if f.rank_cmp(&worst.0) != Ordering::Less {
-                    return;
-                }
-            }
+        if !self.could_enter(&f) {
+            return;
+        }
+        if self.kth().is_some() {
             self.heap.pop();
         }
         self.heap.push(Ranked(f));
+    }
+
+    /// The score above which nothing can enter: the k-th fixture's once
+    /// `k` are held, infinity before (and when keeping all).
+    pub fn score_bound(&self) -> f64 {
+        self.kth().map_or(f64::INFINITY, |w| w.score)
+    }
+
+    /// Whether `f` would enter now ([`Self::push`] keeps it). A fixture
+    /// that would not can never be among the best `k` of anything that
+    /// contains what was seen: the k-th only gets better.
+    pub fn could_enter(&self, f: &Fixture) -> bool {
+        self.kth().is_none_or(|w| f.rank_cmp(w) == Ordering::Less)
+    }
+
+    /// The worst fixture held, once there are `k` (`None` when keeping
+    /// all).
+    fn kth(&self) -> Option<&Fixture> {
+        if self.k == 0 || self.heap.len() < self.k {
+            return None;
+        }
+        self.heap.peek().map(|r| &r.0)
     }
 
     /// Sorted best first.

@@ -19,7 +19,16 @@ pub enum Status {
 }
 
 /// The per-part counts of SPEC section 4.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+///
+/// In top-k mode (`top_k > 0` without `full_counts`) only the candidates
+/// that could enter the top-k get a mount search, so the admissible count
+/// is not known: `exact` is false and `admissible` is 0 here and absent
+/// from the JSON, which says `"counts_exact": false` instead. What is
+/// known then: segments, combinations, setups and candidates are exact,
+/// and the admissible count lies between the number of fixtures reported
+/// and `candidates`. Nothing order-dependent is kept, so the result is the
+/// same bytes however the work was split.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Counts {
     /// Usable segments of the part (SPEC 2).
     pub segments: u64,
@@ -29,8 +38,24 @@ pub struct Counts {
     pub setups: u64,
     /// Candidate fixtures: setup plus a clamp contact in form closure (SPEC 4).
     pub candidates: u64,
-    /// Candidates with a clamp mount that passes every test (SPEC 4).
+    /// Candidates with a clamp mount that passes every test (SPEC 4); 0
+    /// when not `exact`.
     pub admissible: u64,
+    /// Whether `admissible` was counted (full counts).
+    pub exact: bool,
+}
+
+impl Default for Counts {
+    fn default() -> Self {
+        Counts {
+            segments: 0,
+            combinations: 0,
+            setups: 0,
+            candidates: 0,
+            admissible: 0,
+            exact: true,
+        }
+    }
 }
 
 impl Counts {
@@ -42,6 +67,117 @@ impl Counts {
         self.setups += o.setups;
         self.candidates += o.candidates;
         self.admissible += o.admissible;
+        self.exact &= o.exact;
+    }
+
+    /// The admissible count, when it was counted.
+    pub fn admissible(&self) -> Option<u64> {
+        self.exact.then_some(self.admissible)
+    }
+}
+
+/// [`Counts`] as JSON shows them (results, MCAP messages): the full-count
+/// form is the one SPEC Appendix A shows, unchanged; top-k mode leaves
+/// `admissible` out and says so.
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(rename = "Counts")]
+struct CountsJson {
+    /// Usable segments of the part (SPEC 2).
+    segments: u64,
+    /// Segment combinations enumerated (SPEC 3).
+    combinations: u64,
+    /// Locator setups found (SPEC 3).
+    setups: u64,
+    /// Candidate fixtures: setup plus a clamp contact in form closure
+    /// (SPEC 4).
+    candidates: u64,
+    /// Candidates with a clamp mount that passes every test (SPEC 4).
+    /// Absent when `counts_exact` is false: the top-k mode searched mounts
+    /// only for candidates that could enter the top-k, so all that is
+    /// known is that it lies between the number of fixtures and
+    /// `candidates`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    admissible: Option<u64>,
+    /// False in top-k mode (`full_counts` off, `top_k > 0`), when
+    /// `admissible` was not counted; absent (true) with full counts.
+    #[serde(default = "yes", skip_serializing_if = "is_yes")]
+    counts_exact: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_yes(b: &bool) -> bool {
+    *b
+}
+
+/// [`Counts`] between processes (postcard): every field, always, since a
+/// binary format cannot skip one.
+#[derive(Serialize, Deserialize)]
+struct CountsWire(u64, u64, u64, u64, u64, bool);
+
+impl Serialize for Counts {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let c = *self;
+        if s.is_human_readable() {
+            CountsJson {
+                segments: c.segments,
+                combinations: c.combinations,
+                setups: c.setups,
+                candidates: c.candidates,
+                admissible: c.admissible(),
+                counts_exact: c.exact,
+            }
+            .serialize(s)
+        } else {
+            CountsWire(
+                c.segments,
+                c.combinations,
+                c.setups,
+                c.candidates,
+                c.admissible,
+                c.exact,
+            )
+            .serialize(s)
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Counts {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        if d.is_human_readable() {
+            let j = CountsJson::deserialize(d)?;
+            Ok(Counts {
+                segments: j.segments,
+                combinations: j.combinations,
+                setups: j.setups,
+                candidates: j.candidates,
+                admissible: j.admissible.filter(|_| j.counts_exact).unwrap_or(0),
+                exact: j.counts_exact,
+            })
+        } else {
+            let CountsWire(segments, combinations, setups, candidates, admissible, exact) =
+                CountsWire::deserialize(d)?;
+            Ok(Counts {
+                segments,
+                combinations,
+                setups,
+                candidates,
+                admissible,
+                exact,
+            })
+        }
+    }
+}
+
+impl JsonSchema for Counts {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        CountsJson::schema_name()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        CountsJson::json_schema(generator)
     }
 }
 

@@ -34,7 +34,9 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
         .map(|(i, f)| fixture_report(prep, f, i + 1))
         .collect();
     SolveResult {
-        status: if res.counts.admissible > 0 {
+        // Not the admissible count: top-k mode does not count it, and a
+        // part with an admissible fixture has one in its top-k.
+        status: if !res.fixtures.is_empty() {
             Status::Ok
         } else {
             Status::NoFixture

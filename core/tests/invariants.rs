@@ -85,20 +85,6 @@ fn assert_equivalent(a: &[Fixture], b: &[Fixture], score_tol: f64, what: &str) {
     }
 }
 
-fn shape_strategy() -> impl Strategy<Value = Vec<[f64; 2]>> {
-    (5usize..=10)
-        .prop_flat_map(|n| {
-            (
-                prop::collection::vec(0.0..std::f64::consts::TAU, n),
-                prop::collection::vec(1.2f64..3.2, n),
-            )
-        })
-        .prop_map(|(a, r)| star([0.0, 0.0], &a, &r))
-        .prop_filter("a valid polygon of at least 4 vertices", |p| {
-            p.len() >= 4 && fixplan_core::polygon::validate_polygon(p).is_ok()
-        })
-}
-
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 16,

@@ -40,6 +40,7 @@ fn replayed_run_equals_embedded() {
         catalog: PathBuf::from("mem"),
         kit: spec.name.clone(),
         top_k: None,
+        full_counts: false,
         output: embedded.clone(),
         resume: false,
         shard_size: None,

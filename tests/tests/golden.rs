@@ -216,12 +216,14 @@ fn check_golden(name: &str, got: &[u8]) {
     }
 }
 
-fn run_kit(kit: &str) {
-    let dir = tempfile::tempdir().unwrap();
-    let catalog = write_manifest(dir.path());
-    let results = dir.path().join("golden.mcap");
+/// The fixtures channel of a run of the golden catalogue with `kit`,
+/// keeping 5 fixtures per part, one JSON line per part; `extra` arguments.
+fn fixtures_lines(dir: &Path, kit: &str, extra: &[&str]) -> (Vec<u8>, PathBuf) {
+    let catalog = write_manifest(dir);
+    let results = dir.join(format!("golden{}.mcap", extra.len()));
     ok(fixplan()
         .args(["run", "-q", "--threads", "2", "--top-k", "5", "--kit", kit])
+        .args(extra)
         .arg("--catalog")
         .arg(&catalog)
         .arg("-o")
@@ -233,6 +235,15 @@ fn run_kit(kit: &str) {
         fixtures.extend_from_slice(&m);
         fixtures.push(b'\n');
     }
+    (fixtures, results)
+}
+
+/// The goldens hold full counts (`--full-counts`, as before the top-k
+/// mode); the default top-k mode must give the very same lines but for
+/// the counts, which leave `admissible` out and say so.
+fn run_kit(kit: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let (fixtures, results) = fixtures_lines(dir.path(), kit, &["--full-counts"]);
     check_golden(&format!("{kit}.fixtures.jsonl"), &fixtures);
     let export = ok(fixplan()
         .arg("export")
@@ -241,6 +252,22 @@ fn run_kit(kit: &str) {
         .output()
         .unwrap());
     check_golden(&format!("{kit}.export.jsonl"), &export.stdout);
+    let (fast, _) = fixtures_lines(dir.path(), kit, &[]);
+    let lines = |b: &[u8]| -> Vec<serde_json::Value> {
+        let text = String::from_utf8(b.to_vec()).unwrap();
+        text.lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect()
+    };
+    let (full, fast) = (lines(&fixtures), lines(&fast));
+    assert_eq!(full.len(), fast.len());
+    for (mut a, b) in full.into_iter().zip(fast) {
+        if let Some(c) = a.get_mut("counts").and_then(|c| c.as_object_mut()) {
+            c.remove("admissible");
+            c.insert("counts_exact".into(), false.into());
+        }
+        assert_eq!(a, b, "top-k mode against full counts");
+    }
 }
 
 #[test]

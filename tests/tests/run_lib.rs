@@ -21,6 +21,7 @@ fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {
         catalog: PathBuf::from("mem"),
         kit: "case-kit".into(),
         top_k: Some(5),
+        full_counts: false,
         output: out.to_path_buf(),
         resume: false,
         shard_size: shard,

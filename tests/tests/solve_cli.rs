@@ -32,9 +32,24 @@ fn solves_the_appendix_example() {
     );
     assert_eq!(fixtures[0]["rank"], 1);
     assert_eq!(fixtures[0]["locators"][0], serde_json::json!([0, 0]));
+    // Top-k mode: the admissible count is left out, and said to be.
     let counts = &v["counts"];
+    assert_eq!(counts["counts_exact"], false);
+    assert!(counts.get("admissible").is_none(), "{counts}");
+    // --full-counts: the same fixtures, every count.
+    let out = fixplan()
+        .arg("solve")
+        .arg("--full-counts")
+        .arg(cases().join("rectangle-mm.json"))
+        .output()
+        .unwrap();
+    let full: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(full["fixtures"], v["fixtures"]);
+    let counts = &full["counts"];
+    assert!(counts.get("counts_exact").is_none(), "{counts}");
     assert!(counts["admissible"].as_u64().unwrap() >= fixtures.len() as u64);
     assert!(counts["candidates"].as_u64() >= counts["admissible"].as_u64());
+    assert_eq!(counts["candidates"], v["counts"]["candidates"]);
 }
 
 fn solve_text(name: &str, text: &str) -> (i32, serde_json::Value) {

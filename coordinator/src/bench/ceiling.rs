@@ -168,6 +168,7 @@ pub fn run_once(
         catalog: catalog.source.clone(),
         kit: a.kit.clone(),
         top_k: None,
+        full_counts: false,
         output: output.to_path_buf(),
         resume: false,
         shard_size: None,

@@ -3,11 +3,13 @@
 //! Splits each part's enumeration into setup enumeration (lattice search and
 //! pose solutions), clamp placement (form closure, candidates, mount search),
 //! admissibility checks (clearance, plate fit) and the metric, and says how
-//! much the pruning wastes: pose solutions computed per setup kept.
+//! much the pruning wastes: pose solutions computed per setup kept. Each
+//! part runs twice: full counts, then top-k mode, which must find the same
+//! fixtures with less work (scored, mount searches, setups floored).
 
 use anyhow::{Context, Result};
 use fixplan_core::enumerate::Profile;
-use fixplan_core::{prepare, Case, Counts, Kit, Params, Part, PreparedPart, Units};
+use fixplan_core::{prepare, Case, Kit, Params, Part, PartialResult, PreparedPart, Units};
 use std::path::{Path, PathBuf};
 
 /// One part to measure.
@@ -76,44 +78,120 @@ pub fn parts_from_catalog(
         .collect()
 }
 
+/// One mode of one part, measured.
+#[derive(Debug, Clone)]
+pub struct Measured {
+    /// Where the time and the work went (timed run).
+    pub profile: Profile,
+    /// Wall time of the fastest untimed run, nanoseconds.
+    pub wall: u64,
+    /// The result of that run.
+    pub result: PartialResult,
+}
+
 /// Best of `repeat` timed runs of one part on the current thread, with the
-/// part's counts.
-pub fn measure(prep: &PreparedPart, repeat: usize) -> (Profile, u64, Counts) {
-    let n = prep.combination_count();
-    let mut best: Option<(Profile, u64, Counts)> = None;
-    for _ in 0..repeat.max(1) {
+/// part's result.
+pub fn measure(prep: &PreparedPart, repeat: usize) -> Measured {
+    let once = || {
+        let n = prep.combination_count();
         // Untimed run for the wall clock (no clock reads in the inner loop)...
         let t = std::time::Instant::now();
-        let res = prep.enumerate_range_serial(0..n);
+        let result = prep.enumerate_range_serial(0..n);
         let wall = t.elapsed().as_nanos() as u64;
         // ...and a timed run for the split.
         let (_, profile) = prep.enumerate_range_profiled(0..n, true);
-        if best.as_ref().is_none_or(|b| wall < b.1) {
-            best = Some((profile, wall, res.counts));
+        Measured {
+            profile,
+            wall,
+            result,
+        }
+    };
+    let mut best = once();
+    for _ in 1..repeat {
+        let m = once();
+        if m.wall < best.wall {
+            best = m;
         }
     }
-    best.unwrap_or_default()
+    best
 }
 
 fn ms(ns: u64) -> f64 {
     ns as f64 / 1e6
 }
 
-/// Runs the measurements and prints the table.
-pub fn run(parts: &[BenchPart], repeat: usize) {
+const HEADER: [&str; 13] = [
+    "part",
+    "mode",
+    "wall ms",
+    "setup%",
+    "clamp%",
+    "admit%",
+    "metric%",
+    "fixtures",
+    "setups",
+    "poses/set",
+    "scored",
+    "mounts",
+    "floored",
+];
+
+fn print_row(cells: &[String]) {
     println!(
-        "{:<22} {:>9} {:>8} {:>9} {:>8} {:>8} {:>8} {:>8} {:>10} {:>10}",
-        "part",
-        "wall ms",
-        "setup%",
-        "clamp%",
-        "admit%",
-        "metric%",
-        "fixtures",
-        "setups",
-        "poses/set",
-        "fixt/s"
+        "{:<22} {:<8} {:>9} {:>7} {:>7} {:>7} {:>8} {:>9} {:>8} {:>9} {:>9} {:>9} {:>8}",
+        cells[0],
+        cells[1],
+        cells[2],
+        cells[3],
+        cells[4],
+        cells[5],
+        cells[6],
+        cells[7],
+        cells[8],
+        cells[9],
+        cells[10],
+        cells[11],
+        cells[12]
     );
+}
+
+/// One row: the time split, the counts (admissible fixtures only when
+/// counted: `-` in top-k mode) and the work counters.
+fn row(id: &str, mode: &str, m: &Measured) -> Vec<String> {
+    let (profile, c) = (&m.profile, &m.result.counts);
+    let t = profile.timing;
+    let total = profile.total_ns.max(1) as f64;
+    let setup_enum = profile.total_ns.saturating_sub(t.setups_ns);
+    let clamp = t.setups_ns.saturating_sub(t.admissibility_ns + t.metric_ns);
+    let pct = |x: u64| format!("{:.1}%", 100.0 * x as f64 / total);
+    let per_setup = if c.setups > 0 {
+        profile.search.pose_solutions as f64 / c.setups as f64
+    } else {
+        f64::NAN
+    };
+    let w = profile.work;
+    vec![
+        id.to_string(),
+        mode.to_string(),
+        format!("{:.2}", ms(m.wall)),
+        pct(setup_enum),
+        pct(clamp),
+        pct(t.admissibility_ns),
+        pct(t.metric_ns),
+        c.admissible().map_or("-".into(), |a| a.to_string()),
+        c.setups.to_string(),
+        format!("{per_setup:.1}"),
+        w.scored.to_string(),
+        w.mount_searches.to_string(),
+        w.setups_floored.to_string(),
+    ]
+}
+
+/// Runs the measurements and prints the table: per part, all fixtures
+/// with full counts, then (when `top_k > 0`) the top-k mode, checked to
+/// find the first `top_k` fixtures of the full run bit for bit.
+pub fn run(parts: &[BenchPart], repeat: usize, top_k: usize) -> Result<()> {
+    print_row(&HEADER.map(String::from));
     for p in parts {
         let prep = match &p.prep {
             Ok(prep) => prep,
@@ -122,42 +200,33 @@ pub fn run(parts: &[BenchPart], repeat: usize) {
                 continue;
             }
         };
-        let (profile, wall, c) = measure(prep, repeat);
-        let t = profile.timing;
-        let total = profile.total_ns.max(1) as f64;
-        let setup_enum = profile.total_ns.saturating_sub(t.setups_ns);
-        let clamp = t.setups_ns.saturating_sub(t.admissibility_ns + t.metric_ns);
-        let pct = |x: u64| 100.0 * x as f64 / total;
-        let per_setup = if c.setups > 0 {
-            profile.search.pose_solutions as f64 / c.setups as f64
-        } else {
-            f64::NAN
-        };
-        let fps = c.admissible as f64 / (wall.max(1) as f64 / 1e9);
-        println!(
-            "{:<22} {:>9.2} {:>7.1}% {:>8.1}% {:>7.1}% {:>7.1}% {:>8} {:>8} {:>10.1} {:>10.0}",
-            p.id,
-            ms(wall),
-            pct(setup_enum),
-            pct(clamp),
-            pct(t.admissibility_ns),
-            pct(t.metric_ns),
-            c.admissible,
-            c.setups,
-            per_setup,
-            fps
-        );
+        let full = measure(&prep.with_top_k(top_k, true), repeat);
+        print_row(&row(&p.id, "full", &full));
+        if top_k == 0 {
+            continue;
+        }
+        let fast = measure(&prep.with_top_k(top_k, false), repeat);
+        if fast.result.fixtures != full.result.fixtures {
+            anyhow::bail!("{}: the top-{top_k} mode found other fixtures", p.id);
+        }
+        let mode = format!("top-{top_k}");
+        print_row(&row(&p.id, &mode, &fast));
+        let speedup = full.wall as f64 / fast.wall.max(1) as f64;
+        println!("{:<22} {:<8} {:>8.1}x", "", "speed-up", speedup);
     }
+    Ok(())
 }
 
 /// `fixplan bench`: the parts of `catalog` with `kit`, or the case files
-/// `cases` (the bundled bench cases when none), measured on one thread.
+/// `cases` (the bundled bench cases when none), measured on one thread,
+/// with full counts and in top-`top_k` mode.
 pub fn bench_main(
     cases: &[PathBuf],
     catalog: Option<&Path>,
     arcs: Option<fixplan_catalog::ArcMode>,
     kit: &str,
     repeat: usize,
+    top_k: usize,
 ) -> Result<()> {
     let parts = match catalog {
         Some(c) => {
@@ -173,6 +242,5 @@ pub fn bench_main(
         None if cases.is_empty() => parts_from_cases(&default_cases())?,
         None => parts_from_cases(cases)?,
     };
-    run(&parts, repeat);
-    Ok(())
+    run(&parts, repeat, top_k)
 }

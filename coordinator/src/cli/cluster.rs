@@ -98,6 +98,10 @@ pub struct CoordinatorArgs {
     /// Fixtures kept per part (0 keeps all).
     #[arg(long, value_name = "N")]
     pub top_k: Option<usize>,
+    /// Count every admissible fixture, as `fixplan run --full-counts`
+    /// (default: top-k mode, which leaves the admissible count out).
+    #[arg(long)]
+    pub full_counts: bool,
     /// The results file (MCAP), the same as `fixplan run` writes.
     #[arg(short, long, value_name = "FILE", default_value = "results.mcap")]
     pub output: PathBuf,
@@ -268,6 +272,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         catalog: catalog_path,
         kit: a.kit.clone(),
         top_k: a.top_k,
+        full_counts: a.full_counts,
         output: a.output.clone(),
         resume: a.resume,
         shard_size: a.shard_size,

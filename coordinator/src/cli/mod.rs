@@ -33,10 +33,19 @@ enum Cmd {
     /// Solve one part from a case file (SPEC Appendix A) and print the
     /// ranked fixtures as JSON. `params.top_k: 0` prints all of them.
     ///
+    /// With `top_k > 0` (the default, 10) only candidates that could enter
+    /// the top-k get a clamp mount search: the same fixtures, but the
+    /// counts leave `admissible` out and say `"counts_exact": false`.
+    /// `--full-counts` (or `params.full_counts: true`) counts them all.
+    ///
     /// Exit code 0 for `ok` and `no_fixture`, 2 for `invalid`.
     Solve {
         /// Case file: units, part, access, kit, params.
         case: PathBuf,
+        /// Count every admissible fixture (slower on big parts), as
+        /// `params.full_counts: true` does.
+        #[arg(long)]
+        full_counts: bool,
         /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
@@ -73,6 +82,14 @@ enum Cmd {
         /// parameters (10). A part's own `top_k` in the catalogue wins.
         #[arg(long, value_name = "N")]
         top_k: Option<usize>,
+        /// Count every admissible fixture: search the clamp mount of every
+        /// candidate. By default a run keeping a top-k (`--top-k` > 0)
+        /// searches mounts only for candidates that could still enter it:
+        /// the same fixtures, several times faster on big parts, but the
+        /// admissible count is then left out (`"counts_exact": false`).
+        /// Also `full_counts = true` in the kit's `[params]`.
+        #[arg(long)]
+        full_counts: bool,
         /// Threads (default: all cores). Results do not depend on it.
         #[arg(long, value_name = "N")]
         threads: Option<usize>,
@@ -149,10 +166,18 @@ enum Cmd {
     BenchCoordinator(crate::bench::ceiling::CeilingArgs),
     /// Measure the enumeration per part on one thread: wall time, where it
     /// goes (setup enumeration, clamp placement, admissibility checks,
-    /// metric), pose solutions computed per setup kept (what the pruning
-    /// wastes) and fixtures per second. All fixtures are enumerated.
+    /// metric) and pose solutions computed per setup kept (what the pruning
+    /// wastes).
     ///
-    /// With no arguments: the bundled bench cases (examples/cases).
+    /// Each part runs twice: with full counts (every candidate's mount
+    /// searched: `fixtures` is the admissible count), then in top-k mode
+    /// (`--top-k`, the default of `run` and `solve`), which must report the
+    /// same first k fixtures. `scored` counts metric evaluations, `mounts`
+    /// mount searches (clearance, plate fit), `floored` setups whose
+    /// locators alone score worse than the k-th fixture.
+    ///
+    /// With no arguments: the bundled bench cases (examples/cases; the big
+    /// ones of examples/cases/large take minutes).
     Bench {
         /// Case files (SPEC Appendix A).
         cases: Vec<PathBuf>,
@@ -169,6 +194,11 @@ enum Cmd {
         /// (default: the manifest's `arcs`, else exact).
         #[arg(long, value_name = "exact|flatten")]
         arcs: Option<ArcMode>,
+        /// The top-k mode's k, measured after the full enumeration (and
+        /// checked to find its first k fixtures); 0 measures the full
+        /// enumeration only.
+        #[arg(long, value_name = "N", default_value_t = 10)]
+        top_k: usize,
     },
     /// Print the ranked fixtures of a results file as tables.
     Show {
@@ -280,12 +310,17 @@ fn real_main() -> Result<()> {
     // Once per process, before any work: library code only emits events.
     fixplan_worker::log::init(quiet_logs(&cli.cmd));
     match cli.cmd {
-        Cmd::Solve { case, threads } => solve::solve_main(&case, threads)?,
+        Cmd::Solve {
+            case,
+            threads,
+            full_counts,
+        } => solve::solve_main(&case, threads, full_counts)?,
         Cmd::Run {
             catalog,
             kit,
             arcs,
             top_k,
+            full_counts,
             threads,
             output,
             resume,
@@ -305,6 +340,7 @@ fn real_main() -> Result<()> {
                 catalog: catalog.unwrap_or_else(default_catalog),
                 kit,
                 top_k,
+                full_counts,
                 output,
                 resume,
                 shard_size,
@@ -331,7 +367,10 @@ fn real_main() -> Result<()> {
             kit,
             repeat,
             arcs,
-        } => crate::bench::parts::bench_main(&cases, catalog.as_deref(), arcs, &kit, repeat)?,
+            top_k,
+        } => {
+            crate::bench::parts::bench_main(&cases, catalog.as_deref(), arcs, &kit, repeat, top_k)?
+        }
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             crate::view::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;

@@ -4,17 +4,19 @@ use fixplan_core::{solve_case, Case, SolveResult, Status};
 use std::io::Write;
 use std::path::Path;
 
-/// Reads and solves a case file. Every failure becomes an `invalid` result
-/// naming the file and the problem, never a panic.
-pub fn solve_file(path: &Path) -> SolveResult {
+/// Reads and solves a case file (`full_counts` over the file's own
+/// `params.full_counts`). Every failure becomes an `invalid` result naming
+/// the file and the problem, never a panic.
+pub fn solve_file(path: &Path, full_counts: bool) -> SolveResult {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) => return SolveResult::invalid(format!("{}: cannot read: {e}", path.display())),
     };
-    let case: Case = match serde_json::from_str(&text) {
+    let mut case: Case = match serde_json::from_str(&text) {
         Ok(c) => c,
         Err(e) => return SolveResult::invalid(format!("{}: {e}", path.display())),
     };
+    case.params.full_counts |= full_counts;
     let mut res = solve_case(&case);
     if res.status == Status::Invalid {
         if let Some(m) = res.error.take() {
@@ -26,13 +28,13 @@ pub fn solve_file(path: &Path) -> SolveResult {
 
 /// `fixplan solve`: prints the result JSON; exit code 2 for an invalid
 /// part, so scripts can tell a bad input from a part with no fixture.
-pub fn solve_main(case: &Path, threads: Option<usize>) -> anyhow::Result<()> {
+pub fn solve_main(case: &Path, threads: Option<usize>, full_counts: bool) -> anyhow::Result<()> {
     if let Some(n) = threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global()?;
     }
-    let res = solve_file(case);
+    let res = solve_file(case, full_counts);
     // Written, not printed: `fixplan solve CASE | head` closes the pipe,
     // which `println!` turns into a panic and `main` into a quiet exit.
     let mut out = std::io::stdout().lock();

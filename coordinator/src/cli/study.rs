@@ -70,6 +70,11 @@ pub struct StudyArgs {
     /// depend on it).
     #[arg(long, value_name = "N")]
     pub top_k: Option<usize>,
+    /// Count every part's admissible fixtures. Off, a study runs in top-k
+    /// mode (it needs the best fixture only), several times faster on
+    /// big parts, and its counts leave `admissible` out.
+    #[arg(long)]
+    pub full_counts: bool,
     /// Threads (default: all cores).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
@@ -151,6 +156,7 @@ pub fn study_cli_main(a: &StudyArgs, default_catalog: PathBuf) -> Result<StudyRe
         },
         sweep: a.sweep.clone(),
         top_k: a.top_k,
+        full_counts: a.full_counts,
         threads: a.threads,
         output: a.output.clone(),
         csv: a.csv.clone(),

@@ -262,11 +262,8 @@ fn check_list(top_k: usize, res: &PartialResult) -> Result<(), CheckError> {
     if top_k != 0 && len > top_k {
         return Err(CheckError::TooManyFixtures { len, top_k });
     }
-    if (len as u64) > res.counts.admissible {
-        return Err(CheckError::MoreThanAdmissible {
-            len,
-            admissible: res.counts.admissible,
-        });
+    if let Some(admissible) = res.counts.admissible().filter(|&a| (len as u64) > a) {
+        return Err(CheckError::MoreThanAdmissible { len, admissible });
     }
     if res
         .fixtures

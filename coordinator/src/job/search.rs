@@ -120,8 +120,9 @@ pub struct StepSummary {
     pub best_score: Option<f64>,
     /// The best fixture at this step.
     pub best: Option<FixtureReport>,
-    /// Admissible fixtures this step added to the previous (coarser) one.
-    pub added: u64,
+    /// Admissible fixtures this step added to the previous (coarser) one;
+    /// `null` in top-k mode, which does not count them (`--full-counts`).
+    pub added: Option<u64>,
     /// How much this step lowered the best score (previous best - this best;
     /// absent for the first step or when either step holds nothing).
     pub improved_by: Option<f64>,
@@ -161,8 +162,8 @@ pub fn step_summary(
         best_score,
         best,
         added: counts
-            .admissible
-            .saturating_sub(prev.map_or(0, |p| p.counts.admissible)),
+            .admissible()
+            .map(|a| a.saturating_sub(prev.and_then(|p| p.counts.admissible()).unwrap_or(0))),
         improved_by: match (prev.and_then(|p| p.best_score), best_score) {
             (Some(a), Some(b)) => Some(a - b),
             _ => None,

@@ -39,6 +39,9 @@ pub struct RunOptions {
     pub kit: String,
     /// Fixtures kept per part (default: the kit's parameters).
     pub top_k: Option<usize>,
+    /// `--full-counts`: count every admissible fixture (no top-k mode),
+    /// whatever the kit's parameters say.
+    pub full_counts: bool,
     /// The results file.
     pub output: PathBuf,
     /// Continue the interrupted run in `OUT.partial`.
@@ -91,6 +94,7 @@ fn run_message(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> RunMsg {
     if let Some(k) = opts.top_k {
         params.top_k = k;
     }
+    params.full_counts |= opts.full_counts;
     params.grid_step = opts.search.final_step(params.grid_step);
     RunMsg {
         tool: "fixplan".into(),

@@ -20,8 +20,8 @@ pub struct PartOutcome {
     pub status: Status,
     /// Why the part is invalid.
     pub error: Option<String>,
-    /// Admissible fixtures found.
-    pub admissible: u64,
+    /// Admissible fixtures found; `None` when not counted (top-k mode).
+    pub admissible: Option<u64>,
     /// Fixtures kept in the ranking.
     pub kept: usize,
     /// `--grid-steps`: what each step found.
@@ -86,7 +86,7 @@ pub fn part_outcome(
     })?;
     let part = serde_json::to_vec(&part_msg)?;
     let (status, error) = (result.status, result.error.clone());
-    let admissible = result.counts.map_or(0, |c| c.admissible);
+    let admissible = admissible_found(result.status, result.counts);
     let kept = result.fixtures.len();
     let fixtures = serde_json::to_vec(&FixturesMsg {
         part: cp.id.clone(),
@@ -107,4 +107,14 @@ pub fn part_outcome(
         steps: search.steps,
         stopped_at: search.stopped_at,
     })
+}
+
+/// The admissible fixtures of a part, as far as they were counted: none
+/// for a part without counts (invalid) or without fixtures, unknown for a
+/// part with fixtures solved in top-k mode.
+pub fn admissible_found(status: Status, counts: Option<fixplan_core::Counts>) -> Option<u64> {
+    match counts {
+        Some(c) if status == Status::Ok => c.admissible(),
+        _ => Some(0),
+    }
 }

@@ -8,7 +8,7 @@ use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
 /// Totals of a run, for the summary table.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Totals {
     /// Parts with fixtures.
     pub ok: usize,
@@ -16,12 +16,26 @@ pub struct Totals {
     pub no_fixture: usize,
     /// Parts that could not be read or prepared.
     pub invalid: usize,
-    /// Admissible fixtures found, over all parts.
-    pub admissible: u64,
+    /// Admissible fixtures found, over all parts; `None` once a part did
+    /// not count them (top-k mode).
+    pub admissible: Option<u64>,
     /// Fixtures kept in the rankings (top-k per part).
     pub kept: usize,
     /// Parts taken from an interrupted run's file.
     pub resumed: usize,
+}
+
+impl Default for Totals {
+    fn default() -> Self {
+        Totals {
+            ok: 0,
+            no_fixture: 0,
+            invalid: 0,
+            admissible: Some(0),
+            kept: 0,
+            resumed: 0,
+        }
+    }
 }
 
 impl Totals {
@@ -31,14 +45,23 @@ impl Totals {
     }
 
     /// Counts one part.
-    pub fn add(&mut self, status: Status, admissible: u64, kept: usize) {
+    pub fn add(&mut self, status: Status, admissible: Option<u64>, kept: usize) {
         match status {
             Status::Ok => self.ok += 1,
             Status::NoFixture => self.no_fixture += 1,
             Status::Invalid => self.invalid += 1,
         }
-        self.admissible += admissible;
+        self.admissible = self.admissible.zip(admissible).map(|(a, b)| a + b);
         self.kept += kept;
+    }
+
+    /// The fixtures found so far, for a person: the admissible count, or
+    /// the kept ones when a part ran in top-k mode.
+    fn found(&self) -> String {
+        match self.admissible {
+            Some(a) => format!("{a} fixtures found"),
+            None => format!("{} fixtures kept", self.kept),
+        }
     }
 }
 
@@ -87,7 +110,7 @@ impl Progress {
     }
 
     /// Parts already in the file when resuming.
-    pub fn resumed(&mut self, status: Status, admissible: u64, kept: usize) {
+    pub fn resumed(&mut self, status: Status, admissible: Option<u64>, kept: usize) {
         self.totals.add(status, admissible, kept);
         self.totals.resumed += 1;
         if let Some(b) = &self.bar {
@@ -105,20 +128,23 @@ impl Progress {
                 if o.status == Status::Invalid {
                     b.println(format!("invalid: {}", o.error.as_deref().unwrap_or("?")));
                 }
-                b.set_message(format!("{} fixtures found", self.totals.admissible));
+                b.set_message(self.totals.found());
                 b.inc(1);
             }
             None if !self.quiet => {
                 let what = match o.status {
-                    Status::Ok => format!("ok, {} fixtures", o.admissible),
+                    Status::Ok => match o.admissible {
+                        Some(a) => format!("ok, {a} fixtures"),
+                        None => format!("ok, top {}", o.kept),
+                    },
                     Status::NoFixture => "no fixture".to_string(),
                     Status::Invalid => format!("invalid: {}", o.error.as_deref().unwrap_or("?")),
                 };
                 say(format_args!(
-                    "[{done}/{}] {}: {what}  ({} fixtures so far, {:.1} s)",
+                    "[{done}/{}] {}: {what}  ({} so far, {:.1} s)",
                     self.total,
                     o.id,
-                    self.totals.admissible,
+                    self.totals.found(),
                     self.start.elapsed().as_secs_f64()
                 ));
             }
@@ -145,9 +171,10 @@ pub fn progress_line(o: &PartOutcome) -> Option<String> {
     let mut parts = Vec::new();
     for s in o.steps.iter().flatten() {
         let best = s.best_score.map_or("-".into(), |b| format!("{b:.4}"));
+        let added = s.added.map_or("?".into(), |a| a.to_string());
         parts.push(format!(
-            "step {}: +{} fixtures, best {best}",
-            s.grid_step, s.added
+            "step {}: +{added} fixtures, best {best}",
+            s.grid_step
         ));
     }
     if let Some(h) = o.stopped_at {
@@ -164,7 +191,8 @@ pub fn summary_table(t: &Totals, elapsed: Duration, output: &str) -> String {
     row(&mut s, "ok", t.ok.to_string());
     row(&mut s, "no_fixture", t.no_fixture.to_string());
     row(&mut s, "invalid", t.invalid.to_string());
-    row(&mut s, "fixtures found", t.admissible.to_string());
+    let found = t.admissible.map_or("not counted".into(), |a| a.to_string());
+    row(&mut s, "fixtures found", found);
     row(&mut s, "fixtures kept (top-k)", t.kept.to_string());
     if t.resumed > 0 {
         row(&mut s, "resumed from file", t.resumed.to_string());

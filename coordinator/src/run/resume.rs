@@ -100,7 +100,8 @@ fn copy_finished(
             return false;
         }
         if let Ok(p) = serde_json::from_slice::<PartMsg>(&m.part) {
-            progress.resumed(p.status, p.counts.map_or(0, |c| c.admissible), p.fixtures);
+            let admissible = super::outcome::admissible_found(p.status, p.counts);
+            progress.resumed(p.status, admissible, p.fixtures);
         }
         next += 1;
         true

@@ -54,12 +54,14 @@ pub fn study_kits(names: &[String], sweep: Option<&str>, units: Units) -> Result
 
 /// The parameters each kit is solved with: its own, with `top_k` fixtures
 /// kept (default 1: the statistics need only the best one, and the counts
-/// and best score do not depend on top-k).
-pub fn solve_params(kits: &[StudyKit], top_k: Option<usize>) -> Vec<Params> {
+/// and best score do not depend on top-k), in top-k mode unless
+/// `full_counts` (or the kit's own `full_counts`).
+pub fn solve_params(kits: &[StudyKit], top_k: Option<usize>, full_counts: bool) -> Vec<Params> {
     kits.iter()
         .map(|k| {
             let mut p = k.spec.params.clone();
             p.top_k = top_k.unwrap_or(1);
+            p.full_counts |= full_counts;
             p
         })
         .collect()

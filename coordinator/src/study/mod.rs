@@ -45,6 +45,8 @@ pub struct StudyOptions {
     /// Fixtures kept per part (default 1: the statistics need only the best
     /// one, and the counts and best score do not depend on top-k).
     pub top_k: Option<usize>,
+    /// Count admissible fixtures exactly (off: top-k mode).
+    pub full_counts: bool,
     /// Threads of an embedded study (default: all cores).
     pub threads: Option<usize>,
     /// Where to write the study as MCAP.
@@ -70,7 +72,7 @@ pub fn run_study(
     cluster: Option<&ClusterOptions>,
 ) -> Result<StudyReport> {
     let t0 = Instant::now();
-    let params = kits::solve_params(kits, opts.top_k);
+    let params = kits::solve_params(kits, opts.top_k, opts.full_counts);
     let plan = SharePlan::new(kits, &params, !opts.no_share);
     let backend = match cluster {
         Some(c) => Backend::Cluster(c.clone()),

@@ -273,12 +273,15 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
             .collect::<Vec<_>>()
             .join(" ")
     };
+    // Top-k mode did not count the fixtures a rank is out of.
+    let of = (rec.fixtures.result.counts)
+        .map_or(Some(0), |c| c.admissible())
+        .map_or(String::new(), |a| format!(" of {a}"));
     [
         format!(
-            "{} — rank {} of {} — score {:.4}{}",
+            "{} — rank {}{of} — score {:.4}{}",
             rec.part.id,
             f.rank,
-            rec.fixtures.result.counts.map_or(0, |c| c.admissible),
             f.score,
             if f.borderline { " (borderline)" } else { "" }
         ),

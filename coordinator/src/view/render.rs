@@ -75,7 +75,11 @@ fn render_part(
         let _ = writeln!(
             html,
             "<p>{} segments, {} setups, {} candidates, <b>{}</b> admissible fixtures; {} kept.</p>",
-            c.segments, c.setups, c.candidates, c.admissible, p.fixtures
+            c.segments,
+            c.setups,
+            c.candidates,
+            super::show::admissible_word(&c),
+            p.fixtures
         );
     }
     if let Some(e) = &p.error {

@@ -50,6 +50,12 @@ pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) ->
     Ok(())
 }
 
+/// The admissible count, or what a top-k mode result says instead of it.
+pub(super) fn admissible_word(c: &fixplan_core::Counts) -> String {
+    c.admissible()
+        .map_or("not counted (top-k mode)".into(), |a| a.to_string())
+}
+
 pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
     let p = &rec.part;
     let u = p.units.label();
@@ -58,7 +64,10 @@ pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> R
         write!(
             out,
             "  segments {}  setups {}  candidates {}  admissible {}",
-            c.segments, c.setups, c.candidates, c.admissible
+            c.segments,
+            c.setups,
+            c.candidates,
+            admissible_word(&c)
         )?;
     }
     writeln!(out)?;

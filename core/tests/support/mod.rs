@@ -50,8 +50,26 @@ pub fn params(max_angle: f64, grid_step: u32) -> Params {
         min_clearance: Some(0.05),
         grid_step,
         top_k: 0,
+        full_counts: false,
         wrenches: None,
     }
+}
+
+/// Random star-shaped polygons of 5 to 10 vertices around the origin,
+/// lattice units for [`kit`].
+pub fn shape_strategy() -> impl proptest::strategy::Strategy<Value = Vec<[f64; 2]>> {
+    use proptest::prelude::*;
+    (5usize..=10)
+        .prop_flat_map(|n| {
+            (
+                prop::collection::vec(0.0..std::f64::consts::TAU, n),
+                prop::collection::vec(1.2f64..3.2, n),
+            )
+        })
+        .prop_map(|(a, r)| star([0.0, 0.0], &a, &r))
+        .prop_filter("a valid polygon of at least 4 vertices", |p| {
+            p.len() >= 4 && fixplan_core::polygon::validate_polygon(p).is_ok()
+        })
 }
 
 pub fn part(outline: &[[f64; 2]], access: &[Vec<[f64; 2]>]) -> Part {

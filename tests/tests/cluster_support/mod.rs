@@ -190,6 +190,7 @@ pub fn run_opts(out: &Path, top_k: usize, cluster: Option<ClusterOptions>) -> Ru
         catalog: PathBuf::from("mem"),
         kit: "case-kit".into(),
         top_k: Some(top_k),
+        full_counts: false,
         output: out.to_path_buf(),
         resume: false,
         shard_size: None,
