@@ -120,8 +120,22 @@ struct SetupContext<'a> {
     /// The locator contacts in the part frame, as the metric takes them.
     part_locators: [PartContact; 3],
     /// Top-k mode, and the locators alone score above the k-th fixture:
-    /// candidates are only counted.
-    count_only: bool,
+    /// candidates are only counted. Worked out at the setup's first
+    /// candidate (the k-th fixture cannot change before it), so setups
+    /// without candidates, most of them, never pay for the floor.
+    count_only: std::cell::Cell<Option<bool>>,
+}
+
+impl SetupContext<'_> {
+    /// See `count_only`.
+    fn count_only(&self, prep: &PreparedPart, acc: &mut Accumulator) -> bool {
+        if let Some(weak) = self.count_only.get() {
+            return weak;
+        }
+        let weak = acc.prune && prep.locators_too_weak(&self.part_locators, acc);
+        self.count_only.set(Some(weak));
+        weak
+    }
 }
 
 /// The clamp mount the search settled on.
@@ -196,7 +210,6 @@ impl PreparedPart {
             return;
         };
         let part_locators = self.part_locators(setup);
-        let count_only = acc.prune && self.locators_too_weak(&part_locators, acc);
         let ctx = SetupContext {
             setup,
             normals,
@@ -204,7 +217,7 @@ impl PreparedPart {
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
             part_locators,
-            count_only,
+            count_only: std::cell::Cell::new(None),
         };
         scratch.reset_pose();
         for (j, seg) in self.segments.iter().enumerate() {
@@ -388,7 +401,7 @@ impl PreparedPart {
         scratch: &mut Scratch,
     ) {
         acc.counts.candidates += 1;
-        if ctx.count_only {
+        if ctx.count_only(self, acc) {
             return;
         }
         if acc.prune {
