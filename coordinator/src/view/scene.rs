@@ -491,7 +491,7 @@ const BEFORE_HOLES: &[u8] = br#"{"deletions":[],"entities":[{"arrows":[],"cubes"
 
 /// The JSON of [`scene_update`], byte for byte, at a fraction of the cost:
 /// the scene is serialised with no plate hole, and the holes near the
-/// fixture are copied in from this thread's [`HoleCache`] where serde_json
+/// fixture are copied in from this thread's `HoleCache` where serde_json
 /// would have written them.
 pub fn scene_json(p: PartScene) -> serde_json::Result<Vec<u8>> {
     let whole = || serde_json::to_vec(&scene_update(p));
