@@ -176,7 +176,8 @@ impl AngleSet {
     }
 }
 
-/// `theta` reduced to `[0, 2 pi)`.
+/// `theta` reduced to `[0, 2 pi)`: `rem_euclid` alone rounds a tiny
+/// negative angle up to `2 pi`, which would make one pose two.
 pub fn wrap_angle(theta: f64) -> f64 {
     let t = theta.rem_euclid(TAU);
     if t >= TAU {

@@ -29,6 +29,7 @@
 
 mod trig;
 
+use crate::angle_set::wrap_angle;
 use crate::geometry::{cross, rot, rot_t, v2, BORDERLINE, EPS, V2};
 use crate::pose::{solve_poses, Line, Pose};
 use nalgebra::{Matrix3, Vector3};
@@ -630,10 +631,7 @@ fn polish(
     if !converged {
         return None;
     }
-    let mut theta = best.0[0].rem_euclid(TAU);
-    if theta >= TAU {
-        theta = 0.0;
-    }
+    let theta = wrap_angle(best.0[0]);
     let (sin, cos) = theta.sin_cos();
     let w = v2(best.0[1], best.0[2]);
     let res = max_residual(contacts, locs, cos, sin, w);

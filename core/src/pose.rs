@@ -1,6 +1,7 @@
 //! The part poses that put three given locators on three grown-edge lines
 //! (SPEC section 3): `A cos(theta) + B sin(theta) = C` and back-substitution.
 
+use crate::angle_set::wrap_angle;
 use crate::geometry::{cross, rot, V2};
 
 /// A rigid placement of the part: plate point = `R(theta) p + t`.
@@ -117,11 +118,7 @@ pub fn solve_poses_where(
     let det = cross(lines[i].n, lines[j].n);
     let mut kept = 0;
     for &th in thetas.iter().take(count) {
-        let mut theta = th.rem_euclid(std::f64::consts::TAU);
-        if theta >= std::f64::consts::TAU {
-            // rem_euclid of a tiny negative angle rounds up to 2 pi.
-            theta = 0.0;
-        }
+        let theta = wrap_angle(th);
         if !keep(theta) {
             continue;
         }
