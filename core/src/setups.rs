@@ -2,9 +2,13 @@
 //! points for locators 2 and 3 and the part poses that touch all three.
 //!
 //! Pruning: `L2` must lie in the annulus of distances between segments a and
-//! b, `L3` in the annuli (a,c) around `L1` and (b,c) around `L2`. Only
-//! lattice points that cannot give a setup are skipped, so the set found is
-//! exactly SPEC's; the brute-force test enumerates without pruning.
+//! b. When a and b are lines, `L3` comes from the region segment c sweeps
+//! while `L1` and `L2` stay on them (`locator_sweep.rs`), and poses are
+//! worked out only at the angles that keep contacts 1 and 2 on their
+//! segments; otherwise `L3` comes from the annuli (a,c) around `L1` and
+//! (b,c) around `L2`. Only lattice points and angles that cannot give a
+//! setup are skipped, so the set found is exactly SPEC's; the brute-force
+//! test enumerates without pruning.
 
 use crate::contact_pose::solve_contact_poses;
 use crate::geometry::{v2, V2};
