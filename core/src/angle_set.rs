@@ -49,20 +49,6 @@ impl AngleSet {
         self.len += 1;
     }
 
-    /// The angles `theta` with `lo <= alpha + beta cos(theta) + gamma
-    /// sin(theta) <= hi`, widened by `slack` radians at every end.
-    pub fn sinusoid_between(
-        alpha: f64,
-        beta: f64,
-        gamma: f64,
-        lo: f64,
-        hi: f64,
-        slack: f64,
-    ) -> Self {
-        let amp = (beta * beta + gamma * gamma).sqrt();
-        Self::sinusoid_band(alpha, amp, gamma.atan2(beta), lo, hi, slack)
-    }
-
     /// The angles `theta` with `lo <= alpha + amp cos(theta - phi) <= hi`,
     /// widened by `slack` radians at every end (`amp >= 0`).
     pub fn sinusoid_band(alpha: f64, amp: f64, phi: f64, lo: f64, hi: f64, slack: f64) -> Self {
@@ -191,6 +177,13 @@ pub fn wrap_angle(theta: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// The angles with `lo <= alpha + beta cos(t) + gamma sin(t) <= hi`:
+    /// the band in the form tests write by hand.
+    fn between(alpha: f64, beta: f64, gamma: f64, lo: f64, hi: f64, slack: f64) -> AngleSet {
+        let amp = (beta * beta + gamma * gamma).sqrt();
+        AngleSet::sinusoid_band(alpha, amp, gamma.atan2(beta), lo, hi, slack)
+    }
+
     fn value(a: f64, b: f64, g: f64, t: f64) -> f64 {
         a + b * t.cos() + g * t.sin()
     }
@@ -209,7 +202,7 @@ mod tests {
             (0.2, 0.0, 1.0, 0.9, 1.2),
         ];
         for (a, b, g, lo, hi) in cases {
-            let set = AngleSet::sinusoid_between(a, b, g, lo, hi, 1e-12);
+            let set = between(a, b, g, lo, hi, 1e-12);
             for k in 0..20_000 {
                 let t = TAU * k as f64 / 20_000.0;
                 let v = value(a, b, g, t);
@@ -225,8 +218,8 @@ mod tests {
 
     #[test]
     fn intersection_keeps_common_angles_only() {
-        let a = AngleSet::sinusoid_between(0.0, 1.0, 0.0, 0.0, 1.0, 0.0); // |t| <= pi/2
-        let b = AngleSet::sinusoid_between(0.0, 0.0, 1.0, 0.0, 1.0, 0.0); // t in [0, pi]
+        let a = between(0.0, 1.0, 0.0, 0.0, 1.0, 0.0); // |t| <= pi/2
+        let b = between(0.0, 0.0, 1.0, 0.0, 1.0, 0.0); // t in [0, pi]
         let c = a.intersect(&b);
         assert!(c.contains(0.3) && c.contains(1.5));
         assert!(!c.contains(2.0) && !c.contains(6.0));
@@ -236,7 +229,7 @@ mod tests {
 
     #[test]
     fn intervals_across_zero_are_split() {
-        let s = AngleSet::sinusoid_between(0.0, 1.0, 0.0, 0.9, 2.0, 0.0);
+        let s = between(0.0, 1.0, 0.0, 0.9, 2.0, 0.0);
         assert_eq!(s.intervals().len(), 2);
         assert!(s.contains(0.0) && s.contains(TAU - 0.1) && !s.contains(PI));
         assert_eq!(wrap_angle(-1e-18), 0.0);
