@@ -1,15 +1,25 @@
 //! Locator setups (SPEC section 3): for a segment combination, the lattice
 //! points for locators 2 and 3 and the part poses that touch all three.
 //!
-//! Pruning: `L2` must lie in the annulus of distances between segments a and
-//! b. When a and b are lines, `L3` comes from the region segment c sweeps
-//! while `L1` and `L2` stay on them (`locator_sweep.rs`), and poses are
-//! worked out only at the angles that keep contacts 1 and 2 on their
-//! segments; otherwise `L3` comes from the annuli (a,c) around `L1` and
-//! (b,c) around `L2`. Only lattice points and angles that cannot give a
-//! setup are skipped, so the set found is exactly SPEC's; the brute-force
-//! test enumerates without pruning.
+//! Pruning: two of the three segments, both lines, are the pivot: one
+//! locator at the origin, the other at every lattice point of their
+//! annulus (up to quarter turns), and the third locator only in the region
+//! the third segment sweeps while the pivot's contacts stay on their
+//! segments (`locator_sweep.rs`); on three lines, poses are worked out
+//! only at the angles that keep the pivot's contacts on their segments.
+//! Of the pairs of lines, the one with the thinnest annulus pivots: the
+//! region is built once per lattice point of that annulus, so the pair
+//! with the fewest points costs least (half the time on `gluegun-28`). A
+//! combination with one arc pivots on its two lines. Each triple is then
+//! moved to SPEC's canonical frame (`L1` at the origin, `L2` in the
+//! quadrant `Q`) and solved there, so a setup's numbers never depend on
+//! which pair pivoted. Without two usable lines, `L2` comes from the
+//! annulus (a, b) and `L3` from the annuli (a, c) around `L1` and (b, c)
+//! around `L2`. Only lattice points and angles that cannot give a setup
+//! are skipped, so the set found is exactly SPEC's; the brute-force tests
+//! enumerate without pruning.
 
+use crate::angle_set::{wrap_angle, AngleSet};
 use crate::contact_pose::solve_contact_poses;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
@@ -17,6 +27,7 @@ use crate::locator_sweep::{LineSweep, SweepScratch};
 use crate::pose::{solve_poses_where, Line, Pose};
 use crate::prepare::{PairBounds, PreparedPart};
 use crate::segments::{Feature, Segment};
+use std::f64::consts::FRAC_PI_2;
 
 /// Slack on annulus bounds, far above rounding and far below a lattice step.
 const ANNULUS_SLACK: f64 = 1e-7;
@@ -158,21 +169,142 @@ impl PreparedPart {
         mut visit: impl FnMut(&Setup),
     ) -> SearchStats {
         let mut stats = SearchStats::default();
+        match self.pivot(combo) {
+            Some(pivot) => self.swept_setups(combo, &pivot, &mut stats, &mut visit),
+            None => self.annulus_setups(combo, &mut stats, &mut visit),
+        }
+        stats
+    }
+
+    /// The two lines of the combination the sweep turns the part about,
+    /// `a` and `b` when both are lines. With one arc the sweep still
+    /// applies, pivoting on the other two segments: the arc then only has
+    /// to be swept (chords), never solved for at every lattice point of
+    /// its annuli.
+    fn pivot(&self, combo: [usize; 3]) -> Option<Pivot> {
+        let is_line = |k: usize| matches!(self.segments[combo[k]].feature, Feature::Line(_));
+        let area = |[p, q, _]: [usize; 3]| {
+            let (lo, hi) = annulus_sq(self.pair(combo[p], combo[q]));
+            hi - lo
+        };
+        let mut orders = [[0, 1, 2], [0, 2, 1], [1, 2, 0]];
+        orders.sort_by(|x, y| area(*x).total_cmp(&area(*y)));
+        orders
+            .into_iter()
+            .filter(|&[p, q, _]| is_line(p) && is_line(q))
+            .find_map(|roles| {
+                let [p, q, r] = roles.map(|k| combo[k]);
+                let sweep = LineSweep::new(
+                    [p, q, r].map(|i| &self.segments[i]),
+                    [self.directions[p], self.directions[q]],
+                    p == q,
+                    self.pair(p, r).dmax,
+                )?;
+                Some(Pivot { roles, sweep })
+            })
+    }
+
+    /// Setups by the sweep: the pivot's first locator at the origin, its
+    /// second at every lattice point `d` of `Q = {i > 0, j >= 0}` in their
+    /// annulus, the third segment's locator in the swept region.
+    fn swept_setups(
+        &self,
+        combo: [usize; 3],
+        pivot: &Pivot,
+        stats: &mut SearchStats,
+        visit: &mut impl FnMut(&Setup),
+    ) {
+        let [p, q, r] = pivot.roles.map(|k| combo[k]);
+        let g = self.setting.grid_step;
+        let pq = self.pair(p, q);
+        let (lo2, hi2) = annulus_sq(pq);
+        let imax = pq.dmax.floor() as i64 + 1;
+        let mut scratch = SweepScratch::default();
+        let mut i = g;
+        while i <= imax {
+            let mut j = 0;
+            while j <= imax {
+                let d = [i, j];
+                let d2 = (i * i + j * j) as f64;
+                if d2 > hi2 {
+                    break;
+                }
+                if d2 >= lo2 && self.locator_point_allowed(d) {
+                    let listed =
+                        pivot
+                            .sweep
+                            .for_each_third_locator(d, g, &mut scratch, |e, angles| {
+                                self.solve_placed(combo, pivot, d, e, Some(angles), stats, visit)
+                            });
+                    if !listed {
+                        let (pr, qr) = (self.pair(p, r), self.pair(q, r));
+                        annulus_points(d, pr, qr, g, |e| {
+                            self.solve_placed(combo, pivot, d, e, None, stats, visit)
+                        });
+                    }
+                }
+                j += g;
+            }
+            i += g;
+        }
+    }
+
+    /// Solves the triple with the pivot's locators at `0` and `d` and the
+    /// third at `e`, after moving it to the canonical frame: `L1` at the
+    /// origin, turned by quarter turns (which map the lattice onto itself)
+    /// until `L2` lies in `Q`. Each setup has exactly one placement with
+    /// `d` in `Q`, so each is solved once. `angles` (pivot frame) lets
+    /// three lines work out only the poses the sweep allows.
+    #[allow(clippy::too_many_arguments)] // one lattice triple, unpacked
+    fn solve_placed(
+        &self,
+        combo: [usize; 3],
+        pivot: &Pivot,
+        d: [i64; 2],
+        e: [i64; 2],
+        angles: Option<&AngleSet>,
+        stats: &mut SearchStats,
+        visit: &mut impl FnMut(&Setup),
+    ) {
+        let mut placed = [[0i64; 2]; 3];
+        let [p, q, r] = pivot.roles;
+        (placed[p], placed[q], placed[r]) = ([0, 0], d, e);
+        let o = placed[0];
+        let (l2, l3) = (sub(placed[1], o), sub(placed[2], o));
+        if l2 == [0, 0] {
+            return;
+        }
+        let turns = quarter_turns_into_q(l2);
+        let (l2, l3) = (quarter_turn(l2, turns), quarter_turn(l3, turns));
+        // `d` was checked; any other L2 is a difference of checked points
+        // turned, which keeps grid step and dowel parity, but say so here
+        // rather than rely on it.
+        if l2 != d && !self.locator_point_allowed(l2) {
+            return;
+        }
+        // The pose turns with the plate: theta = theta_pivot + turns pi/2.
+        let back = f64::from(turns) * FRAC_PI_2;
+        let keep = |t: f64| {
+            angles.is_none_or(|a| a.contains(if turns == 0 { t } else { wrap_angle(t - back) }))
+        };
+        self.solve_triple(combo, l2, l3, keep, stats, visit);
+    }
+
+    /// Setups when no pair of lines can pivot (two or three arcs, or nearly
+    /// parallel lines): `L2` in the annulus (a, b), `L3` in the annuli
+    /// (a, c) around `L1` and (b, c) around `L2`.
+    fn annulus_setups(
+        &self,
+        combo: [usize; 3],
+        stats: &mut SearchStats,
+        visit: &mut impl FnMut(&Setup),
+    ) {
         let [a, b, c] = combo;
         let ab = self.pair(a, b);
-        let ac = self.pair(a, c);
-        let bc = self.pair(b, c);
+        let (ac, bc) = (self.pair(a, c), self.pair(b, c));
         let g = self.setting.grid_step;
         let (lo2, hi2) = annulus_sq(ab);
         let imax = ab.dmax.floor() as i64 + 1;
-        let segs = combo.map(|i| &self.segments[i]);
-        let sweep = LineSweep::new(
-            segs,
-            [self.directions[a], self.directions[b]],
-            a == b,
-            ac.dmax,
-        );
-        let mut scratch = SweepScratch::default();
         // L2 in Q = {i > 0, j >= 0}.
         let mut i = g;
         while i <= imax {
@@ -184,21 +316,14 @@ impl PreparedPart {
                     break;
                 }
                 if d2 >= lo2 && self.locator_point_allowed(l2) {
-                    let listed = sweep.as_ref().is_some_and(|sw| {
-                        sw.for_each_third_locator(l2, g, &mut scratch, |l3, angles| {
-                            let keep = |t: f64| angles.contains(t);
-                            self.solve_triple(combo, l2, l3, keep, &mut stats, &mut visit)
-                        })
+                    annulus_points(l2, ac, bc, g, |l3| {
+                        self.solve_triple(combo, l2, l3, |_| true, stats, visit)
                     });
-                    if !listed {
-                        self.third_locators(combo, l2, ac, bc, &mut stats, &mut visit);
-                    }
                 }
                 j += g;
             }
             i += g;
         }
-        stats
     }
 
     /// Solves one locator triple that survived pruning, with statistics.
@@ -218,48 +343,73 @@ impl PreparedPart {
                 self.setups_for_locators_where(combo, l2, l3, keep, &mut *visit) as u64;
         }
     }
+}
 
-    /// `L3` from the annuli around `L1` and `L2`: arcs, and lines the
-    /// sweep does not handle.
-    fn third_locators(
-        &self,
-        combo: [usize; 3],
-        l2: [i64; 2],
-        ac: PairBounds,
-        bc: PairBounds,
-        stats: &mut SearchStats,
-        visit: &mut impl FnMut(&Setup),
-    ) {
-        let g = self.setting.grid_step;
-        let (lo_a, hi_a) = annulus_sq(ac);
-        let (lo_b, hi_b) = annulus_sq(bc);
-        let p2 = v2(l2[0] as f64, l2[1] as f64);
-        let x_lo = (-ac.dmax).max(p2.x - bc.dmax) - 1.0;
-        let x_hi = ac.dmax.min(p2.x + bc.dmax) + 1.0;
-        let mut x = (x_lo / g as f64).floor() as i64 * g;
-        while (x as f64) <= x_hi {
-            let xf = x as f64;
-            // y range from the outer circle around the origin and around L2.
-            let ra = hi_a - xf * xf;
-            let rb = hi_b - (xf - p2.x) * (xf - p2.x);
-            if ra >= 0.0 && rb >= 0.0 {
-                let (ya, yb) = (ra.sqrt(), rb.sqrt());
-                let y_lo = (-ya).max(p2.y - yb);
-                let y_hi = ya.min(p2.y + yb);
-                let mut y = (y_lo / g as f64).floor() as i64 * g;
-                while (y as f64) <= y_hi {
-                    let l3 = [x, y];
-                    let da = (x * x + y * y) as f64;
-                    let q = v2(xf, y as f64) - p2;
-                    let db = q.norm_squared();
-                    if da >= lo_a && da <= hi_a && db >= lo_b && db <= hi_b {
-                        self.solve_triple(combo, l2, l3, |_| true, stats, visit);
-                    }
-                    y += g;
+/// A combination's roles for the sweep: `roles[0]`, `roles[1]` (positions
+/// in the combination) are the two lines it pivots on, `roles[2]` the
+/// segment it sweeps.
+struct Pivot {
+    roles: [usize; 3],
+    sweep: LineSweep,
+}
+
+fn sub(a: [i64; 2], b: [i64; 2]) -> [i64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// `p` turned by `turns` quarter turns counterclockwise.
+fn quarter_turn(p: [i64; 2], turns: u8) -> [i64; 2] {
+    (0..turns).fold(p, |[x, y], _| [-y, x])
+}
+
+/// The quarter turns that bring `v != 0` into `Q = {i > 0, j >= 0}`.
+fn quarter_turns_into_q([x, y]: [i64; 2]) -> u8 {
+    if x > 0 && y >= 0 {
+        0
+    } else if x >= 0 && y < 0 {
+        1
+    } else if x < 0 && y <= 0 {
+        2
+    } else {
+        3
+    }
+}
+
+/// Calls `visit` for every lattice point (multiples of `g`) within the
+/// annulus `ac` around the origin and `bc` around `l2`.
+fn annulus_points(
+    l2: [i64; 2],
+    ac: PairBounds,
+    bc: PairBounds,
+    g: i64,
+    mut visit: impl FnMut([i64; 2]),
+) {
+    let (lo_a, hi_a) = annulus_sq(ac);
+    let (lo_b, hi_b) = annulus_sq(bc);
+    let p2 = v2(l2[0] as f64, l2[1] as f64);
+    let x_lo = (-ac.dmax).max(p2.x - bc.dmax) - 1.0;
+    let x_hi = ac.dmax.min(p2.x + bc.dmax) + 1.0;
+    let mut x = (x_lo / g as f64).floor() as i64 * g;
+    while (x as f64) <= x_hi {
+        let xf = x as f64;
+        // y range from the outer circle around the origin and around L2.
+        let ra = hi_a - xf * xf;
+        let rb = hi_b - (xf - p2.x) * (xf - p2.x);
+        if ra >= 0.0 && rb >= 0.0 {
+            let (ya, yb) = (ra.sqrt(), rb.sqrt());
+            let y_lo = (-ya).max(p2.y - yb);
+            let y_hi = ya.min(p2.y + yb);
+            let mut y = (y_lo / g as f64).floor() as i64 * g;
+            while (y as f64) <= y_hi {
+                let da = (x * x + y * y) as f64;
+                let db = (v2(xf, y as f64) - p2).norm_squared();
+                if da >= lo_a && da <= hi_a && db >= lo_b && db <= hi_b {
+                    visit([x, y]);
                 }
+                y += g;
             }
-            x += g;
         }
+        x += g;
     }
 }
 
