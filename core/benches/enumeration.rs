@@ -6,7 +6,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use fixplan_core::angle_set::AngleSet;
 use fixplan_core::form_closure::{wrench, LocatorWrenches};
 use fixplan_core::geometry::{polygon_clearance, polygon_clearance_below, v2};
-use fixplan_core::locator_sweep::{LineSweep, SweepScratch};
+use fixplan_core::locator_sweep::{LineSweep, SweepScratch, SweptSegment};
 use fixplan_core::metric::{MaxForceMetric, Metric, PartContact};
 use fixplan_core::pose::{solve_poses, Line};
 use fixplan_core::segments::{Feature, LineFeature, Segment};
@@ -137,8 +137,8 @@ fn sweep(c: &mut Criterion) {
         line([6.0, 0.0], 1.9, 5.0),
         line([3.0, 5.0], 3.6, 4.0),
     ];
-    let dirs = [segs[0].direction_angle(), segs[1].direction_angle()];
-    let sweep = LineSweep::new([&segs[0], &segs[1], &segs[2]], dirs, false, 9.0).expect("lines");
+    let swept = segs.each_ref().map(SweptSegment::of);
+    let sweep = LineSweep::new([&swept[0], &swept[1], &swept[2]], false, 9.0).expect("lines");
     let mut scratch = SweepScratch::default();
     c.bench_function("third_locator_region_per_l2", |b| {
         b.iter(|| {

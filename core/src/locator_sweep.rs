@@ -66,6 +66,8 @@ struct LinePiece {
     line: LineFeature,
     s0: f64,
     s1: f64,
+    /// Angle of `u`.
+    direction: f64,
 }
 
 impl LinePiece {
@@ -75,6 +77,7 @@ impl LinePiece {
                 line,
                 s0: s.s0,
                 s1: s.s1,
+                direction: s.direction_angle(),
             }),
             Feature::Arc(_) => None,
         }
@@ -154,15 +157,34 @@ impl ThirdPiece {
     }
 }
 
-/// What the sweep of one combination needs (`a`, `b` lines, `c` a line or
-/// an arc), worked
-/// out once per combination: per `L2` only the part that depends on `L2` is
-/// left (one `atan2`, at most four `acos` and two `sin_cos`).
+/// What the sweep needs of one segment, worked out once per part: a
+/// combination only borrows these, so choosing its pivot costs no trig
+/// and no copy of the arc's chord points.
 #[derive(Debug, Clone, Copy)]
-pub struct LineSweep {
-    a: LinePiece,
-    b: LinePiece,
-    c: ThirdPiece,
+pub struct SweptSegment {
+    line: Option<LinePiece>,
+    third: ThirdPiece,
+}
+
+impl SweptSegment {
+    /// The segment as a pivot line (if it is one) and as a third segment.
+    pub fn of(seg: &Segment) -> SweptSegment {
+        SweptSegment {
+            line: LinePiece::of(seg),
+            third: ThirdPiece::of(seg),
+        }
+    }
+}
+
+/// What the sweep of one combination needs (`a`, `b` lines, `c` a line or
+/// an arc), worked out once per combination: per `L2` only the part that
+/// depends on `L2` is left (one `atan2`, at most four `acos` and two
+/// `sin_cos`).
+#[derive(Debug, Clone, Copy)]
+pub struct LineSweep<'s> {
+    a: &'s LinePiece,
+    b: &'s LinePiece,
+    c: &'s ThirdPiece,
     same_ab: bool,
     mode: Mode,
 }
@@ -186,30 +208,25 @@ enum Mode {
     },
 }
 
-impl LineSweep {
+impl LineSweep<'_> {
     /// `None` when this pruning does not apply (`a` or `b` is an arc, or
     /// lines `a` and `b` nearly but not exactly parallel) and the caller
     /// must use the annuli. `dmax_ac` bounds the distance between points of
     /// `a` and `c`.
-    pub fn new(
-        segs: [&Segment; 3],
-        directions: [f64; 2],
-        same_ab: bool,
-        dmax_ac: f64,
-    ) -> Option<LineSweep> {
-        let a = LinePiece::of(segs[0])?;
-        let b = LinePiece::of(segs[1])?;
-        let c = ThirdPiece::of(segs[2]);
+    pub fn new(segs: [&SweptSegment; 3], same_ab: bool, dmax_ac: f64) -> Option<LineSweep<'_>> {
+        let a = segs[0].line.as_ref()?;
+        let b = segs[1].line.as_ref()?;
+        let c = &segs[2].third;
         let (na, nb) = (a.line.n, b.line.n);
         let d = cross(a.line.u, b.line.u);
-        let three_parallel = match &segs[2].feature {
-            Feature::Line(lc) => {
-                let nc = lc.n;
+        let three_parallel = match &segs[2].line {
+            Some(lc) => {
+                let nc = lc.line.n;
                 [cross(nb, nc), cross(nc, na), cross(na, nb)]
                     .iter()
                     .all(|x| x.abs() <= EPS)
             }
-            Feature::Arc(_) => false,
+            None => false,
         };
         let mode = if three_parallel {
             Mode::Degenerate
@@ -222,11 +239,14 @@ impl LineSweep {
             // cross(u_a, q) / D for q = R^T L2 + o_a - o_b; the L2 terms
             // are |L2| cos(theta - phi_L2 + phi_u - sign(D) pi / 2) / |D|.
             let oab = a.line.origin - b.line.origin;
-            let quarter = d.signum() * std::f64::consts::FRAC_PI_2;
+            let sign = d.signum();
+            let quarter = sign * std::f64::consts::FRAC_PI_2;
+            // sin and cos of -phi_u_b - sign pi / 2, from u_b itself.
+            let ub = b.line.u;
             Mode::Turning {
                 alpha: [cross(b.line.u, oab) / d, cross(a.line.u, oab) / d],
-                kappa: [-directions[1] - quarter, -directions[0] - quarter],
-                kappa_a_sc: (-directions[1] - quarter).sin_cos(),
+                kappa: [-b.direction - quarter, -a.direction - quarter],
+                kappa_a_sc: (-sign * ub.x, -sign * ub.y),
                 inv_d: 1.0 / d.abs(),
                 dmax_ac,
             }
@@ -250,7 +270,7 @@ impl LineSweep {
             Mode::Degenerate => true,
             Mode::Sliding => {
                 *angles = AngleSet::full();
-                sliding_region(&self.a, &self.b, &self.c, self.same_ab, l2, out);
+                sliding_region(self.a, self.b, self.c, self.same_ab, l2, out);
                 true
             }
             Mode::Turning {
@@ -272,11 +292,11 @@ impl LineSweep {
                         ANGLE_SLACK,
                     )
                 };
-                let on_a = band(0, &self.a);
+                let on_a = band(0, self.a);
                 *angles = if on_a.is_empty() {
                     on_a
                 } else {
-                    on_a.intersect(&band(1, &self.b))
+                    on_a.intersect(&band(1, self.b))
                 };
                 // (sin, cos) of phi_a = phi_L2 + kappa_a by turning L2's
                 // direction.
@@ -300,7 +320,7 @@ fn turning_region(
     dmax_ac: f64,
     out: &mut Vec<Quad>,
 ) -> bool {
-    let (a, c) = (&sweep.a, &sweep.c);
+    let (a, c) = (sweep.a, sweep.c);
     let h = sa[1];
     // |F''| <= |p - p1| + 2 |p1'| + |p1''| for F = R (p - p1); the widened
     // angles may carry p1 past a's ends by `ANGLE_SLACK h`.
@@ -470,7 +490,7 @@ pub struct SweepScratch {
     angles: AngleSet,
 }
 
-impl LineSweep {
+impl LineSweep<'_> {
     /// Calls `visit` once for every lattice point (multiples of `g`) of the
     /// region of `L3` for `L2 = l2`, row by row, with the angles at which
     /// contacts 1 and 2 stay on their segments; `false` (and no call)
@@ -593,9 +613,10 @@ mod tests {
         let (sin, cos) = theta.sin_cos();
         let l2 = rot(cos, sin, p[1] - p[0]);
         let l3 = rot(cos, sin, p[2] - p[0]);
-        let dirs = [0, 1].map(|k| segs[k].direction_angle());
         let dmax_ac = crate::segments::distance_range(segs[0], segs[2]).1;
-        let Some(sweep) = LineSweep::new(segs, dirs, same_ab, dmax_ac) else {
+        let swept = segs.map(SweptSegment::of);
+        let Some(sweep) = LineSweep::new([&swept[0], &swept[1], &swept[2]], same_ab, dmax_ac)
+        else {
             return; // nearly parallel: the caller scans annuli
         };
         if matches!(sweep.mode, Mode::Degenerate) {

@@ -4,6 +4,7 @@
 
 use crate::geometry::{v2, Aabb, V2};
 use crate::input::{HoleKind, Kit, MountHole, Params, Part, Pattern, Units};
+use crate::locator_sweep::SweptSegment;
 use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
 use crate::outline::{Outline, OutlineError, Vertex};
 use crate::polygon::{validate_polygon, PolygonError};
@@ -179,9 +180,9 @@ pub struct PreparedPart {
     pub(crate) metric: Arc<dyn Metric>,
     /// `pair[a * n + b]`: distance range between segments a and b.
     pub(crate) pair: Vec<PairBounds>,
-    /// Angle of each line segment's direction (0 for arcs), so the setup
-    /// sweep needs no `atan2` per combination.
-    pub(crate) directions: Vec<f64>,
+    /// Each segment as the setup sweep uses it, so that choosing a
+    /// combination's pivot costs no trig per combination.
+    pub(crate) swept: Vec<SweptSegment>,
     pub(crate) setting: Setting,
 }
 
@@ -314,7 +315,7 @@ pub fn prepare(
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
     let pair = pair_bounds(&segments);
-    let directions = segments.iter().map(Segment::direction_angle).collect();
+    let swept = segments.iter().map(SweptSegment::of).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
         spacing: l,
@@ -327,7 +328,7 @@ pub fn prepare(
         segments,
         metric,
         pair,
-        directions,
+        swept,
         setting,
     })
 }

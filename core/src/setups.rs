@@ -181,27 +181,21 @@ impl PreparedPart {
     /// applies, pivoting on the other two segments: the arc then only has
     /// to be swept (chords), never solved for at every lattice point of
     /// its annuli.
-    fn pivot(&self, combo: [usize; 3]) -> Option<Pivot> {
-        let is_line = |k: usize| matches!(self.segments[combo[k]].feature, Feature::Line(_));
-        let area = |[p, q, _]: [usize; 3]| {
-            let (lo, hi) = annulus_sq(self.pair(combo[p], combo[q]));
-            hi - lo
-        };
-        let mut orders = [[0, 1, 2], [0, 2, 1], [1, 2, 0]];
-        orders.sort_by(|x, y| area(*x).total_cmp(&area(*y)));
-        orders
-            .into_iter()
-            .filter(|&[p, q, _]| is_line(p) && is_line(q))
-            .find_map(|roles| {
-                let [p, q, r] = roles.map(|k| combo[k]);
-                let sweep = LineSweep::new(
-                    [p, q, r].map(|i| &self.segments[i]),
-                    [self.directions[p], self.directions[q]],
-                    p == q,
-                    self.pair(p, r).dmax,
-                )?;
-                Some(Pivot { roles, sweep })
-            })
+    fn pivot(&self, combo: [usize; 3]) -> Option<Pivot<'_>> {
+        let mut best: Option<(f64, Pivot<'_>)> = None;
+        for roles in [[0, 1, 2], [0, 2, 1], [1, 2, 0]] {
+            let [p, q, r] = roles.map(|k| combo[k]);
+            let (lo, hi) = annulus_sq(self.pair(p, q));
+            let area = hi - lo;
+            if best.as_ref().is_some_and(|(a, _)| *a <= area) {
+                continue;
+            }
+            let swept = [p, q, r].map(|i| &self.swept[i]);
+            if let Some(sweep) = LineSweep::new(swept, p == q, self.pair(p, r).dmax) {
+                best = Some((area, Pivot { roles, sweep }));
+            }
+        }
+        best.map(|(_, pivot)| pivot)
     }
 
     /// Setups by the sweep: the pivot's first locator at the origin, its
@@ -210,7 +204,7 @@ impl PreparedPart {
     fn swept_setups(
         &self,
         combo: [usize; 3],
-        pivot: &Pivot,
+        pivot: &Pivot<'_>,
         stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
@@ -259,7 +253,7 @@ impl PreparedPart {
     fn solve_placed(
         &self,
         combo: [usize; 3],
-        pivot: &Pivot,
+        pivot: &Pivot<'_>,
         d: [i64; 2],
         e: [i64; 2],
         angles: Option<&AngleSet>,
@@ -348,9 +342,9 @@ impl PreparedPart {
 /// A combination's roles for the sweep: `roles[0]`, `roles[1]` (positions
 /// in the combination) are the two lines it pivots on, `roles[2]` the
 /// segment it sweeps.
-struct Pivot {
+struct Pivot<'s> {
     roles: [usize; 3],
-    sweep: LineSweep,
+    sweep: LineSweep<'s>,
 }
 
 fn sub(a: [i64; 2], b: [i64; 2]) -> [i64; 2] {
