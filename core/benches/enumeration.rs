@@ -97,8 +97,8 @@ fn pieces(c: &mut Criterion) {
         b.iter(|| m.score_bounded(black_box(&contacts), half, &mut hint))
     });
     let [l1, l2, l3, _] = contacts;
-    c.bench_function("metric_locator_floor_256", |b| {
-        b.iter(|| m.locator_floor(black_box(&[l1, l2, l3])))
+    c.bench_function("metric_locators_exceed_256_never", |b| {
+        b.iter(|| m.locators_exceed(black_box(&[l1, l2, l3]), f64::MAX))
     });
     c.bench_function("clearance_capped_body_vs_57_edges", |b| {
         b.iter(|| polygon_clearance_below(black_box(&body), black_box(&part), 1e-6))

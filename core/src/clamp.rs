@@ -386,7 +386,7 @@ impl PreparedPart {
     /// top-k held: the metric's floor for them is above the k-th score.
     fn locators_too_weak(&self, locators: &[PartContact; 3], acc: &mut Accumulator) -> bool {
         let bound = acc.top.score_bound();
-        let weak = bound.is_finite() && self.metric.locator_floor(locators) > bound;
+        let weak = bound.is_finite() && self.metric.locators_exceed(locators, bound);
         acc.work.setups_floored += weak as u64;
         weak
     }

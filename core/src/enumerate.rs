@@ -9,7 +9,7 @@ use crate::combinations::{combination_count, combinations_in};
 use crate::prepare::PreparedPart;
 use crate::ranking::{merge_ranked, Fixture};
 use crate::report::Counts;
-use crate::setups::SearchStats;
+use crate::setups::{SearchStats, SetupScratch};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -98,6 +98,7 @@ impl PreparedPart {
         let mut acc = self.accumulator();
         let mut scratch = Scratch::default();
         scratch.timing = timed.then(Timing::default);
+        let mut setup_scratch = SetupScratch::default();
         let mut search = SearchStats::default();
         let n = self.segments.len();
         let end = range.end.min(self.combination_count());
@@ -105,8 +106,9 @@ impl PreparedPart {
         let mut done_to = end;
         for (index, combo) in combinations_in(n, range.start..end) {
             acc.counts.combinations += 1;
-            let s = self
-                .setups_of_combination(combo, |s| self.process_setup(s, &mut acc, &mut scratch));
+            let s = self.setups_of_combination_in(combo, &mut setup_scratch, |s| {
+                self.process_setup(s, &mut acc, &mut scratch)
+            });
             search.add(&s);
             if good_enough.is_some_and(|g| acc.best_score <= g) {
                 hit = Some(index);

@@ -186,14 +186,19 @@ pub struct LineSweep<'s> {
     b: &'s LinePiece,
     c: &'s ThirdPiece,
     same_ab: bool,
-    mode: Mode,
-}
-
-#[derive(Debug, Clone, Copy)]
-enum Mode {
     /// No setup at all: the three normals are parallel (degenerate for the
     /// pose solver too).
-    Degenerate,
+    degenerate: bool,
+    mode: Mode,
+    /// Bounds the distance between points of `a` and `c`.
+    dmax_ac: f64,
+}
+
+/// How the part moves with its contacts on lines `a` and `b`: a property
+/// of the pair alone, so that what depends on `L2` can be kept for every
+/// combination pivoting on the pair ([`PivotPoint`]).
+#[derive(Debug, Clone, Copy)]
+enum Mode {
     /// `a` and `b` parallel: the part slides.
     Sliding,
     /// `a` and `b` cross: the part turns. `s_a(theta) = alpha_a + |L2| /
@@ -204,8 +209,21 @@ enum Mode {
         /// `(sin, cos)` of `kappa_a`, so `phi_a`'s need no `sin_cos` per `L2`.
         kappa_a_sc: (f64, f64),
         inv_d: f64,
-        dmax_ac: f64,
     },
+}
+
+/// What the region of `L3` needs of `L2` beyond the third segment: the
+/// angles that keep contacts 1 and 2 on their segments and, when the part
+/// turns, the sinusoid of `s_a`. It depends only on the pivot pair and
+/// `L2`, so combinations that pivot on the same pair share it.
+#[derive(Debug, Clone, Copy)]
+pub struct PivotPoint {
+    l2: V2,
+    angles: AngleSet,
+    /// `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)` (turning only).
+    sa: [f64; 2],
+    /// `(sin, cos)` of `phi_a`.
+    phi_a_sc: (f64, f64),
 }
 
 impl LineSweep<'_> {
@@ -228,9 +246,7 @@ impl LineSweep<'_> {
             }
             None => false,
         };
-        let mode = if three_parallel {
-            Mode::Degenerate
-        } else if d.abs() <= PARALLEL {
+        let mode = if d.abs() <= PARALLEL {
             Mode::Sliding
         } else if d.abs() < NEAR_PARALLEL {
             return None;
@@ -248,7 +264,6 @@ impl LineSweep<'_> {
                 kappa: [-b.direction - quarter, -a.direction - quarter],
                 kappa_a_sc: (-sign * ub.x, -sign * ub.y),
                 inv_d: 1.0 / d.abs(),
-                dmax_ac,
             }
         };
         Some(LineSweep {
@@ -256,32 +271,31 @@ impl LineSweep<'_> {
             b,
             c,
             same_ab,
+            degenerate: three_parallel,
             mode,
+            dmax_ac,
         })
     }
 
-    /// The region where `L3` may lie for `L1 = 0` on `a` and `L2 = l2` on
-    /// `b`, as quadrilaterals pushed onto `out`, and in `angles` the part
-    /// angles that keep contacts 1 and 2 on their segments (every angle
-    /// when the part slides); `false` when it needs too many pieces and
-    /// the caller should use the annuli.
-    pub fn region(&self, l2: V2, out: &mut Vec<Quad>, angles: &mut AngleSet) -> bool {
+    /// What the region needs of `L2 = l2`; `None` when no angle keeps both
+    /// contacts on their segments. Depends on `a` and `b` only.
+    pub fn pivot_point(&self, l2: V2) -> Option<PivotPoint> {
+        let v = l2;
         match self.mode {
-            Mode::Degenerate => true,
-            Mode::Sliding => {
-                *angles = AngleSet::full();
-                sliding_region(self.a, self.b, self.c, self.same_ab, l2, out);
-                true
-            }
+            Mode::Sliding => Some(PivotPoint {
+                l2,
+                angles: AngleSet::full(),
+                sa: [0.0; 2],
+                phi_a_sc: (0.0, 1.0),
+            }),
             Mode::Turning {
                 alpha,
                 kappa,
                 kappa_a_sc,
                 inv_d,
-                dmax_ac,
             } => {
-                let phi = lattice_angle(l2);
-                let amp = l2.norm() * inv_d;
+                let phi = lattice_angle(v);
+                let amp = v.norm() * inv_d;
                 let band = |k: usize, p: &LinePiece| {
                     AngleSet::sinusoid_band(
                         alpha[k],
@@ -293,33 +307,48 @@ impl LineSweep<'_> {
                     )
                 };
                 let on_a = band(0, self.a);
-                *angles = if on_a.is_empty() {
-                    on_a
-                } else {
-                    on_a.intersect(&band(1, self.b))
-                };
+                if on_a.is_empty() {
+                    return None;
+                }
+                let angles = on_a.intersect(&band(1, self.b));
+                if angles.is_empty() {
+                    return None;
+                }
                 // (sin, cos) of phi_a = phi_L2 + kappa_a by turning L2's
                 // direction.
                 let (sk, ck) = kappa_a_sc;
-                let (sl, cl) = (l2.y / l2.norm(), l2.x / l2.norm());
-                let phi_a_sc = (sl * ck + cl * sk, cl * ck - sl * sk);
-                turning_region(self, angles, [alpha[0], amp], phi_a_sc, dmax_ac, out)
+                let (sl, cl) = (v.y / v.norm(), v.x / v.norm());
+                Some(PivotPoint {
+                    l2,
+                    angles,
+                    sa: [alpha[0], amp],
+                    phi_a_sc: (sl * ck + cl * sk, cl * ck - sl * sk),
+                })
             }
+        }
+    }
+
+    /// The region where `L3` may lie for `L1 = 0` on `a` and `L2` on `b`,
+    /// as quadrilaterals pushed onto `out`; `false` when it needs too many
+    /// pieces and the caller should use the annuli.
+    pub fn region(&self, pt: &PivotPoint, out: &mut Vec<Quad>) -> bool {
+        if self.degenerate {
+            return true;
+        }
+        match self.mode {
+            Mode::Sliding => {
+                sliding_region(self.a, self.b, self.c, self.same_ab, pt.l2, out);
+                true
+            }
+            Mode::Turning { .. } => turning_region(self, pt, out),
         }
     }
 }
 
-/// Lines `a` and `b` not parallel: the part turns through `angles`, and
-/// `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)`, `phi_a_sc` the
-/// `(sin, cos)` of `phi_a`.
-fn turning_region(
-    sweep: &LineSweep,
-    angles: &AngleSet,
-    sa: [f64; 2],
-    phi_a_sc: (f64, f64),
-    dmax_ac: f64,
-    out: &mut Vec<Quad>,
-) -> bool {
+/// Lines `a` and `b` not parallel: the part turns through the point's
+/// angles, with `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)`.
+fn turning_region(sweep: &LineSweep, pt: &PivotPoint, out: &mut Vec<Quad>) -> bool {
+    let (angles, sa, phi_a_sc, dmax_ac) = (&pt.angles, pt.sa, pt.phi_a_sc, sweep.dmax_ac);
     let (a, c) = (sweep.a, sweep.c);
     let h = sa[1];
     // |F''| <= |p - p1| + 2 |p1'| + |p1''| for F = R (p - p1); the widened
@@ -487,30 +516,25 @@ fn clip_to_strip(p: V2, q: V2, y0: f64, y1: f64) -> Option<(f64, f64)> {
 pub struct SweepScratch {
     quads: Vec<Quad>,
     spans: Vec<Span>,
-    angles: AngleSet,
 }
 
 impl LineSweep<'_> {
     /// Calls `visit` once for every lattice point (multiples of `g`) of the
-    /// region of `L3` for `L2 = l2`, row by row, with the angles at which
-    /// contacts 1 and 2 stay on their segments; `false` (and no call)
-    /// when the region needs too many pieces and the caller should scan
-    /// the annuli instead.
+    /// region of `L3` for the pivot point's `L2`, row by row, with the
+    /// angles at which contacts 1 and 2 stay on their segments; `false`
+    /// (and no call) when the region needs too many pieces and the caller
+    /// should scan the annuli instead.
     pub fn for_each_third_locator(
         &self,
-        l2: [i64; 2],
+        pt: &PivotPoint,
         g: i64,
         scratch: &mut SweepScratch,
         mut visit: impl FnMut([i64; 2], &AngleSet),
     ) -> bool {
-        let SweepScratch {
-            quads,
-            spans,
-            angles,
-        } = scratch;
+        let SweepScratch { quads, spans } = scratch;
         quads.clear();
         spans.clear();
-        if !self.region(V2::new(l2[0] as f64, l2[1] as f64), quads, angles) {
+        if !self.region(pt, quads) {
             return false;
         }
         for q in quads.iter() {
@@ -527,7 +551,7 @@ impl LineSweep<'_> {
             }
             let mut x = ((s.lo / gf).ceil() as i64 * g).max(next_x);
             while (x as f64) <= s.hi {
-                visit([x, s.y], angles);
+                visit([x, s.y], &pt.angles);
                 x += g;
             }
             next_x = next_x.max(x);
@@ -619,20 +643,23 @@ mod tests {
         else {
             return; // nearly parallel: the caller scans annuli
         };
-        if matches!(sweep.mode, Mode::Degenerate) {
+        if sweep.degenerate {
             return;
         }
+        let t = crate::angle_set::wrap_angle(theta);
+        let Some(pt) = sweep.pivot_point(l2) else {
+            panic!("angle {t} not in an empty angle set");
+        };
         let mut quads = Vec::new();
-        let mut angles = AngleSet::empty();
-        if !sweep.region(l2, &mut quads, &mut angles) {
+        if !sweep.region(&pt, &mut quads) {
             return; // too many pieces: annuli
         }
+        let angles = pt.angles;
         let best = quads
             .iter()
             .map(|q| hull_distance(&q.pts, l3) - q.margin)
             .fold(f64::INFINITY, f64::min);
         assert!(best <= 1e-9, "L3 {l3:?} outside by {best}: {quads:?}");
-        let t = crate::angle_set::wrap_angle(theta);
         assert!(angles.contains(t), "angle {t} not in {angles:?}");
     }
 

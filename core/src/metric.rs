@@ -44,13 +44,13 @@ pub trait Metric: Send + Sync + std::fmt::Debug {
         self.score(contacts)
     }
 
-    /// A floor on the score of every fixture with these three locator
-    /// contacts (`None` scores count as infinite), whatever the clamp
-    /// contact: a top-k whose k-th score is below it skips the setup's
-    /// mount searches. Minus infinity (the default) knows nothing.
-    fn locator_floor(&self, locators: &[PartContact; 3]) -> f64 {
-        let _ = locators;
-        f64::NEG_INFINITY
+    /// Whether every fixture with these three locator contacts scores
+    /// above `bound` (`None` scores count as infinite), whatever the clamp
+    /// contact: a top-k whose k-th score is `bound` then skips the setup's
+    /// mount searches. `false` (the default) knows nothing.
+    fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64) -> bool {
+        let _ = (locators, bound);
+        false
     }
 }
 
@@ -124,8 +124,8 @@ impl<T: MaxForce> Metric for T {
         max_force_bounded(&w, self.applied(), bound, hint)
     }
 
-    fn locator_floor(&self, locators: &[PartContact; 3]) -> f64 {
-        max_force_floor(&locators.map(|c| self.wrench(&c)), self.applied())
+    fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64) -> bool {
+        max_force_floor_exceeds(&locators.map(|c| self.wrench(&c)), self.applied(), bound)
     }
 }
 
@@ -240,24 +240,30 @@ fn largest_force(inv: &Matrix3<f64>, mu: &[f64; 4], p: &Vector3<f64>) -> f64 {
     worst
 }
 
-/// A floor on [`max_force`] over every fourth wrench, from the first three
-/// alone: the clamp's share `s` is never negative and `mu > 0`, so each
-/// locator force `lambda0_i + s mu_i` is at least `lambda0_i`, which does
-/// not depend on the clamp. Computed with the very operations of
-/// [`max_force`], so the floor is at most the score in floating point too
-/// (adding a non-negative number never rounds below the other). Infinite
-/// when the three are dependent: no fourth wrench gives a score then.
-pub fn max_force_floor(w: &[Vector3<f64>; 3], applied: &[Vector3<f64>]) -> f64 {
+/// Whether a floor on [`max_force`] over every fourth wrench, from the
+/// first three alone, is above `bound`: the clamp's share `s` is never
+/// negative and `mu > 0`, so each locator force `lambda0_i + s mu_i` is at
+/// least `lambda0_i`, which does not depend on the clamp. Computed with the
+/// very operations of [`max_force`], so the floor is at most the score in
+/// floating point too (adding a non-negative number never rounds below the
+/// other). The first applied wrench above `bound` settles it, so most
+/// setups that fail stop after a few. Dependent wrenches: no fourth wrench
+/// gives a score, so every score is infinite.
+pub fn max_force_floor_exceeds(
+    w: &[Vector3<f64>; 3],
+    applied: &[Vector3<f64>],
+    bound: f64,
+) -> bool {
     let m = Matrix3::from_columns(w);
     let Some(inv) = m.try_inverse() else {
-        return f64::INFINITY;
+        return true;
     };
-    let mut floor = 0.0f64;
-    for p in applied {
-        let l0 = -(inv * p);
-        floor = floor.max(l0[0]).max(l0[1]).max(l0[2]);
-    }
-    floor
+    // The floor starts at 0, as the score does.
+    0.0 > bound
+        || applied.iter().any(|p| {
+            let l0 = -(inv * p);
+            l0[0] > bound || l0[1] > bound || l0[2] > bound
+        })
 }
 
 #[cfg(test)]

@@ -23,10 +23,11 @@ use crate::angle_set::{wrap_angle, AngleSet};
 use crate::contact_pose::solve_contact_poses;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
-use crate::locator_sweep::{LineSweep, SweepScratch};
+use crate::locator_sweep::{LineSweep, PivotPoint, SweepScratch};
 use crate::pose::{solve_poses_where, Line, Pose};
 use crate::prepare::{PairBounds, PreparedPart};
 use crate::segments::{Feature, Segment};
+use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
 
 /// Slack on annulus bounds, far above rounding and far below a lattice step.
@@ -166,11 +167,22 @@ impl PreparedPart {
     pub fn setups_of_combination(
         &self,
         combo: [usize; 3],
+        visit: impl FnMut(&Setup),
+    ) -> SearchStats {
+        self.setups_of_combination_in(combo, &mut SetupScratch::default(), visit)
+    }
+
+    /// [`Self::setups_of_combination`] with buffers and pivot points kept
+    /// from the combinations this thread did before.
+    pub fn setups_of_combination_in(
+        &self,
+        combo: [usize; 3],
+        scratch: &mut SetupScratch,
         mut visit: impl FnMut(&Setup),
     ) -> SearchStats {
         let mut stats = SearchStats::default();
         match self.pivot(combo) {
-            Some(pivot) => self.swept_setups(combo, &pivot, &mut stats, &mut visit),
+            Some(pivot) => self.swept_setups(combo, &pivot, scratch, &mut stats, &mut visit),
             None => self.annulus_setups(combo, &mut stats, &mut visit),
         }
         stats
@@ -200,20 +212,48 @@ impl PreparedPart {
 
     /// Setups by the sweep: the pivot's first locator at the origin, its
     /// second at every lattice point `d` of `Q = {i > 0, j >= 0}` in their
-    /// annulus, the third segment's locator in the swept region.
+    /// annulus that leaves the part some angle, the third segment's
+    /// locator in the swept region.
     fn swept_setups(
         &self,
         combo: [usize; 3],
         pivot: &Pivot<'_>,
+        scratch: &mut SetupScratch,
         stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
         let [p, q, r] = pivot.roles.map(|k| combo[k]);
         let g = self.setting.grid_step;
+        let SetupScratch { sweep, pivots } = scratch;
+        for (d, pt) in pivots.points(p, q, || self.pivot_points(&pivot.sweep, p, q)) {
+            let d = *d;
+            let listed = pivot
+                .sweep
+                .for_each_third_locator(pt, g, sweep, |e, angles| {
+                    self.solve_placed(combo, pivot, d, e, Some(angles), stats, visit)
+                });
+            if !listed {
+                let (pr, qr) = (self.pair(p, r), self.pair(q, r));
+                annulus_points(d, pr, qr, g, |e| {
+                    self.solve_placed(combo, pivot, d, e, None, stats, visit)
+                });
+            }
+        }
+    }
+
+    /// The lattice points `d` of `Q` in the annulus of the pivot pair
+    /// `(p, q)` at which some angle keeps both contacts on their segments.
+    fn pivot_points(
+        &self,
+        sweep: &LineSweep<'_>,
+        p: usize,
+        q: usize,
+    ) -> Vec<([i64; 2], PivotPoint)> {
+        let g = self.setting.grid_step;
         let pq = self.pair(p, q);
         let (lo2, hi2) = annulus_sq(pq);
         let imax = pq.dmax.floor() as i64 + 1;
-        let mut scratch = SweepScratch::default();
+        let mut out = Vec::new();
         let mut i = g;
         while i <= imax {
             let mut j = 0;
@@ -224,23 +264,15 @@ impl PreparedPart {
                     break;
                 }
                 if d2 >= lo2 && self.locator_point_allowed(d) {
-                    let listed =
-                        pivot
-                            .sweep
-                            .for_each_third_locator(d, g, &mut scratch, |e, angles| {
-                                self.solve_placed(combo, pivot, d, e, Some(angles), stats, visit)
-                            });
-                    if !listed {
-                        let (pr, qr) = (self.pair(p, r), self.pair(q, r));
-                        annulus_points(d, pr, qr, g, |e| {
-                            self.solve_placed(combo, pivot, d, e, None, stats, visit)
-                        });
+                    if let Some(pt) = sweep.pivot_point(lattice_point(d)) {
+                        out.push((d, pt));
                     }
                 }
                 j += g;
             }
             i += g;
         }
+        out
     }
 
     /// Solves the triple with the pivot's locators at `0` and `d` and the
@@ -345,6 +377,47 @@ impl PreparedPart {
 struct Pivot<'s> {
     roles: [usize; 3],
     sweep: LineSweep<'s>,
+}
+
+/// Buffers and pivot points one thread reuses across combinations.
+#[derive(Debug, Default)]
+pub struct SetupScratch {
+    sweep: SweepScratch,
+    pivots: PivotCache,
+}
+
+/// Most pivot points kept (about 150 bytes each): beyond, the cache starts
+/// over, so a huge part costs time, never unbounded memory.
+const PIVOT_CACHE_POINTS: usize = 1 << 16;
+
+/// The pivot points of each pivot pair: the same pair pivots many
+/// combinations (every third segment whose pairs with it are wider), and
+/// its points (two `acos` bands per lattice point of the annulus) do not
+/// depend on the third segment.
+#[derive(Debug, Default)]
+struct PivotCache {
+    pairs: FxHashMap<(usize, usize), Vec<([i64; 2], PivotPoint)>>,
+    points: usize,
+}
+
+impl PivotCache {
+    fn points(
+        &mut self,
+        p: usize,
+        q: usize,
+        make: impl FnOnce() -> Vec<([i64; 2], PivotPoint)>,
+    ) -> &[([i64; 2], PivotPoint)] {
+        if !self.pairs.contains_key(&(p, q)) {
+            let pts = make();
+            if self.points + pts.len() > PIVOT_CACHE_POINTS {
+                self.pairs.clear();
+                self.points = 0;
+            }
+            self.points += pts.len();
+            self.pairs.insert((p, q), pts);
+        }
+        self.pairs.get(&(p, q)).map_or(&[], |v| v.as_slice())
+    }
 }
 
 fn sub(a: [i64; 2], b: [i64; 2]) -> [i64; 2] {
