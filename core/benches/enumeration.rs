@@ -139,11 +139,18 @@ fn sweep(c: &mut Criterion) {
     ];
     let swept = segs.each_ref().map(SweptSegment::of);
     let sweep = LineSweep::new([&swept[0], &swept[1], &swept[2]], false, 9.0).expect("lines");
+    let l2 = v2(4.0, 3.0);
+    c.bench_function("pivot_point_angle_bands_per_l2", |b| {
+        b.iter(|| sweep.pivot_point(black_box(l2)))
+    });
+    let pt = sweep
+        .pivot_point(l2)
+        .expect("some angle keeps both contacts");
     let mut scratch = SweepScratch::default();
     c.bench_function("third_locator_region_per_l2", |b| {
         b.iter(|| {
             let mut n = 0;
-            sweep.for_each_third_locator(black_box([4, 3]), 1, &mut scratch, |_, _| n += 1);
+            sweep.for_each_third_locator(black_box(&pt), 1, &mut scratch, |_, _| n += 1);
             n
         })
     });

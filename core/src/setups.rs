@@ -243,12 +243,7 @@ impl PreparedPart {
 
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
     /// `(p, q)` at which some angle keeps both contacts on their segments.
-    fn pivot_points(
-        &self,
-        sweep: &LineSweep<'_>,
-        p: usize,
-        q: usize,
-    ) -> Vec<([i64; 2], PivotPoint)> {
+    fn pivot_points(&self, sweep: &LineSweep<'_>, p: usize, q: usize) -> Vec<LatticePivot> {
         let g = self.setting.grid_step;
         let pq = self.pair(p, q);
         let (lo2, hi2) = annulus_sq(pq);
@@ -386,6 +381,10 @@ pub struct SetupScratch {
     pivots: PivotCache,
 }
 
+/// A lattice point `d` for the pivot's second locator and what the sweep
+/// needs of it.
+type LatticePivot = ([i64; 2], PivotPoint);
+
 /// Most pivot points kept (about 150 bytes each): beyond, the cache starts
 /// over, so a huge part costs time, never unbounded memory.
 const PIVOT_CACHE_POINTS: usize = 1 << 16;
@@ -396,7 +395,7 @@ const PIVOT_CACHE_POINTS: usize = 1 << 16;
 /// depend on the third segment.
 #[derive(Debug, Default)]
 struct PivotCache {
-    pairs: FxHashMap<(usize, usize), Vec<([i64; 2], PivotPoint)>>,
+    pairs: FxHashMap<(usize, usize), Vec<LatticePivot>>,
     points: usize,
 }
 
@@ -405,8 +404,8 @@ impl PivotCache {
         &mut self,
         p: usize,
         q: usize,
-        make: impl FnOnce() -> Vec<([i64; 2], PivotPoint)>,
-    ) -> &[([i64; 2], PivotPoint)] {
+        make: impl FnOnce() -> Vec<LatticePivot>,
+    ) -> &[LatticePivot] {
         if !self.pairs.contains_key(&(p, q)) {
             let pts = make();
             if self.points + pts.len() > PIVOT_CACHE_POINTS {
