@@ -294,7 +294,7 @@ impl LineSweep<'_> {
                 kappa_a_sc,
                 inv_d,
             } => {
-                let phi = lattice_angle(v);
+                let phi = v.y.atan2(v.x);
                 let amp = v.norm() * inv_d;
                 let band = |k: usize, p: &LinePiece| {
                     AngleSet::sinusoid_band(
@@ -557,28 +557,6 @@ impl LineSweep<'_> {
             next_x = next_x.max(x);
         }
         true
-    }
-}
-
-/// Largest lattice coordinate with a tabulated angle.
-const ANGLE_TABLE: i64 = 64;
-
-/// `atan2` of a lattice point `L2` (first quadrant, integer coordinates),
-/// from a table built once: each `L2` is visited by many combinations.
-fn lattice_angle(l2: V2) -> f64 {
-    use std::sync::OnceLock;
-    static TABLE: OnceLock<Vec<f64>> = OnceLock::new();
-    let (i, j) = (l2.x as i64, l2.y as i64);
-    let n = ANGLE_TABLE + 1;
-    if (0..n).contains(&i) && (0..n).contains(&j) && i as f64 == l2.x && j as f64 == l2.y {
-        let table = TABLE.get_or_init(|| {
-            (0..n * n)
-                .map(|k| ((k % n) as f64).atan2((k / n) as f64))
-                .collect()
-        });
-        table[(i * n + j) as usize]
-    } else {
-        l2.y.atan2(l2.x)
     }
 }
 

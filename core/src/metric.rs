@@ -63,10 +63,15 @@ pub struct MaxForceMetric {
     rho: f64,
     /// Shared by every part: computing the sphere was a fifth of `prepare`.
     directions: Arc<[Vector3<f64>]>,
+    /// Largest `|p|` of `directions` (1 up to rounding).
+    max_norm: f64,
 }
 
 static SPHERE: LazyLock<Arc<[Vector3<f64>]>> =
     LazyLock::new(|| fibonacci_sphere(MaxForceMetric::DIRECTIONS).into());
+
+static SPHERE_MAX_NORM: LazyLock<f64> =
+    LazyLock::new(|| SPHERE.iter().map(|p| p.norm()).fold(0.0, f64::max));
 
 impl MaxForceMetric {
     /// Applied wrench directions (SPEC 6).
@@ -81,6 +86,7 @@ impl MaxForceMetric {
             centroid,
             rho,
             directions: SPHERE.clone(),
+            max_norm: *SPHERE_MAX_NORM,
         }
     }
 }
@@ -107,6 +113,9 @@ pub trait MaxForce: Send + Sync + std::fmt::Debug {
     fn wrench(&self, c: &PartContact) -> Vector3<f64>;
     /// The applied wrenches to resist.
     fn applied(&self) -> &[Vector3<f64>];
+    /// The largest `|p|` of [`Self::applied`], kept so that the locator
+    /// floor can often answer without a loop.
+    fn applied_max_norm(&self) -> f64;
 }
 
 impl<T: MaxForce> Metric for T {
@@ -125,7 +134,8 @@ impl<T: MaxForce> Metric for T {
     }
 
     fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64) -> bool {
-        max_force_floor_exceeds(&locators.map(|c| self.wrench(&c)), self.applied(), bound)
+        let w = locators.map(|c| self.wrench(&c));
+        max_force_floor_exceeds(&w, self.applied(), self.applied_max_norm(), bound)
     }
 }
 
@@ -137,6 +147,10 @@ impl MaxForce for MaxForceMetric {
     fn applied(&self) -> &[Vector3<f64>] {
         &self.directions
     }
+
+    fn applied_max_norm(&self) -> f64 {
+        self.max_norm
+    }
 }
 
 /// User-given expected wrenches `(F_x, F_y, tau)` in physical units, `tau`
@@ -144,6 +158,8 @@ impl MaxForce for MaxForceMetric {
 #[derive(Debug, Clone)]
 pub struct WrenchListMetric {
     wrenches: Vec<Vector3<f64>>,
+    /// Largest `|p|` of `wrenches`.
+    max_norm: f64,
     /// Catalogue units per lattice unit, to put contact points in physical units.
     spacing: f64,
 }
@@ -152,11 +168,14 @@ impl WrenchListMetric {
     /// `spacing` converts contact points back to the unit the wrenches'
     /// torques are given in.
     pub fn new(wrenches: &[[f64; 3]], spacing: f64) -> Self {
+        let wrenches: Vec<Vector3<f64>> = wrenches
+            .iter()
+            .map(|w| Vector3::new(w[0], w[1], w[2]))
+            .collect();
+        let max_norm = wrenches.iter().map(|p| p.norm()).fold(0.0, f64::max);
         WrenchListMetric {
-            wrenches: wrenches
-                .iter()
-                .map(|w| Vector3::new(w[0], w[1], w[2]))
-                .collect(),
+            wrenches,
+            max_norm,
             spacing,
         }
     }
@@ -169,6 +188,10 @@ impl MaxForce for WrenchListMetric {
 
     fn applied(&self) -> &[Vector3<f64>] {
         &self.wrenches
+    }
+
+    fn applied_max_norm(&self) -> f64 {
+        self.max_norm
     }
 }
 
@@ -249,9 +272,17 @@ fn largest_force(inv: &Matrix3<f64>, mu: &[f64; 4], p: &Vector3<f64>) -> f64 {
 /// other). The first applied wrench above `bound` settles it, so most
 /// setups that fail stop after a few. Dependent wrenches: no fourth wrench
 /// gives a score, so every score is infinite.
+///
+/// Most setups that pass are told without the loop: by Cauchy-Schwarz
+/// each `lambda0_i = -(r_i . p)` is at most `|r_i| |p|` (`r_i` a row of
+/// `W^-1`), so when the largest row norm times `max_norm` (a bound on
+/// every `|p|`) is below `bound` no wrench can pass it. The relative
+/// margin of 1e-12 is far above the rounding of the dot products and
+/// norms (a few 1e-16).
 pub fn max_force_floor_exceeds(
     w: &[Vector3<f64>; 3],
     applied: &[Vector3<f64>],
+    max_norm: f64,
     bound: f64,
 ) -> bool {
     let m = Matrix3::from_columns(w);
@@ -259,11 +290,17 @@ pub fn max_force_floor_exceeds(
         return true;
     };
     // The floor starts at 0, as the score does.
-    0.0 > bound
-        || applied.iter().any(|p| {
-            let l0 = -(inv * p);
-            l0[0] > bound || l0[1] > bound || l0[2] > bound
-        })
+    if 0.0 > bound {
+        return true;
+    }
+    let rows = (0..3).map(|i| inv.row(i).norm()).fold(0.0, f64::max);
+    if rows * max_norm * (1.0 + 1e-12) <= bound {
+        return false;
+    }
+    applied.iter().any(|p| {
+        let l0 = -(inv * p);
+        l0[0] > bound || l0[1] > bound || l0[2] > bound
+    })
 }
 
 #[cfg(test)]
@@ -311,5 +348,48 @@ mod tests {
         let wl = WrenchListMetric::new(&[[1.0, 0.0, 0.0]], 1.0);
         let f = wl.score(&c).unwrap();
         assert!(f >= 1.0 - 1e-12, "{f}");
+    }
+
+    /// The floor test against the plain maximum over every applied
+    /// wrench, at bounds just below and above the floor and between the
+    /// floor and the row-norm shortcut (where the loop must decide).
+    #[test]
+    fn floor_test_agrees_with_the_full_maximum() {
+        let sphere = fibonacci_sphere(MaxForceMetric::DIRECTIONS);
+        let max_norm = sphere.iter().map(|p| p.norm()).fold(0.0, f64::max);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut decided_by_loop = 0;
+        for _ in 0..500 {
+            let w: [Vector3<f64>; 3] = std::array::from_fn(|_| Vector3::new(rnd(), rnd(), rnd()));
+            let Some(inv) = Matrix3::from_columns(&w).try_inverse() else {
+                continue;
+            };
+            let floor = sphere
+                .iter()
+                .map(|p| {
+                    let l0 = -(inv * p);
+                    l0[0].max(l0[1]).max(l0[2])
+                })
+                .fold(0.0, f64::max);
+            let rows = (0..3).map(|i| inv.row(i).norm()).fold(0.0, f64::max);
+            for bound in [
+                floor * (1.0 - 1e-9),
+                floor,
+                0.5 * (floor + rows),
+                rows * 1.01,
+            ] {
+                let want = floor > bound;
+                let got = max_force_floor_exceeds(&w, &sphere, max_norm, bound);
+                assert_eq!(got, want, "floor {floor}, rows {rows}, bound {bound}");
+                decided_by_loop += usize::from(bound > floor && bound < rows);
+            }
+        }
+        assert!(decided_by_loop > 100, "{decided_by_loop}");
     }
 }
