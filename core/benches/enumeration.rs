@@ -6,7 +6,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use fixplan_core::angle_set::AngleSet;
 use fixplan_core::form_closure::{wrench, LocatorWrenches};
 use fixplan_core::geometry::{polygon_clearance, polygon_clearance_below, v2};
-use fixplan_core::locator_sweep::{LineSweep, SweepScratch, SweptSegment};
+use fixplan_core::locator_sweep::{Sweep, SweepScratch, SweptSegment};
 use fixplan_core::metric::{MaxForceMetric, Metric, PartContact};
 use fixplan_core::pose::{solve_poses, Line};
 use fixplan_core::segments::{Feature, LineFeature, Segment};
@@ -138,7 +138,7 @@ fn sweep(c: &mut Criterion) {
         line([3.0, 5.0], 3.6, 4.0),
     ];
     let swept = segs.each_ref().map(SweptSegment::of);
-    let sweep = LineSweep::new([&swept[0], &swept[1], &swept[2]], false, 9.0).expect("lines");
+    let sweep = Sweep::new([&swept[0], &swept[1], &swept[2]], false, 9.0).expect("lines");
     let l2 = v2(4.0, 3.0);
     c.bench_function("pivot_point_angle_bands_per_l2", |b| {
         b.iter(|| sweep.pivot_point(black_box(l2)))

@@ -23,7 +23,7 @@ use crate::angle_set::{wrap_angle, AngleSet};
 use crate::contact_pose::solve_contact_poses;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
-use crate::locator_sweep::{LineSweep, PivotPoint, SweepScratch};
+use crate::locator_sweep::{PivotPoint, Sweep, SweepScratch};
 use crate::pose::{solve_poses_where, Line, Pose};
 use crate::prepare::{PairBounds, PreparedPart};
 use crate::segments::{Feature, Segment};
@@ -194,8 +194,31 @@ impl PreparedPart {
     /// to be swept (chords), never solved for at every lattice point of
     /// its annuli.
     fn pivot(&self, combo: [usize; 3]) -> Option<Pivot<'_>> {
+        const LINE_PAIRS: [[usize; 3]; 3] = [[0, 1, 2], [0, 2, 1], [1, 2, 0]];
+        // Line first, arc second: every order, the combination's order
+        // says nothing about which is which.
+        const LINE_ARC: [[usize; 3]; 6] = [
+            [0, 1, 2],
+            [0, 2, 1],
+            [1, 0, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [2, 1, 0],
+        ];
+        self.thinnest_pivot(combo, &LINE_PAIRS, true)
+            .or_else(|| self.thinnest_pivot(combo, &LINE_ARC, false))
+    }
+
+    /// Of the role orders whose sweep applies (two lines when `lines`,
+    /// else a line and an arc), the one with the thinnest pivot annulus.
+    fn thinnest_pivot(
+        &self,
+        combo: [usize; 3],
+        orders: &[[usize; 3]],
+        lines: bool,
+    ) -> Option<Pivot<'_>> {
         let mut best: Option<(f64, Pivot<'_>)> = None;
-        for roles in [[0, 1, 2], [0, 2, 1], [1, 2, 0]] {
+        for &roles in orders {
             let [p, q, r] = roles.map(|k| combo[k]);
             let (lo, hi) = annulus_sq(self.pair(p, q));
             let area = hi - lo;
@@ -203,8 +226,11 @@ impl PreparedPart {
                 continue;
             }
             let swept = [p, q, r].map(|i| &self.swept[i]);
-            if let Some(sweep) = LineSweep::new(swept, p == q, self.pair(p, r).dmax) {
-                best = Some((area, Pivot { roles, sweep }));
+            match Sweep::new(swept, p == q, self.pair(p, r).dmax) {
+                Some(sweep) if sweep.is_lines() == lines => {
+                    best = Some((area, Pivot { roles, sweep }));
+                }
+                _ => {}
             }
         }
         best.map(|(_, pivot)| pivot)
@@ -230,7 +256,7 @@ impl PreparedPart {
             let listed = pivot
                 .sweep
                 .for_each_third_locator(pt, g, sweep, |e, angles| {
-                    self.solve_placed(combo, pivot, d, e, Some(angles), stats, visit)
+                    self.solve_placed(combo, pivot, d, e, angles, stats, visit)
                 });
             if !listed {
                 let (pr, qr) = (self.pair(p, r), self.pair(q, r));
@@ -243,7 +269,7 @@ impl PreparedPart {
 
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
     /// `(p, q)` at which some angle keeps both contacts on their segments.
-    fn pivot_points(&self, sweep: &LineSweep<'_>, p: usize, q: usize) -> Vec<LatticePivot> {
+    fn pivot_points(&self, sweep: &Sweep<'_>, p: usize, q: usize) -> Vec<LatticePivot> {
         let g = self.setting.grid_step;
         let pq = self.pair(p, q);
         let (lo2, hi2) = annulus_sq(pq);
@@ -371,7 +397,7 @@ impl PreparedPart {
 /// segment it sweeps.
 struct Pivot<'s> {
     roles: [usize; 3],
-    sweep: LineSweep<'s>,
+    sweep: Sweep<'s>,
 }
 
 /// Buffers and pivot points one thread reuses across combinations.

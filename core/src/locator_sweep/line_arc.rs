@@ -1,0 +1,321 @@
+//! The sweep when the pivot is a line and an arc: combinations with one
+//! line and two arcs, which before went through the annuli and solved for
+//! poses at about twenty lattice points per setup found.
+//!
+//! `L1` at the origin touches line `p` at `x1 = o + s u`, `L2 = d` touches
+//! the circle of arc `q` (centre `C`, radius `rho`). With `C' = C - o -
+//! R^T d`, the second contact is `x1 + R^T d`, on the circle when
+//! `(s - h)^2 + g^2 = rho^2` for `g = n . C'` and `h = u . C'`, both
+//! sinusoids of the angle. So `s = h +- sqrt(rho^2 - g^2)` (two branches), and the contact
+//! direction on the circle is a function of `g` alone on each branch: the
+//! arc's span is a set of values of `g`, hence a sinusoid band of angles,
+//! exact like the bands of two lines.
+//!
+//! The square root has branch points where the circle touches the line, so
+//! the region is not covered through derivatives as for two lines. Each
+//! angle piece `I` instead bounds `s` by interval arithmetic on `g` and `h`
+//! over `I`; the third segment's points, relative to `x1`, then lie within
+//! half that range of their position at the middle `s`, and turning them
+//! through `I` moves each point `z` at most `|z| w^2 / 8` off its chord
+//! (`w` the piece's width). Sound without derivatives, tight where the
+//! pieces are narrow.
+
+use super::pieces::{LinePiece, Quad, ThirdPiece, MAX_CHORDS, QUAD_SLACK, S_SLACK};
+use crate::angle_set::AngleSet;
+use crate::geometry::{cross, rot, V2};
+use crate::segments::{Feature, Segment};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// Angle slack of the bands, radians (as for two lines).
+const ANGLE_SLACK: f64 = 1e-7;
+
+/// Most angle pieces tried for one `L2` (each costs far less than a pose
+/// solution); beyond, the annuli are cheaper.
+const MAX_PIECES: usize = 400;
+
+/// Pieces are not halved below this width (radians): at a branch point
+/// `s` moves like a square root, and the margin it adds must stop shrinking
+/// somewhere.
+const MIN_PIECE: f64 = 1e-4;
+
+/// Largest margin of a piece (lattice units): a pose solution with an arc
+/// costs a hundred pieces, so pieces are made finer than for two lines.
+const ARC_TARGET_MARGIN: f64 = 0.1;
+
+/// An arc segment as a pivot: its grown circle and the directions from the
+/// centre its contacts may take.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ArcPiece {
+    center: V2,
+    radius: f64,
+    /// Contact directions `[beta0, beta1]`, `beta0 <= beta1`.
+    beta: [f64; 2],
+}
+
+impl ArcPiece {
+    pub(super) fn of(seg: &Segment) -> Option<ArcPiece> {
+        let Feature::Arc(arc) = &seg.feature else {
+            return None;
+        };
+        if arc.radius.is_nan() || arc.radius <= 0.0 {
+            return None;
+        }
+        let (b0, b1) = (arc.angle_at(seg.s0), arc.angle_at(seg.s1));
+        Some(ArcPiece {
+            center: arc.center,
+            radius: arc.radius,
+            beta: [b0.min(b1), b0.max(b1)],
+        })
+    }
+}
+
+/// `alpha + amp cos(theta - phi)`.
+#[derive(Debug, Clone, Copy)]
+struct Sinusoid {
+    alpha: f64,
+    amp: f64,
+    phi: f64,
+}
+
+impl Sinusoid {
+    /// Bounds over `[t0, t1]` (`t1 - t0 <= 2 pi`), widened by rounding.
+    fn range(&self, t0: f64, t1: f64) -> (f64, f64) {
+        let v0 = self.alpha + self.amp * (t0 - self.phi).cos();
+        let v1 = self.alpha + self.amp * (t1 - self.phi).cos();
+        let (mut lo, mut hi) = (v0.min(v1), v0.max(v1));
+        let inside = |x: f64| (x - t0).rem_euclid(TAU) <= t1 - t0;
+        if inside(self.phi) {
+            hi = self.alpha + self.amp;
+        }
+        if inside(self.phi + PI) {
+            lo = self.alpha - self.amp;
+        }
+        let e = 1e-12 * (self.alpha.abs() + self.amp) + 1e-12;
+        (lo - e, hi + e)
+    }
+}
+
+/// What one combination pivoting on line `p` and arc `q` needs.
+#[derive(Debug, Clone, Copy)]
+pub struct LineArcSweep<'s> {
+    p: &'s LinePiece,
+    q: &'s ArcPiece,
+    c: &'s ThirdPiece,
+    /// `n . (C - o)` and `u . (C - o)`.
+    gc: f64,
+    hc: f64,
+    /// Angles of `n` and `u`.
+    psi_n: f64,
+    psi_u: f64,
+    /// `u x n`: `+1` when `n` is `u` turned counterclockwise.
+    nu: f64,
+    /// Bounds `|y - x1|` for `y` on `c` and `x1` on `p`.
+    rmax: f64,
+}
+
+/// The angles of one branch of `s` over which the arc contact stays on
+/// the arc: `sigma` is `+1` or `-1`.
+#[derive(Debug, Clone, Copy)]
+struct Branch {
+    sigma: f64,
+    angles: AngleSet,
+}
+
+/// What the region needs of `L2 = d` for a line-arc pivot: two branches,
+/// each of a few bands (the arc's span can cover both ends of the half
+/// turn a branch reaches).
+#[derive(Debug, Clone, Copy)]
+pub struct ArcPoint {
+    branches: [Branch; 6],
+    len: usize,
+    g: Sinusoid,
+    h: Sinusoid,
+}
+
+impl ArcPoint {
+    /// Whether some branch allows `theta` (soundness tests).
+    #[cfg(test)]
+    pub(super) fn contains_angle(&self, theta: f64) -> bool {
+        self.branches[..self.len]
+            .iter()
+            .any(|b| b.angles.contains(theta))
+    }
+}
+
+impl<'s> LineArcSweep<'s> {
+    /// `p` a line and `q` an arc, else `None`; `dmax_pc` bounds the
+    /// distance between points of `p` and `c`.
+    pub(super) fn new(
+        p: &'s LinePiece,
+        q: &'s ArcPiece,
+        c: &'s ThirdPiece,
+        dmax_pc: f64,
+    ) -> LineArcSweep<'s> {
+        let (u, n) = (p.line.u, p.line.n);
+        let co = q.center - p.line.origin;
+        LineArcSweep {
+            p,
+            q,
+            c,
+            gc: n.dot(&co),
+            hc: u.dot(&co),
+            psi_n: n.y.atan2(n.x),
+            psi_u: p.direction,
+            nu: cross(u, n).signum(),
+            rmax: dmax_pc + c.margin + 2.0 * S_SLACK + 1e-6,
+        }
+    }
+
+    /// The branches of `L2 = l2` with some angle; `None` when there is none.
+    pub fn pivot_point(&self, l2: V2) -> Option<ArcPoint> {
+        let amp = l2.norm();
+        let phi_d = l2.y.atan2(l2.x);
+        // n . R^T d = |d| cos(theta + psi - phi_d), so g = gc - that.
+        let g = Sinusoid {
+            alpha: self.gc,
+            amp,
+            phi: phi_d - self.psi_n + PI,
+        };
+        let h = Sinusoid {
+            alpha: self.hc,
+            amp,
+            phi: phi_d - self.psi_u + PI,
+        };
+        let mut pt = ArcPoint {
+            branches: [Branch {
+                sigma: 0.0,
+                angles: AngleSet::empty(),
+            }; 6],
+            len: 0,
+            g,
+            h,
+        };
+        for sigma in [1.0, -1.0] {
+            for [m0, m1] in self.mu_ranges(sigma).into_iter().flatten() {
+                let rho = self.q.radius;
+                let (g0, g1) = (rho * m0.sin() - S_SLACK, rho * m1.sin() + S_SLACK);
+                let angles = AngleSet::sinusoid_band(g.alpha, g.amp, g.phi, g0, g1, ANGLE_SLACK);
+                if !angles.is_empty() {
+                    pt.branches[pt.len] = Branch { sigma, angles };
+                    pt.len += 1;
+                }
+            }
+        }
+        (pt.len > 0).then_some(pt)
+    }
+
+    /// The values of `mu = asin(g / rho)` in `[-pi/2, pi/2]` at which the
+    /// contact of branch `sigma` lies on the arc: its direction is `psi_u -
+    /// nu mu` (`sigma = 1`) or `psi_u + nu (mu + pi)` (`sigma = -1`).
+    fn mu_ranges(&self, sigma: f64) -> [Option<[f64; 2]>; 3] {
+        let [b0, b1] = self.q.beta;
+        // direction in [b0, b1] as a range of nu-signed offsets.
+        let (lo, hi) = if sigma > 0.0 {
+            (b0 - self.psi_u, b1 - self.psi_u)
+        } else {
+            (
+                b0 - self.psi_u - self.nu * PI,
+                b1 - self.psi_u - self.nu * PI,
+            )
+        };
+        // nu * mu (sigma = -1) or -nu * mu (sigma = 1) lies in [lo, hi].
+        let sign = if sigma > 0.0 { -self.nu } else { self.nu };
+        let (m0, m1) = if sign > 0.0 { (lo, hi) } else { (-hi, -lo) };
+        let slack = 1e-7 + S_SLACK / self.q.radius;
+        // An interval of at most a turn meets a half turn at most twice.
+        let mut out = [None; 3];
+        let mut k = 0;
+        // Every turn of [m0, m1] that meets [-pi/2, pi/2].
+        let mut t = ((-FRAC_PI_2 - slack - m1) / TAU).ceil();
+        while m0 + t * TAU - slack <= FRAC_PI_2 && k < out.len() {
+            let a = (m0 + t * TAU - slack).max(-FRAC_PI_2);
+            let b = (m1 + t * TAU + slack).min(FRAC_PI_2);
+            if a <= b {
+                out[k] = Some([a, b]);
+                k += 1;
+            }
+            t += 1.0;
+        }
+        out
+    }
+
+    /// The region of `L3` for one pivot point, as quadrilaterals grown by
+    /// their margins; `false` when it needs too many pieces.
+    pub fn region(&self, pt: &ArcPoint, out: &mut Vec<Quad>) -> bool {
+        let mut budget = MAX_PIECES;
+        for br in &pt.branches[..pt.len] {
+            for &[t0, t1] in br.angles.intervals() {
+                if !self.cover(pt, br.sigma, t0, t1, &mut budget, out) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Covers the angles `[t0, t1]` of branch `sigma`, halving a piece
+    /// while its margin (half the range of `s`, plus the turn's) is above
+    /// [`ARC_TARGET_MARGIN`]: `s` changes fastest near the branch points, so
+    /// pieces are narrow only there. Pieces where `s` misses the segment
+    /// are dropped whole. `false` once `budget` pieces are spent.
+    fn cover(
+        &self,
+        pt: &ArcPoint,
+        sigma: f64,
+        t0: f64,
+        t1: f64,
+        budget: &mut usize,
+        out: &mut Vec<Quad>,
+    ) -> bool {
+        if *budget == 0 {
+            return false;
+        }
+        *budget -= 1;
+        let Some((lo, hi)) = self.contact_range(pt, sigma, t0, t1) else {
+            return true;
+        };
+        let w = t1 - t0;
+        let margin = 0.5 * (hi - lo) + self.rmax * w * w / 8.0;
+        if margin > ARC_TARGET_MARGIN && w > MIN_PIECE {
+            let m = 0.5 * (t0 + t1);
+            return self.cover(pt, sigma, t0, m, budget, out)
+                && self.cover(pt, sigma, m, t1, budget, out);
+        }
+        let x1 = self.p.point(0.5 * (lo + hi));
+        let mut ends = [[V2::zeros(); MAX_CHORDS + 1]; 2];
+        for (e, t) in ends.iter_mut().zip([t0, t1]) {
+            let (sin, cos) = t.sin_cos();
+            self.c.map_into(|y| rot(cos, sin, y - x1), e);
+        }
+        self.c
+            .push_quads(&ends[0], &ends[1], margin + QUAD_SLACK, out);
+        true
+    }
+
+    /// The range of the line contact `s` over the angles `[t0, t1]` of
+    /// branch `sigma`, within the segment (with slack); `None` when it
+    /// misses the segment.
+    fn contact_range(&self, pt: &ArcPoint, sigma: f64, t0: f64, t1: f64) -> Option<(f64, f64)> {
+        let rho = self.q.radius;
+        let (g_lo, g_hi) = pt.g.range(t0, t1);
+        let (h_lo, h_hi) = pt.h.range(t0, t1);
+        let g2_max = (g_lo * g_lo).max(g_hi * g_hi);
+        let g2_min = if g_lo <= 0.0 && g_hi >= 0.0 {
+            0.0
+        } else {
+            (g_lo * g_lo).min(g_hi * g_hi)
+        };
+        let sq_lo = (rho * rho - g2_max).max(0.0).sqrt();
+        let sq_hi = (rho * rho - g2_min).max(0.0).sqrt();
+        let (s_lo, s_hi) = if sigma > 0.0 {
+            (h_lo + sq_lo, h_hi + sq_hi)
+        } else {
+            (h_lo - sq_hi, h_hi - sq_lo)
+        };
+        // The square root's rounding: a few ulps of rho.
+        let e = S_SLACK + 1e-12 * (rho + h_lo.abs().max(h_hi.abs()));
+        let lo = (s_lo - e).max(self.p.s0 - S_SLACK);
+        let hi = (s_hi + e).min(self.p.s1 + S_SLACK);
+        (lo <= hi).then_some((lo, hi))
+    }
+}

@@ -1,0 +1,123 @@
+//! The shapes the sweeps are made of: the pivot's line, the third segment
+//! as chords, and the grown quadrilaterals that cover a region. Shared by
+//! the sweep of two lines and that of a line and an arc.
+
+use crate::geometry::V2;
+use crate::segments::{Feature, LineFeature, Segment};
+
+/// Contact-parameter slack of the angle sets (lattice units). The pose
+/// solver's contacts and the sinusoids here are the same quantities
+/// computed two ways; near a tangent (double) root the solver snaps the
+/// angle and its contacts move by up to about `EPS` over the determinant,
+/// so the slack is far above both that and rounding.
+pub(super) const S_SLACK: f64 = 1e-6;
+
+/// Added to every quadrilateral's margin: covers rounding in the poses
+/// (lattice units).
+pub(super) const QUAD_SLACK: f64 = 1e-6;
+
+/// A convex region of the plate: the hull of four points grown by `margin`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Quad {
+    /// Corners, any order.
+    pub pts: [V2; 4],
+    /// How far outside the hull points may still lie.
+    pub margin: f64,
+}
+
+/// A segment on a grown line with its contact range.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct LinePiece {
+    pub(super) line: LineFeature,
+    pub(super) s0: f64,
+    pub(super) s1: f64,
+    /// Angle of `u`.
+    pub(super) direction: f64,
+}
+
+impl LinePiece {
+    pub(super) fn of(s: &Segment) -> Option<LinePiece> {
+        match s.feature {
+            Feature::Line(line) => Some(LinePiece {
+                line,
+                s0: s.s0,
+                s1: s.s1,
+                direction: s.direction_angle(),
+            }),
+            Feature::Arc(_) => None,
+        }
+    }
+
+    pub(super) fn point(&self, s: f64) -> V2 {
+        self.line.origin + self.line.u * s
+    }
+}
+
+/// Most chords an arc of segment `c` is cut into (a quarter of a quarter
+/// turn each at most, for a whole circle).
+pub(super) const MAX_CHORDS: usize = 8;
+
+/// Segment `c` as a polyline within `margin` of it: itself for a line;
+/// chords of at most an eighth of a turn for an arc, within their sagitta.
+/// The sweep of a set grown by `margin` is the sweep grown by `margin`
+/// (the motion is rigid), so chords serve arcs soundly.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ThirdPiece {
+    pts: [V2; MAX_CHORDS + 1],
+    chords: usize,
+    pub(super) margin: f64,
+}
+
+impl ThirdPiece {
+    pub(super) fn of(seg: &Segment) -> ThirdPiece {
+        let mut pts = [V2::zeros(); MAX_CHORDS + 1];
+        let (chords, margin) = match &seg.feature {
+            Feature::Line(_) => (1, 0.0),
+            Feature::Arc(arc) => {
+                let len = seg.s1 - seg.s0;
+                let eighth = arc.radius * std::f64::consts::FRAC_PI_4;
+                let k = ((len / eighth).ceil() as usize).clamp(1, MAX_CHORDS);
+                let half_angle = len / k as f64 / arc.radius / 2.0;
+                (k, arc.radius * (1.0 - half_angle.cos()) + 1e-9)
+            }
+        };
+        for (j, p) in pts.iter_mut().enumerate().take(chords + 1) {
+            let s = if j == chords {
+                seg.s1
+            } else {
+                seg.s0 + (seg.s1 - seg.s0) * j as f64 / chords as f64
+            };
+            *p = seg.point(s);
+        }
+        ThirdPiece {
+            pts,
+            chords,
+            margin,
+        }
+    }
+
+    /// Pushes the quadrilaterals of every chord between two placements of
+    /// the chord points.
+    pub(super) fn push_quads(
+        &self,
+        from: &[V2; MAX_CHORDS + 1],
+        to: &[V2; MAX_CHORDS + 1],
+        margin: f64,
+        out: &mut Vec<Quad>,
+    ) {
+        for j in 0..self.chords {
+            out.push(Quad {
+                pts: [from[j], from[j + 1], to[j], to[j + 1]],
+                margin: margin + self.margin,
+            });
+        }
+    }
+
+    /// The chord points under the map `f`, into `out`.
+    #[inline]
+    pub(super) fn map_into(&self, f: impl Fn(V2) -> V2, out: &mut [V2; MAX_CHORDS + 1]) {
+        for (o, p) in out.iter_mut().zip(&self.pts).take(self.chords + 1) {
+            *o = f(*p);
+        }
+    }
+}
