@@ -92,20 +92,23 @@ pub struct ContactPoses {
     len: usize,
 }
 
+/// Fills the unused slots of the fixed-capacity lists; a constant, so that
+/// building an empty list is a plain copy.
+const NO_POSE: ContactPose = ContactPose {
+    pose: Pose {
+        theta: 0.0,
+        cos: 1.0,
+        sin: 0.0,
+        t: V2::new(0.0, 0.0),
+    },
+    w: V2::new(0.0, 0.0),
+    tangential: false,
+};
+
 impl ContactPoses {
     fn new() -> ContactPoses {
-        let zero = ContactPose {
-            pose: Pose {
-                theta: 0.0,
-                cos: 1.0,
-                sin: 0.0,
-                t: V2::zeros(),
-            },
-            w: V2::zeros(),
-            tangential: false,
-        };
         ContactPoses {
-            items: [zero; MAX_CONTACT_POSES],
+            items: [NO_POSE; MAX_CONTACT_POSES],
             len: 0,
         }
     }
@@ -701,7 +704,7 @@ fn same_pose(a: &ContactPose, b: &ContactPose) -> bool {
 impl Found {
     fn new() -> Found {
         Found {
-            poses: [ContactPoses::new().items[0]; FOUND_CAP],
+            poses: [NO_POSE; FOUND_CAP],
             res: [0.0; FOUND_CAP],
             n: 0,
         }
