@@ -92,20 +92,23 @@ pub struct ContactPoses {
     len: usize,
 }
 
+/// Fills the unused slots of the fixed-capacity lists; a constant, so that
+/// building an empty list is a plain copy.
+const NO_POSE: ContactPose = ContactPose {
+    pose: Pose {
+        theta: 0.0,
+        cos: 1.0,
+        sin: 0.0,
+        t: V2::new(0.0, 0.0),
+    },
+    w: V2::new(0.0, 0.0),
+    tangential: false,
+};
+
 impl ContactPoses {
     fn new() -> ContactPoses {
-        let zero = ContactPose {
-            pose: Pose {
-                theta: 0.0,
-                cos: 1.0,
-                sin: 0.0,
-                t: V2::zeros(),
-            },
-            w: V2::zeros(),
-            tangential: false,
-        };
         ContactPoses {
-            items: [zero; MAX_CONTACT_POSES],
+            items: [NO_POSE; MAX_CONTACT_POSES],
             len: 0,
         }
     }
@@ -160,14 +163,21 @@ fn jacobian_row(contact: &Contact, l: V2, cos: f64, sin: f64, w: V2) -> (Vector3
     (Vector3::new(u.dot(&da), -u.x, -u.y), f)
 }
 
-/// Residuals and Jacobian of the three equations at `(theta, w)`.
+/// `(cos theta, sin theta)`, computed once per angle: the pose solver
+/// hands it on wherever the same angle is evaluated again.
+fn cos_sin(theta: f64) -> (f64, f64) {
+    let (s, c) = theta.sin_cos();
+    (c, s)
+}
+
+/// Residuals and Jacobian of the three equations at the angle with cosine
+/// `c` and sine `s`, and `w`.
 fn system(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
-    theta: f64,
+    (c, s): (f64, f64),
     w: V2,
 ) -> (Vector3<f64>, Matrix3<f64>) {
-    let (s, c) = theta.sin_cos();
     let mut f = Vector3::zeros();
     let mut j = Matrix3::zeros();
     for k in 0..3 {
@@ -553,11 +563,11 @@ impl Reduced {
         }
         let mut starts = [V2::zeros(); 3];
         for &theta in thetas.as_slice() {
-            let (s, c) = theta.sin_cos();
+            let (c, s) = cos_sin(theta);
             let k = self.w_starts(c, s, &mut starts);
             for &w1 in &starts[..k] {
                 let w = w1 - self.part_shift + rot_t(c, s, self.plate_shift);
-                let Some((pose, res)) = polish(contacts, locs, theta, w) else {
+                let Some((pose, res)) = polish(contacts, locs, theta, (c, s), w) else {
                     continue;
                 };
                 let on_continuum = self
@@ -590,18 +600,19 @@ fn polish(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
     theta: f64,
+    cs: (f64, f64),
     w: V2,
 ) -> Option<(ContactPose, f64)> {
     let mut x = Vector3::new(theta, w.x, w.y);
-    let (mut f, mut j) = system(contacts, locs, x[0], v2(x[1], x[2]));
-    let mut best = (x, f.amax());
-    if best.1.is_nan() || best.1 > START_RESIDUAL {
+    let (mut f, mut j) = system(contacts, locs, cs, v2(x[1], x[2]));
+    let mut best = (x, cs, f.amax());
+    if best.2.is_nan() || best.2 > START_RESIDUAL {
         return None;
     }
     let mut stale = 0;
     let mut converged = false;
     for _ in 0..60 {
-        if best.1 == 0.0 || stale >= 4 {
+        if best.2 == 0.0 || stale >= 4 {
             converged = true;
             break;
         }
@@ -615,10 +626,11 @@ fn polish(
             return None;
         }
         x += if len > 0.5 { step * (0.5 / len) } else { step };
-        (f, j) = system(contacts, locs, x[0], v2(x[1], x[2]));
+        let cs = cos_sin(x[0]);
+        (f, j) = system(contacts, locs, cs, v2(x[1], x[2]));
         let r = f.amax();
-        if r < best.1 {
-            best = (x, r);
+        if r < best.2 {
+            best = (x, cs, r);
             stale = 0;
         } else {
             stale += 1;
@@ -631,9 +643,26 @@ fn polish(
     if !converged {
         return None;
     }
-    let theta = wrap_angle(best.0[0]);
-    let (sin, cos) = theta.sin_cos();
-    let w = v2(best.0[1], best.0[2]);
+    polished(contacts, locs, best.0, best.1)
+}
+
+/// The pose at Newton's best iterate `x` (whose angle has cosine and sine
+/// `cs`), if it satisfies every equation to `eps`, with its residual. The
+/// angle is wrapped into `[0, 2 pi)`; only a wrap that moves it needs its
+/// cosine and sine anew.
+fn polished(
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    x: Vector3<f64>,
+    cs: (f64, f64),
+) -> Option<(ContactPose, f64)> {
+    let theta = wrap_angle(x[0]);
+    let (cos, sin) = if theta.to_bits() == x[0].to_bits() {
+        cs
+    } else {
+        cos_sin(theta)
+    };
+    let w = v2(x[1], x[2]);
     let res = max_residual(contacts, locs, cos, sin, w);
     if res.is_nan() || res > EPS {
         return None;
@@ -675,7 +704,7 @@ fn same_pose(a: &ContactPose, b: &ContactPose) -> bool {
 impl Found {
     fn new() -> Found {
         Found {
-            poses: [ContactPoses::new().items[0]; FOUND_CAP],
+            poses: [NO_POSE; FOUND_CAP],
             res: [0.0; FOUND_CAP],
             n: 0,
         }

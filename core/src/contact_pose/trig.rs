@@ -61,6 +61,92 @@ pub(super) const SIN16: [f64; SAMPLES] = [
     -S8,
 ];
 
+/// The root search starts from intervals `[i STEP, (i + 1) STEP]`.
+const START: usize = 16;
+const STEP: f64 = TAU / START as f64;
+
+/// Midpoints of the start intervals, computed as [`classify`] computes a
+/// midpoint, so that the tables below hold the cosine and sine of the very
+/// `f64` values the search evaluates at.
+const START_MID: [f64; START] = {
+    let mut mid = [0.0; START];
+    let mut i = 0;
+    while i < START {
+        let (lo, hi) = (i as f64 * STEP, (i + 1) as f64 * STEP);
+        mid[i] = lo + 0.5 * (hi - lo);
+        i += 1;
+    }
+    mid
+};
+
+/// `cos(START_MID[i])`, correctly rounded (checked against 200-bit
+/// arithmetic when generated; libm agrees to the bit).
+const START_COS: [f64; START] = [
+    0.980_785_280_403_230_4,
+    0.831_469_612_302_545_2,
+    0.555_570_233_019_602_3,
+    0.195_090_322_016_128_33,
+    -0.195_090_322_016_128_2,
+    -0.555_570_233_019_602,
+    -0.831_469_612_302_545_3,
+    -0.980_785_280_403_230_4,
+    -0.980_785_280_403_230_4,
+    -0.831_469_612_302_545_5,
+    -0.555_570_233_019_602_2,
+    -0.195_090_322_016_128_66,
+    0.195_090_322_016_128_3,
+    0.555_570_233_019_601_8,
+    0.831_469_612_302_545_2,
+    0.980_785_280_403_230_3,
+];
+
+/// `sin(START_MID[i])`, correctly rounded.
+const START_SIN: [f64; START] = [
+    0.195_090_322_016_128_25,
+    0.555_570_233_019_602_2,
+    0.831_469_612_302_545_2,
+    0.980_785_280_403_230_4,
+    0.980_785_280_403_230_4,
+    0.831_469_612_302_545_5,
+    0.555_570_233_019_602_2,
+    0.195_090_322_016_128_6,
+    -0.195_090_322_016_128_36,
+    -0.555_570_233_019_602,
+    -0.831_469_612_302_545_2,
+    -0.980_785_280_403_230_3,
+    -0.980_785_280_403_230_4,
+    -0.831_469_612_302_545_5,
+    -0.555_570_233_019_602_2,
+    -0.195_090_322_016_128_72,
+];
+
+/// `(cos t, sin t)` for `t` in start interval `i`, without libm: the
+/// tabulated values at its midpoint `t0` turned by `d = t - t0`
+/// (`|d| <= pi / 16`), whose cosine and sine come from their Taylor series
+/// (truncated where the next term is below 2e-19). The table is within
+/// eps / 4, `cos d - 1` and `sin d` within about 2 eps relative, so the
+/// correction (at most 0.22) is within 0.6 eps and the final sum adds at
+/// most eps / 2: within 2 eps of the true values all told, against libm's
+/// 1 ulp, and the same `f64` angle is evaluated.
+fn cos_sin_near(t: f64, i: usize) -> (f64, f64) {
+    let d = t - START_MID[i];
+    debug_assert!(d.abs() <= 0.5 * STEP * (1.0 + 1e-12), "{t} outside {i}");
+    let z = d * d;
+    let cm = z
+        * (-1.0 / 2.0
+            + z * (1.0 / 24.0
+                + z * (-1.0 / 720.0
+                    + z * (1.0 / 40_320.0
+                        + z * (-1.0 / 3_628_800.0 + z * (1.0 / 479_001_600.0))))));
+    let sd = d + d
+        * z
+        * (-1.0 / 6.0
+            + z * (1.0 / 120.0
+                + z * (-1.0 / 5_040.0 + z * (1.0 / 362_880.0 + z * (-1.0 / 39_916_800.0)))));
+    let (c0, s0) = (START_COS[i], START_SIN[i]);
+    (c0 + (c0 * cm - s0 * sd), s0 + (s0 * cm + c0 * sd))
+}
+
 /// `a[0] + sum_j a[j] cos(j t) + b[j] sin(j t)`; `b[0]` is unused (zero).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct Trig {
@@ -76,6 +162,32 @@ fn harmonic(v: &[f64; SAMPLES], j: usize) -> (f64, f64) {
         ca += x * COS16[k];
         sb += x * SIN16[k];
     }
+    scaled((ca, sb), j)
+}
+
+/// The sums of [`harmonic`] for a constant `J`, written out term by term so
+/// that the zero and unit table entries fold away at compile time (see
+/// [`Trig::from_samples`] for why the result is the same).
+#[inline(always)]
+fn harmonic_sums<const J: usize>(v: &[f64; SAMPLES]) -> (f64, f64) {
+    let (mut ca, mut sb) = (0.0, 0.0);
+    macro_rules! terms {
+        ($($m:literal)*) => {$(
+            let k = (J * $m) % SAMPLES;
+            if COS16[k] != 0.0 {
+                ca += v[$m] * COS16[k];
+            }
+            if SIN16[k] != 0.0 {
+                sb += v[$m] * SIN16[k];
+            }
+        )*};
+    }
+    terms!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
+    (ca, sb)
+}
+
+/// Sums of harmonic `j` divided into its coefficients.
+fn scaled((ca, sb): (f64, f64), j: usize) -> (f64, f64) {
     let n = SAMPLES as f64;
     if j == 0 || 2 * j == SAMPLES {
         (ca / n, sb / n)
@@ -87,7 +199,35 @@ fn harmonic(v: &[f64; SAMPLES], j: usize) -> (f64, f64) {
 impl Trig {
     /// The polynomial through samples at `2 pi m / 16`, exact when the
     /// sampled function has degree <= 4 (up to rounding).
+    ///
+    /// The sums are those of [`harmonic`], term by term in the same order,
+    /// with the terms whose table entry is `0` left out (and products with
+    /// `+-1`, exact, folded by the compiler): for finite samples adding
+    /// `x * 0 = +-0` leaves a sum that starts at `+0` unchanged, so the
+    /// coefficients are the same to the bit. A non-finite sample makes the plain sum of harmonic 0
+    /// non-finite, and then the literal transform is used.
     pub fn from_samples(v: &[f64; SAMPLES]) -> Trig {
+        let sums = [
+            harmonic_sums::<0>(v),
+            harmonic_sums::<1>(v),
+            harmonic_sums::<2>(v),
+            harmonic_sums::<3>(v),
+            harmonic_sums::<4>(v),
+        ];
+        if !sums[0].0.is_finite() {
+            return Trig::from_samples_literal(v);
+        }
+        let mut t = Trig::default();
+        for (j, &sum) in sums.iter().enumerate() {
+            let (a, b) = scaled(sum, j);
+            t.a[j] = a;
+            t.b[j] = if j == 0 { 0.0 } else { b };
+        }
+        t
+    }
+
+    /// [`Trig::from_samples`] without the shortcuts.
+    fn from_samples_literal(v: &[f64; SAMPLES]) -> Trig {
         let mut t = Trig::default();
         for j in 0..=DEG {
             let (a, b) = harmonic(v, j);
@@ -135,6 +275,11 @@ impl Trig {
     pub fn eval3(&self, t: f64) -> (f64, f64, f64) {
         let t = if t == TAU { 0.0 } else { t };
         let (s1, c1) = t.sin_cos();
+        self.eval3_cs(c1, s1)
+    }
+
+    /// [`Trig::eval3`] at the angle with cosine `c1` and sine `s1`.
+    fn eval3_cs(&self, c1: f64, s1: f64) -> (f64, f64, f64) {
         let (mut c, mut s) = (1.0, 0.0);
         let (mut f, mut d1, mut d2) = (self.a[0], 0.0, 0.0);
         for j in 1..=DEG {
@@ -341,9 +486,11 @@ struct Bounds {
     noise2: f64,
 }
 
-fn classify(f: &Trig, b: &Bounds, lo: f64, hi: f64) -> Class {
+/// What [`Class`] `[lo, hi]`, inside start interval `i`, falls in.
+fn classify(f: &Trig, b: &Bounds, i: usize, lo: f64, hi: f64) -> Class {
     let h = 0.5 * (hi - lo);
-    let (f0, f1, f2) = f.eval3(lo + h);
+    let (c, s) = cos_sin_near(lo + h, i);
+    let (f0, f1, f2) = f.eval3_cs(c, s);
     let h2 = h * h;
     let spread = h * f1.abs() + 0.5 * h2 * f2.abs() + b.m3 * h2 * h / 6.0;
     if f0.abs() - spread > b.tol {
@@ -425,8 +572,12 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
         // A constant: no isolated root (zero is a continuum, caught earlier).
         return;
     }
-    // Evaluation adds a few ulps of the coefficients' sum; a coefficient
-    // error `noise` moves f' by up to sum 2j noise and f'' by sum 2j^2 noise.
+    // Evaluation adds a few ulps of the coefficients' sum: with cos t and
+    // sin t within 2 eps (libm's, or `cos_sin_near`'s in `classify`), the
+    // recurrence keeps cos jt and sin jt within 3.5 j eps, so f, f' and f''
+    // come within about 25 eps of the sums of their terms' magnitudes, well
+    // inside the 64 eps allowed below. A coefficient error `noise` moves f'
+    // by up to sum 2j noise and f'' by sum 2j^2 noise.
     let noise = noise + 64.0 * f64::EPSILON * (f.a[0].abs() + f.bound(0));
     let b = Bounds {
         m3,
@@ -435,19 +586,17 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
         noise1: 20.0 * noise + 64.0 * f64::EPSILON * f.bound(1),
         noise2: 60.0 * noise + 64.0 * f64::EPSILON * f.bound(2),
     };
-    const START: usize = 16;
-    let step = TAU / START as f64;
     let mut budget = 20_000usize;
     let mut run = None;
     let mut stack = [(0.0, 0.0); 48];
     for i in 0..START {
-        stack[0] = (i as f64 * step, (i + 1) as f64 * step);
+        stack[0] = (i as f64 * STEP, (i + 1) as f64 * STEP);
         let mut n = 1;
         while n > 0 {
             n -= 1;
             let (lo, hi) = stack[n];
             budget = budget.saturating_sub(1);
-            match classify(f, &b, lo, hi) {
+            match classify(f, &b, i, lo, hi) {
                 Class::Empty => {}
                 Class::Monotone(Some((flo, fhi))) if (flo < 0.0) == (fhi < 0.0) => {}
                 Class::Monotone(_) => monotone_root(f, lo, hi, out),
@@ -500,6 +649,63 @@ mod tests {
         }
         assert!(Trig::alias(&sampled(g)) < 1e-14);
         assert!(Trig::alias(&sampled(|t| (5.0 * t).cos())) > 0.9);
+    }
+
+    #[test]
+    fn start_tables_match_libm() {
+        for i in 0..START {
+            let (lo, hi) = (i as f64 * STEP, (i + 1) as f64 * STEP);
+            assert_eq!(START_MID[i], lo + 0.5 * (hi - lo));
+            let (s, c) = START_MID[i].sin_cos();
+            assert!((START_COS[i] - c).abs() <= 0.5 * f64::EPSILON, "{i}");
+            assert!((START_SIN[i] - s).abs() <= 0.5 * f64::EPSILON, "{i}");
+        }
+    }
+
+    #[test]
+    fn cos_sin_near_matches_libm_across_each_start_interval() {
+        let n = 20_000;
+        let mut worst = 0.0f64;
+        for i in 0..START {
+            let (lo, hi) = (i as f64 * STEP, (i + 1) as f64 * STEP);
+            for m in 0..=n {
+                let t = lo + (hi - lo) * m as f64 / n as f64;
+                let (c, s) = cos_sin_near(t, i);
+                let (s1, c1) = t.sin_cos();
+                worst = worst.max((c - c1).abs()).max((s - s1).abs());
+            }
+        }
+        // The bound `roots` relies on is 2 eps from the true values; libm
+        // is within 1 ulp of them.
+        assert!(worst <= f64::EPSILON, "{worst:e}");
+    }
+
+    fn bits(t: &Trig) -> Vec<u64> {
+        t.a.iter().chain(t.b.iter()).map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn from_samples_is_the_literal_transform_to_the_bit() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            ((state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * 1e3
+        };
+        for _ in 0..1000 {
+            let v: [f64; SAMPLES] = std::array::from_fn(|_| rnd());
+            let want = bits(&Trig::from_samples_literal(&v));
+            assert_eq!(bits(&Trig::from_samples(&v)), want);
+        }
+        // Exact zeros and a non-finite sample (the literal fallback).
+        let mut v = [0.0; SAMPLES];
+        v[5] = -2.5;
+        let want = bits(&Trig::from_samples_literal(&v));
+        assert_eq!(bits(&Trig::from_samples(&v)), want);
+        v[3] = f64::INFINITY;
+        let want = bits(&Trig::from_samples_literal(&v));
+        assert_eq!(bits(&Trig::from_samples(&v)), want);
     }
 
     fn found(f: &Trig, tol: f64) -> Vec<f64> {
