@@ -251,7 +251,7 @@ impl PreparedPart {
         let [p, q, r] = pivot.roles.map(|k| combo[k]);
         let g = self.setting.grid_step;
         let SetupScratch { sweep, pivots } = scratch;
-        for (d, pt) in pivots.points(p, q, || self.pivot_points(&pivot.sweep, p, q)) {
+        for (d, pt) in pivots.points(p, q, |out| self.pivot_points(&pivot.sweep, p, q, out)) {
             let d = *d;
             let listed = pivot
                 .sweep
@@ -269,12 +269,11 @@ impl PreparedPart {
 
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
     /// `(p, q)` at which some angle keeps both contacts on their segments.
-    fn pivot_points(&self, sweep: &Sweep<'_>, p: usize, q: usize) -> Vec<LatticePivot> {
+    fn pivot_points(&self, sweep: &Sweep<'_>, p: usize, q: usize, out: &mut Vec<LatticePivot>) {
         let g = self.setting.grid_step;
         let pq = self.pair(p, q);
         let (lo2, hi2) = annulus_sq(pq);
         let imax = pq.dmax.floor() as i64 + 1;
-        let mut out = Vec::new();
         let mut i = g;
         while i <= imax {
             let mut j = 0;
@@ -293,7 +292,6 @@ impl PreparedPart {
             }
             i += g;
         }
-        out
     }
 
     /// Solves the triple with the pivot's locators at `0` and `d` and the
@@ -411,8 +409,9 @@ pub struct SetupScratch {
 /// needs of it.
 type LatticePivot = ([i64; 2], PivotPoint);
 
-/// Most pivot points kept (about 150 bytes each): beyond, the cache starts
-/// over, so a huge part costs time, never unbounded memory.
+/// Most pivot points kept (about 170 bytes each, 11 MB in all): beyond,
+/// the cache starts over, so a huge part costs time, never unbounded
+/// memory.
 const PIVOT_CACHE_POINTS: usize = 1 << 16;
 
 /// The pivot points of each pivot pair: the same pair pivots many
@@ -421,8 +420,10 @@ const PIVOT_CACHE_POINTS: usize = 1 << 16;
 /// depend on the third segment.
 #[derive(Debug, Default)]
 struct PivotCache {
-    pairs: FxHashMap<(usize, usize), Vec<LatticePivot>>,
-    points: usize,
+    /// Where each pair's points lie in `points`.
+    pairs: FxHashMap<(usize, usize), std::ops::Range<usize>>,
+    /// Every pair's points, one after the other: one allocation for all.
+    points: Vec<LatticePivot>,
 }
 
 impl PivotCache {
@@ -430,18 +431,23 @@ impl PivotCache {
         &mut self,
         p: usize,
         q: usize,
-        make: impl FnOnce() -> Vec<LatticePivot>,
+        push: impl FnOnce(&mut Vec<LatticePivot>),
     ) -> &[LatticePivot] {
-        if !self.pairs.contains_key(&(p, q)) {
-            let pts = make();
-            if self.points + pts.len() > PIVOT_CACHE_POINTS {
-                self.pairs.clear();
-                self.points = 0;
+        let range = match self.pairs.get(&(p, q)) {
+            Some(r) => r.clone(),
+            None => {
+                if self.points.len() > PIVOT_CACHE_POINTS {
+                    self.pairs.clear();
+                    self.points.clear();
+                }
+                let start = self.points.len();
+                push(&mut self.points);
+                let r = start..self.points.len();
+                self.pairs.insert((p, q), r.clone());
+                r
             }
-            self.points += pts.len();
-            self.pairs.insert((p, q), pts);
-        }
-        self.pairs.get(&(p, q)).map_or(&[], |v| v.as_slice())
+        };
+        &self.points[range]
     }
 }
 
