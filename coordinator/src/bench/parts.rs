@@ -164,10 +164,14 @@ fn row(id: &str, mode: &str, m: &Measured) -> Vec<String> {
     let setup_enum = profile.total_ns.saturating_sub(t.setups_ns);
     let clamp = t.setups_ns.saturating_sub(t.admissibility_ns + t.metric_ns);
     let pct = |x: u64| format!("{:.1}%", 100.0 * x as f64 / total);
+    // No setup kept: nothing to divide by.
     let per_setup = if c.setups > 0 {
-        profile.search.pose_solutions as f64 / c.setups as f64
+        format!(
+            "{:.1}",
+            profile.search.pose_solutions as f64 / c.setups as f64
+        )
     } else {
-        f64::NAN
+        "-".into()
     };
     let w = profile.work;
     vec![
@@ -180,7 +184,7 @@ fn row(id: &str, mode: &str, m: &Measured) -> Vec<String> {
         pct(t.metric_ns),
         c.admissible().map_or("-".into(), |a| a.to_string()),
         c.setups.to_string(),
-        format!("{per_setup:.1}"),
+        per_setup,
         w.scored.to_string(),
         w.mount_searches.to_string(),
         w.setups_floored.to_string(),
