@@ -409,10 +409,10 @@ pub struct SetupScratch {
 /// needs of it.
 type LatticePivot = ([i64; 2], PivotPoint);
 
-/// Most pivot points kept (about 170 bytes each, 11 MB in all): beyond,
-/// the cache starts over, so a huge part costs time, never unbounded
-/// memory.
-const PIVOT_CACHE_POINTS: usize = 1 << 16;
+/// Most pivot points kept per thread (about 180 bytes each, 6 MB in all;
+/// `housing-57` keeps 1,043, scaled 3x 13,677): beyond, the cache starts
+/// over, so a huge part costs time, never unbounded memory.
+const PIVOT_CACHE_POINTS: usize = 1 << 15;
 
 /// The pivot points of each pivot pair: the same pair pivots many
 /// combinations (every third segment whose pairs with it are wider), and
