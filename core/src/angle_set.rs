@@ -104,11 +104,64 @@ impl AngleSet {
         out
     }
 
+    /// A superset of the angles in either set: their union, with the
+    /// narrowest gaps filled while it has more intervals than a set holds
+    /// (a filter that may only over-approximate can afford that).
+    pub fn union_covering(&self, o: &AngleSet) -> AngleSet {
+        let mut all = [[0.0; 2]; 2 * CAPACITY];
+        let n = self.len + o.len;
+        all[..self.len].copy_from_slice(self.intervals());
+        all[self.len..n].copy_from_slice(o.intervals());
+        let all = &mut all[..n];
+        all.sort_unstable_by(|a, b| a[0].total_cmp(&b[0]));
+        let mut merged: [[f64; 2]; 2 * CAPACITY] = [[0.0; 2]; 2 * CAPACITY];
+        let mut m = 0;
+        for &[lo, hi] in all.iter() {
+            if m > 0 && lo <= merged[m - 1][1] {
+                merged[m - 1][1] = merged[m - 1][1].max(hi);
+            } else {
+                merged[m] = [lo, hi];
+                m += 1;
+            }
+        }
+        while m > CAPACITY {
+            // Fill the narrowest gap.
+            let k = (1..m)
+                .min_by(|&i, &j| {
+                    let gi = merged[i][0] - merged[i - 1][1];
+                    let gj = merged[j][0] - merged[j - 1][1];
+                    gi.total_cmp(&gj)
+                })
+                .unwrap_or(1);
+            merged[k - 1][1] = merged[k - 1][1].max(merged[k][1]);
+            merged.copy_within(k + 1..m, k);
+            m -= 1;
+        }
+        let mut out = AngleSet::empty();
+        for &iv in &merged[..m] {
+            out.push(iv);
+        }
+        out
+    }
+
     /// Whether `theta` (in `[0, 2 pi)`) is in the set.
     pub fn contains(&self, theta: f64) -> bool {
         self.intervals()
             .iter()
             .any(|&[lo, hi]| lo <= theta && theta <= hi)
+    }
+
+    /// Whether some angle of `[lo, hi]` (any real angles, `hi - lo <= 2
+    /// pi`) is in the set, the circle wrapping round.
+    pub fn meets(&self, lo: f64, hi: f64) -> bool {
+        let start = wrap_angle(lo);
+        let end = start + (hi - lo);
+        let overlaps = |a: f64, b: f64| self.intervals().iter().any(|&[x, y]| x <= b && y >= a);
+        if end <= TAU {
+            overlaps(start, end)
+        } else {
+            overlaps(start, TAU) || overlaps(0.0, end - TAU)
+        }
     }
 
     /// Whether the set has no angle.
@@ -233,5 +286,59 @@ mod tests {
         assert_eq!(s.intervals().len(), 2);
         assert!(s.contains(0.0) && s.contains(TAU - 0.1) && !s.contains(PI));
         assert_eq!(wrap_angle(-1e-18), 0.0);
+    }
+
+    /// A set of intervals `[c - w, c + w]` around the given centres.
+    fn bands(centres: &[(f64, f64)]) -> AngleSet {
+        let mut s = AngleSet::empty();
+        for &(c, w) in centres {
+            s.add_wrapped(c - w, c + w);
+        }
+        s.normalise();
+        s
+    }
+
+    #[test]
+    fn meets_sees_every_stretch_that_holds_an_angle() {
+        let s = bands(&[(1.0, 0.1), (3.0, 0.2), (6.2, 0.2)]);
+        for k in 0..2000 {
+            let lo = -7.0 + 14.0 * k as f64 / 2000.0;
+            for w in [0.0, 0.05, 0.5, 3.0, TAU] {
+                let sampled = (0..=400).any(|m| s.contains(wrap_angle(lo + w * m as f64 / 400.0)));
+                if sampled {
+                    assert!(s.meets(lo, lo + w), "[{lo}, {}] in {s:?}", lo + w);
+                }
+            }
+        }
+        assert!(!s.meets(1.5, 2.5) && !s.meets(1.5 - TAU, 2.5 - TAU));
+    }
+
+    #[test]
+    fn covering_union_holds_both_sets_within_capacity() {
+        let a = bands(&[
+            (0.5, 0.05),
+            (1.5, 0.05),
+            (2.5, 0.05),
+            (3.5, 0.05),
+            (4.5, 0.05),
+        ]);
+        let b = bands(&[
+            (1.0, 0.05),
+            (2.0, 0.01),
+            (3.0, 0.05),
+            (4.0, 0.05),
+            (5.5, 0.05),
+        ]);
+        let u = a.union_covering(&b);
+        assert!(u.intervals().len() <= CAPACITY);
+        for k in 0..20_000 {
+            let t = TAU * k as f64 / 20_000.0;
+            if a.contains(t) || b.contains(t) {
+                assert!(u.contains(t), "{t} lost from {u:?}");
+            }
+        }
+        // The narrowest gaps were filled, the widest kept.
+        assert!(!u.contains(5.0));
+        assert_eq!(a.union_covering(&AngleSet::empty()), a);
     }
 }

@@ -228,6 +228,19 @@ fn max_residual(contacts: &[Contact; 3], locs: &[V2; 3], cos: f64, sin: f64, w: 
 /// within 1e-6, are one pose. Non-finite input or a radius `<= 0` gives
 /// no pose.
 pub fn solve_contact_poses(contacts: &[Contact; 3], locs: &[V2; 3]) -> ContactPoses {
+    solve_contact_poses_within(contacts, locs, &|_, _| true)
+}
+
+/// [`solve_contact_poses`] when only some angles matter: `within(lo, hi)`
+/// is `false` only if no wanted pose has its angle in `[lo, hi]`, and the
+/// root search skips those stretches of the circle (most of it, when the
+/// setup sweep knows the angles at which two contacts stay on their
+/// segments). Poses elsewhere may still be reported.
+pub fn solve_contact_poses_within(
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    within: &dyn Fn(f64, f64) -> bool,
+) -> ContactPoses {
     if !valid(contacts, locs) {
         return ContactPoses::new();
     }
@@ -242,7 +255,7 @@ pub fn solve_contact_poses(contacts: &[Contact; 3], locs: &[V2; 3]) -> ContactPo
         return ContactPoses::new();
     };
     let mut found = Found::new();
-    if !red.candidates(contacts, locs, &mut found) {
+    if !red.candidates(contacts, locs, within, &mut found) {
         return ContactPoses::new();
     }
     found.finish()
@@ -466,7 +479,7 @@ impl Reduced {
     /// Every angle at which an isolated pose can lie; `false` for a
     /// continuum (or a polynomial too degenerate to trust, which is one to
     /// within rounding).
-    fn angles(&self, sm: &Sampled, out: &mut Angles) -> bool {
+    fn angles(&self, sm: &Sampled, within: &dyn Fn(f64, f64) -> bool, out: &mut Angles) -> bool {
         if let Some(theta0) = self.continuum_angle {
             self.congruent_angles(theta0, out);
             return true;
@@ -477,7 +490,7 @@ impl Reduced {
         let d_max = sm.d.max_abs();
         if d_max > DEGENERATE_REL * sm.max_dhat {
             let tol = NEAR_MISS * self.rho0 * sm.max_dhat * sm.max_dhat;
-            trig::roots(&sm.f, tol, ROUNDING_REL * sm.scale_f, out);
+            trig::roots(&sm.f, tol, ROUNDING_REL * sm.scale_f, within, out);
             // D has degree <= 1 (the rotation cancels from b1 x b2).
             trig::linear_roots(&sm.d, out);
         }
@@ -488,7 +501,7 @@ impl Reduced {
             let tol = NEAR_MISS * sm.max_dhat;
             for n in [&sm.nx, &sm.ny] {
                 if n.max_abs() > ROUNDING_REL * sm.max_nhat {
-                    trig::roots(n, tol, ROUNDING_REL * sm.max_nhat, out);
+                    trig::roots(n, tol, ROUNDING_REL * sm.max_nhat, within, out);
                 }
             }
         }
@@ -555,10 +568,16 @@ impl Reduced {
     }
 
     /// Polishes every candidate into `found`; `false` for a continuum.
-    fn candidates(&self, contacts: &[Contact; 3], locs: &[V2; 3], found: &mut Found) -> bool {
+    fn candidates(
+        &self,
+        contacts: &[Contact; 3],
+        locs: &[V2; 3],
+        within: &dyn Fn(f64, f64) -> bool,
+        found: &mut Found,
+    ) -> bool {
         let sm = self.sample();
         let mut thetas = Angles::new();
-        if !self.angles(&sm, &mut thetas) {
+        if !self.angles(&sm, within, &mut thetas) {
             return false;
         }
         let mut starts = [V2::zeros(); 3];

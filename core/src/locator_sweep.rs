@@ -121,9 +121,9 @@ impl<'s> Sweep<'s> {
     }
 
     /// Calls `visit` once for every lattice point (multiples of `g`) of the
-    /// region of `L3` for the pivot point's `L2`, row by row, with the
-    /// angles at which the pivot's contacts stay on their segments (two
-    /// lines only: the pose solver filters by them); `false` (and no call)
+    /// region of `L3` for the pivot point's `L2`, row by row, with (a
+    /// superset of) the angles at which the pivot's contacts stay on their
+    /// segments, for the pose solver to look only there; `false` (and no call)
     /// when the region needs too many pieces and the caller should scan
     /// the annuli instead.
     pub fn for_each_third_locator(
@@ -139,10 +139,10 @@ impl<'s> Sweep<'s> {
             return false;
         }
         let angles = match pt {
-            PivotPoint::Lines(p) => Some(&p.angles),
-            PivotPoint::LineArc(_) => None,
+            PivotPoint::Lines(p) => &p.angles,
+            PivotPoint::LineArc(p) => &p.angles,
         };
-        scan_quads(quads, g, spans, |l3| visit(l3, angles));
+        scan_quads(quads, g, spans, |l3| visit(l3, Some(angles)));
         true
     }
 

@@ -20,7 +20,7 @@
 //! enumerate without pruning.
 
 use crate::angle_set::{wrap_angle, AngleSet};
-use crate::contact_pose::solve_contact_poses;
+use crate::contact_pose::solve_contact_poses_within;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
 use crate::locator_sweep::{PivotPoint, Sweep, SweepScratch};
@@ -71,17 +71,17 @@ impl PreparedPart {
         l3: [i64; 2],
         visit: impl FnMut(&Setup),
     ) -> usize {
-        self.setups_for_locators_where(combo, l2, l3, |_| true, visit)
+        self.setups_for_locators_where(combo, l2, l3, Allowed::ALL, visit)
     }
 
-    /// [`Self::setups_for_locators`] solving, on three lines, only the
-    /// poses whose angle passes `keep` (arcs ignore it).
+    /// [`Self::setups_for_locators`] working out only the poses at angles
+    /// `allowed` lets through (others may be reported too).
     fn setups_for_locators_where(
         &self,
         combo: [usize; 3],
         l2: [i64; 2],
         l3: [i64; 2],
-        keep: impl Fn(f64) -> bool,
+        allowed: Allowed<'_>,
         mut visit: impl FnMut(&Setup),
     ) -> usize {
         if l3 == [0, 0] || l3 == l2 || l2 == [0, 0] {
@@ -96,13 +96,13 @@ impl PreparedPart {
         });
         if let [Some(a), Some(b), Some(c)] = lines {
             // Polygons: SPEC 3's closed form, as before arcs.
-            let (poses, count) = solve_poses_where(&[a, b, c], &locs, keep);
+            let (poses, count) = solve_poses_where(&[a, b, c], &locs, |t| allowed.keeps(t));
             for pose in &poses[..count] {
                 self.visit_pose(combo, &segs, locs_i, &locs, pose, false, &mut visit);
             }
             return count;
         }
-        self.curved_setups(combo, &segs, locs_i, &locs, &mut visit)
+        self.curved_setups(combo, &segs, locs_i, &locs, allowed, &mut visit)
     }
 
     /// [`Self::setups_for_locators`] when a segment is an arc (SPEC 8.4),
@@ -114,9 +114,11 @@ impl PreparedPart {
         segs: &[&Segment; 3],
         locators: [[i64; 2]; 3],
         locs: &[V2; 3],
+        allowed: Allowed<'_>,
         visit: &mut impl FnMut(&Setup),
     ) -> usize {
-        let poses = solve_contact_poses(&segs.map(|s| s.contact()), locs);
+        let contacts = segs.map(|s| s.contact());
+        let poses = solve_contact_poses_within(&contacts, locs, &|lo, hi| allowed.meets(lo, hi));
         for p in poses.iter() {
             self.visit_pose(combo, segs, locators, locs, &p.pose, p.tangential, visit);
         }
@@ -327,12 +329,8 @@ impl PreparedPart {
         if l2 != d && !self.locator_point_allowed(l2) {
             return;
         }
-        // The pose turns with the plate: theta = theta_pivot + turns pi/2.
-        let back = f64::from(turns) * FRAC_PI_2;
-        let keep = |t: f64| {
-            angles.is_none_or(|a| a.contains(if turns == 0 { t } else { wrap_angle(t - back) }))
-        };
-        self.solve_triple(combo, l2, l3, keep, stats, visit);
+        let allowed = Allowed { angles, turns };
+        self.solve_triple(combo, l2, l3, allowed, stats, visit);
     }
 
     /// Setups when no pair of lines can pivot (two or three arcs, or nearly
@@ -362,7 +360,7 @@ impl PreparedPart {
                 }
                 if d2 >= lo2 && self.locator_point_allowed(l2) {
                     annulus_points(l2, ac, bc, g, |l3| {
-                        self.solve_triple(combo, l2, l3, |_| true, stats, visit)
+                        self.solve_triple(combo, l2, l3, Allowed::ALL, stats, visit)
                     });
                 }
                 j += g;
@@ -378,15 +376,55 @@ impl PreparedPart {
         combo: [usize; 3],
         l2: [i64; 2],
         l3: [i64; 2],
-        keep: impl Fn(f64) -> bool,
+        allowed: Allowed<'_>,
         stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
         if l3 != [0, 0] && l3 != l2 && self.locator_point_allowed(l3) {
             stats.locator_triples += 1;
             stats.pose_solutions +=
-                self.setups_for_locators_where(combo, l2, l3, keep, &mut *visit) as u64;
+                self.setups_for_locators_where(combo, l2, l3, allowed, &mut *visit) as u64;
         }
+    }
+}
+
+/// The angles a sweep allows for one triple: its angle set (pivot frame,
+/// where known) and the quarter turns from the pivot frame to the
+/// canonical one, which turn the pose with the plate:
+/// `theta = theta_pivot + turns pi / 2`. Poses elsewhere cannot keep the
+/// pivot's contacts on their segments, so they need not be worked out.
+#[derive(Debug, Clone, Copy)]
+struct Allowed<'a> {
+    angles: Option<&'a AngleSet>,
+    turns: u8,
+}
+
+impl Allowed<'_> {
+    /// Every angle.
+    const ALL: Allowed<'static> = Allowed {
+        angles: None,
+        turns: 0,
+    };
+
+    fn back(&self) -> f64 {
+        f64::from(self.turns) * FRAC_PI_2
+    }
+
+    /// Whether the canonical angle `t` is allowed.
+    fn keeps(&self, t: f64) -> bool {
+        self.angles.is_none_or(|a| {
+            a.contains(if self.turns == 0 {
+                t
+            } else {
+                wrap_angle(t - self.back())
+            })
+        })
+    }
+
+    /// Whether some canonical angle of `[lo, hi]` is allowed.
+    fn meets(&self, lo: f64, hi: f64) -> bool {
+        let back = self.back();
+        self.angles.is_none_or(|a| a.meets(lo - back, hi - back))
     }
 }
 

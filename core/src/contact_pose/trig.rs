@@ -551,7 +551,12 @@ impl Run {
     }
 }
 
-/// Every root of `f` in `[0, 2 pi)`, plus every local extremum where
+/// Which angles a caller wants: `within(lo, hi)` is `false` only when no
+/// wanted angle lies in `[lo, hi]`.
+pub(super) type Within<'a> = dyn Fn(f64, f64) -> bool + 'a;
+
+/// Every root of `f` in `[0, 2 pi)` (in the start intervals `within`
+/// allows), plus every local extremum where
 /// `|f| <= tol` without a sign change (tangencies and near misses), pushed
 /// onto `out`.
 ///
@@ -566,7 +571,7 @@ impl Run {
 /// counted as zero beyond it, to catch near misses. The work is
 /// bounded (`out.overflow` is set if the bound is reached, which takes a
 /// polynomial that is zero to within `tol` almost everywhere).
-pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
+pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut Angles) {
     let m3 = f.bound(3);
     if m3 == 0.0 {
         // A constant: no isolated root (zero is a continuum, caught earlier).
@@ -591,6 +596,9 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, out: &mut Angles) {
     let mut stack = [(0.0, 0.0); 48];
     for i in 0..START {
         stack[0] = (i as f64 * STEP, (i + 1) as f64 * STEP);
+        if !within(stack[0].0, stack[0].1) {
+            continue;
+        }
         let mut n = 1;
         while n > 0 {
             n -= 1;
@@ -710,7 +718,7 @@ mod tests {
 
     fn found(f: &Trig, tol: f64) -> Vec<f64> {
         let mut out = Angles::new();
-        roots(f, tol, 0.0, &mut out);
+        roots(f, tol, 0.0, &|_, _| true, &mut out);
         assert!(!out.overflow);
         out.as_slice().to_vec()
     }

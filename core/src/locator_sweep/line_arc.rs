@@ -129,6 +129,9 @@ struct Branch {
 pub struct ArcPoint {
     branches: [Branch; 6],
     len: usize,
+    /// A superset of every branch's angles, which lets the pose solver
+    /// skip the rest of the circle.
+    pub(super) angles: AngleSet,
     g: Sinusoid,
     h: Sinusoid,
 }
@@ -188,6 +191,7 @@ impl<'s> LineArcSweep<'s> {
                 angles: AngleSet::empty(),
             }; 6],
             len: 0,
+            angles: AngleSet::empty(),
             g,
             h,
         };
@@ -197,6 +201,7 @@ impl<'s> LineArcSweep<'s> {
                 let (g0, g1) = (rho * m0.sin() - S_SLACK, rho * m1.sin() + S_SLACK);
                 let angles = AngleSet::sinusoid_band(g.alpha, g.amp, g.phi, g0, g1, ANGLE_SLACK);
                 if !angles.is_empty() {
+                    pt.angles = pt.angles.union_covering(&angles);
                     pt.branches[pt.len] = Branch { sigma, angles };
                     pt.len += 1;
                 }
