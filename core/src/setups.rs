@@ -272,10 +272,21 @@ impl PreparedPart {
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
     /// `(p, q)` at which some angle keeps both contacts on their segments.
     fn pivot_points(&self, sweep: &Sweep<'_>, p: usize, q: usize, out: &mut Vec<LatticePivot>) {
+        self.quadrant_points(self.pair(p, q), |d| {
+            if let Some(pt) = sweep.pivot_point(lattice_point(d)) {
+                out.push((d, pt));
+            }
+        });
+    }
+
+    /// Every allowed lattice point (multiples of the grid step) of
+    /// `Q = {i > 0, j >= 0}` in the annulus of a pair: where the second
+    /// locator can be, up to quarter turns, once the first is at the
+    /// origin.
+    fn quadrant_points(&self, pair: PairBounds, mut visit: impl FnMut([i64; 2])) {
         let g = self.setting.grid_step;
-        let pq = self.pair(p, q);
-        let (lo2, hi2) = annulus_sq(pq);
-        let imax = pq.dmax.floor() as i64 + 1;
+        let (lo2, hi2) = annulus_sq(pair);
+        let imax = pair.dmax.floor() as i64 + 1;
         let mut i = g;
         while i <= imax {
             let mut j = 0;
@@ -286,9 +297,7 @@ impl PreparedPart {
                     break;
                 }
                 if d2 >= lo2 && self.locator_point_allowed(d) {
-                    if let Some(pt) = sweep.pivot_point(lattice_point(d)) {
-                        out.push((d, pt));
-                    }
+                    visit(d);
                 }
                 j += g;
             }
@@ -343,30 +352,13 @@ impl PreparedPart {
         visit: &mut impl FnMut(&Setup),
     ) {
         let [a, b, c] = combo;
-        let ab = self.pair(a, b);
         let (ac, bc) = (self.pair(a, c), self.pair(b, c));
         let g = self.setting.grid_step;
-        let (lo2, hi2) = annulus_sq(ab);
-        let imax = ab.dmax.floor() as i64 + 1;
-        // L2 in Q = {i > 0, j >= 0}.
-        let mut i = g;
-        while i <= imax {
-            let mut j = 0;
-            while j <= imax {
-                let l2 = [i, j];
-                let d2 = (i * i + j * j) as f64;
-                if d2 > hi2 {
-                    break;
-                }
-                if d2 >= lo2 && self.locator_point_allowed(l2) {
-                    annulus_points(l2, ac, bc, g, |l3| {
-                        self.solve_triple(combo, l2, l3, Allowed::ALL, stats, visit)
-                    });
-                }
-                j += g;
-            }
-            i += g;
-        }
+        self.quadrant_points(self.pair(a, b), |l2| {
+            annulus_points(l2, ac, bc, g, |l3| {
+                self.solve_triple(combo, l2, l3, Allowed::ALL, stats, visit)
+            });
+        });
     }
 
     /// Solves one locator triple that survived pruning, with statistics.
