@@ -59,6 +59,11 @@ pub struct SweptSegment {
 }
 
 impl SweptSegment {
+    /// Whether the segment is a line (else an arc).
+    pub fn is_line(&self) -> bool {
+        self.line.is_some()
+    }
+
     /// The segment as a pivot (a line or an arc) and as a third segment.
     pub fn of(seg: &Segment) -> SweptSegment {
         SweptSegment {

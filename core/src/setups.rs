@@ -212,30 +212,40 @@ impl PreparedPart {
     }
 
     /// Of the role orders whose sweep applies (two lines when `lines`,
-    /// else a line and an arc), the one with the thinnest pivot annulus.
+    /// else a line then an arc), the one with the thinnest pivot annulus.
+    /// Orders are ranked by their annulus first, so a sweep is built only
+    /// for the winner (and the next ones when nearly parallel lines refuse
+    /// it).
     fn thinnest_pivot(
         &self,
         combo: [usize; 3],
         orders: &[[usize; 3]],
         lines: bool,
     ) -> Option<Pivot<'_>> {
-        let mut best: Option<(f64, Pivot<'_>)> = None;
+        let is_line = |k: usize| self.swept[combo[k]].is_line();
+        let mut ranked = [(f64::INFINITY, [0usize; 3]); 6];
+        let mut n = 0;
         for &roles in orders {
-            let [p, q, r] = roles.map(|k| combo[k]);
-            let (lo, hi) = annulus_sq(self.pair(p, q));
-            let area = hi - lo;
-            if best.as_ref().is_some_and(|(a, _)| *a <= area) {
+            let [p, q, _] = roles;
+            if !is_line(p) || is_line(q) != lines {
                 continue;
             }
-            let swept = [p, q, r].map(|i| &self.swept[i]);
-            match Sweep::new(swept, p == q, self.pair(p, r).dmax) {
-                Some(sweep) if sweep.is_lines() == lines => {
-                    best = Some((area, Pivot { roles, sweep }));
-                }
-                _ => {}
+            let (lo, hi) = annulus_sq(self.pair(combo[p], combo[q]));
+            // Insertion keeps the first of equal areas first.
+            let mut k = n;
+            while k > 0 && ranked[k - 1].0 > hi - lo {
+                ranked[k] = ranked[k - 1];
+                k -= 1;
             }
+            ranked[k] = (hi - lo, roles);
+            n += 1;
         }
-        best.map(|(_, pivot)| pivot)
+        ranked[..n].iter().find_map(|&(_, roles)| {
+            let [p, q, r] = roles.map(|k| combo[k]);
+            let swept = [p, q, r].map(|i| &self.swept[i]);
+            let sweep = Sweep::new(swept, p == q, self.pair(p, r).dmax)?;
+            Some(Pivot { roles, sweep })
+        })
     }
 
     /// Setups by the sweep: the pivot's first locator at the origin, its
