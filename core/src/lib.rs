@@ -28,6 +28,8 @@ pub mod report;
 pub mod segments;
 pub mod setups;
 pub mod solve;
+#[cfg(test)]
+mod test_rng;
 
 pub use enumerate::{merge, PartialResult};
 pub use input::{Case, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, Point, Units};

@@ -357,13 +357,8 @@ mod tests {
     fn floor_test_agrees_with_the_full_maximum() {
         let sphere = fibonacci_sphere(MaxForceMetric::DIRECTIONS);
         let max_norm = sphere.iter().map(|p| p.norm()).fold(0.0, f64::max);
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut rnd = || rng.signed_unit();
         let mut decided_by_loop = 0;
         for _ in 0..500 {
             let w: [Vector3<f64>; 3] = std::array::from_fn(|_| Vector3::new(rnd(), rnd(), rnd()));

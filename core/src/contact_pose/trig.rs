@@ -694,13 +694,8 @@ mod tests {
 
     #[test]
     fn from_samples_is_the_literal_transform_to_the_bit() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            ((state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * 1e3
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut rnd = || rng.signed_unit() * 1e3;
         for _ in 0..1000 {
             let v: [f64; SAMPLES] = std::array::from_fn(|_| rnd());
             let want = bits(&Trig::from_samples_literal(&v));
@@ -760,13 +755,8 @@ mod tests {
 
     #[test]
     fn random_polynomials_agree_with_dense_sign_changes() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut rnd = || rng.signed_unit();
         for _ in 0..300 {
             let mut f = Trig::default();
             for j in 0..=DEG {
