@@ -2,6 +2,7 @@
 //! the results back; leave at the end of the run (or wait for the next one
 //! with `stay`).
 
+use crate::finish::Finisher;
 use crate::host::{host_id, unique_name};
 use crate::iox::IoxClient;
 use crate::part_input::{PartInput, WireInputError};
@@ -11,7 +12,7 @@ use crate::protocol::{
 };
 use crate::replay::Replay;
 use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
-use fixplan_core::PreparedPart;
+use fixplan_core::{PartialResult, PreparedPart};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -87,6 +88,16 @@ pub struct WorkerOptions {
     /// Answer shards seen before from this cache, at once, and record the
     /// others (`fixplan bench-coordinator`: the coordinator measured alone).
     pub replay: Option<Arc<Replay>>,
+    /// Finishes whole parts here ([`crate::finish`]): the `fixplan`
+    /// binary's, so the coordinator only copies their bytes. Without one,
+    /// the coordinator finishes every part itself.
+    pub finisher: Option<Arc<dyn Finisher>>,
+}
+
+impl std::fmt::Debug for dyn Finisher {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Finisher")
+    }
 }
 
 impl Default for WorkerOptions {
@@ -101,6 +112,7 @@ impl Default for WorkerOptions {
             protocol_version: PROTOCOL_VERSION,
             fault: None,
             replay: None,
+            finisher: None,
         }
     }
 }
@@ -130,8 +142,9 @@ pub struct WorkerSummary {
     pub parts_prepared: u64,
 }
 
-/// A prepared part, or why there is none, shared by the shards of the part.
-type Prepared = Arc<Result<PreparedPart, WireInputError>>;
+/// A part's input and the part prepared, or why there is none, shared by
+/// the shards of the part.
+type Prepared = Arc<Result<(PartInput, PreparedPart), WireInputError>>;
 
 enum DataLink {
     Zenoh,
@@ -150,11 +163,14 @@ struct Agent {
     summary: WorkerSummary,
 }
 
-/// One shard of an assignment, enumerated (on the calling rayon pool).
+/// One shard of an assignment, enumerated (on the calling rayon pool),
+/// and finished when it is a whole part the coordinator asked to have
+/// finished.
 fn shard_outcome(
     fault: Option<Fault>,
+    finisher: Option<&dyn Finisher>,
     a: Assign,
-    prep: &Result<PreparedPart, WireInputError>,
+    prepared: &Result<(PartInput, PreparedPart), WireInputError>,
 ) -> Outcome {
     let failed = |message: String| {
         Outcome::Failed(ShardFailed {
@@ -162,8 +178,8 @@ fn shard_outcome(
             message,
         })
     };
-    let prep = match prep {
-        Ok(p) => p,
+    let (input, prep) = match prepared {
+        Ok((input, prep)) => (input, prep),
         Err(e) => return failed(e.to_string()),
     };
     let t0 = Instant::now();
@@ -177,18 +193,58 @@ fn shard_outcome(
                     f.score *= 0.5;
                 }
             }
+            let micros = t0.elapsed().as_micros() as u64;
+            let finished = match (finisher, &a.finish) {
+                (Some(f), Some(context)) if hit.is_none() => {
+                    finished(f, input, prep, &result, micros, context)
+                }
+                _ => None,
+            };
             Outcome::Done(Box::new(ShardDone {
                 shard_id: a.shard_id,
                 digest: a.digest,
-                micros: t0.elapsed().as_micros() as u64,
+                micros,
                 result,
                 hit,
+                finished,
             }))
         }
         Err(p) => failed(format!(
             "internal error in the enumeration: {}",
             crate::panic_text(p)
         )),
+    }
+}
+
+/// A whole part finished by `f`, or `None` (logged) if it could not be:
+/// the coordinator then finishes it from the result.
+fn finished(
+    f: &dyn Finisher,
+    input: &PartInput,
+    prep: &PreparedPart,
+    result: &PartialResult,
+    micros: u64,
+    context: &[u8],
+) -> Option<Vec<u8>> {
+    // The embedded run numbers a whole part's combinations from 0.
+    let mut whole = result.clone();
+    whole.range = 0..result.counts.combinations;
+    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        f.finish(input, prep, &whole, micros, context)
+    }));
+    match out {
+        Ok(Ok(bytes)) => Some(bytes),
+        Ok(Err(e)) => {
+            warn!("could not finish a part here ({e}): the coordinator will");
+            None
+        }
+        Err(p) => {
+            warn!(
+                "finishing a part panicked ({}): the coordinator will finish it",
+                crate::panic_text(p)
+            );
+            None
+        }
     }
 }
 
@@ -229,7 +285,7 @@ impl Agent {
         if let Some(p) = self.cache.get(&a.digest) {
             return p.clone();
         }
-        let p = Arc::new(PartInput::prepare_wire(&a.digest, a.input.as_deref()));
+        let p = Arc::new(PartInput::prepare_wire_kept(&a.digest, a.input.as_deref()));
         self.summary.parts_prepared += 1;
         // Only cache what the coordinator sent: a missing input is retried.
         if a.input.is_some() {
@@ -280,9 +336,10 @@ impl Agent {
             })
             .collect();
         let fault = self.opts.fault;
+        let finisher = self.opts.finisher.as_deref();
         let outcomes = self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| shard_outcome(fault, a, &prep))
+                .map(|(a, prep)| shard_outcome(fault, finisher, a, &prep))
                 .collect::<Vec<_>>()
         });
         if let Some(Fault::SlowMs(ms)) = fault {

@@ -19,6 +19,7 @@
 
 pub mod agent;
 pub mod exposure;
+pub mod finish;
 pub mod host;
 pub mod iox;
 pub mod log;

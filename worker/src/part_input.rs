@@ -186,11 +186,22 @@ impl PartInput {
         expected: &Digest,
         input: Option<&[u8]>,
     ) -> Result<PreparedPart, WireInputError> {
+        Ok(PartInput::prepare_wire_kept(expected, input)?.1)
+    }
+
+    /// [`PartInput::prepare_wire`], keeping the input read from the wire
+    /// (what a worker finishing whole parts needs besides the prepared part).
+    pub fn prepare_wire_kept(
+        expected: &Digest,
+        input: Option<&[u8]>,
+    ) -> Result<(PartInput, PreparedPart), WireInputError> {
         let bytes = input.ok_or(WireInputError::Missing)?;
         if digest(bytes) != *expected {
             return Err(WireInputError::DigestMismatch);
         }
-        Ok(PartInput::decode(bytes)?.prepare()?)
+        let input = PartInput::decode(bytes)?;
+        let prep = input.prepare()?;
+        Ok((input, prep))
     }
 }
 

@@ -14,7 +14,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 3;
+pub const PROTOCOL_VERSION: u16 = 4;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -122,10 +122,17 @@ pub struct Assign {
     pub range: Range<u64>,
     /// The part's wire input ([`crate::part_input::PartInput::encode`]),
     /// only the first time this worker gets a shard of the part.
+    #[serde(with = "serde_bytes")]
     pub input: Option<Vec<u8>>,
     /// `--good-enough`: stop the shard at its first combination that admits
     /// a fixture scoring this or better ([`ShardDone::hit`]).
     pub good_enough: Option<f64>,
+    /// A whole part the worker is to finish (protocol 4): what the
+    /// coordinator's [`crate::finish::Finisher`] needs besides the part's
+    /// input and result (its place and name in the catalogue), opaque to
+    /// the worker. Workers without a finisher ignore it.
+    #[serde(with = "serde_bytes")]
+    pub finish: Option<Vec<u8>>,
 }
 
 /// A finished shard (of the worker named in the [`Msg::Report`]).
@@ -143,6 +150,12 @@ pub struct ShardDone {
     pub result: PartialResult,
     /// `good_enough`: the combination where the shard stopped.
     pub hit: Option<u64>,
+    /// With [`Assign::finish`]: the part finished by the worker's
+    /// [`crate::finish::Finisher`] (for the coordinator: its messages,
+    /// compressed), or `None` (no finisher, or it failed: the coordinator
+    /// finishes the part from `result`).
+    #[serde(with = "serde_bytes")]
+    pub finished: Option<Vec<u8>>,
 }
 
 /// A shard the worker could not enumerate (a panic, or an input it could
@@ -376,6 +389,7 @@ mod tests {
                 micros: 5,
                 result: pr,
                 hit: Some(4),
+                finished: Some(vec![1, 2, 3]),
             }))],
         };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));

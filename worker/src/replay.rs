@@ -10,8 +10,10 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-/// What names a shard's result: the part, the range, `good_enough` (bits).
-type Key = (Digest, u64, u64, Option<u64>);
+/// What names a shard's result: the part, the range, `good_enough` (bits),
+/// and what finishing it needs (a part listed twice is finished under each
+/// of its places).
+type Key = (Digest, u64, u64, Option<u64>, Option<Vec<u8>>);
 
 fn key(a: &Assign) -> Key {
     (
@@ -19,6 +21,7 @@ fn key(a: &Assign) -> Key {
         a.range.start,
         a.range.end,
         a.good_enough.map(f64::to_bits),
+        a.finish.clone(),
     )
 }
 

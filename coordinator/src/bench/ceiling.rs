@@ -17,6 +17,7 @@ use crate::cluster::cpu_time::{monotonic_micros, process_micros, thread_micros};
 use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
 use crate::job::SearchOptions;
 use crate::run::backend::Backend;
+use crate::run::finish::RunFinisher;
 use crate::run::{run_catalog, RunOptions};
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
@@ -117,6 +118,7 @@ fn start_workers(
                     transport,
                     name: Some(format!("replay-{i}")),
                     replay: Some(replay.clone()),
+                    finisher: Some(Arc::new(RunFinisher)),
                     ..WorkerOptions::default()
                 };
                 std::thread::Builder::new()

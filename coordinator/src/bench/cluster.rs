@@ -161,6 +161,7 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
             micros: 1,
             result,
             hit: None,
+            finished: None,
         }))],
     })?)
 }

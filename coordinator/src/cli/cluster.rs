@@ -300,6 +300,7 @@ pub fn worker_main(a: &WorkerArgs) -> Result<()> {
         protocol_version: a.protocol_version,
         fault: a.fault,
         replay: None,
+        finisher: Some(std::sync::Arc::new(crate::run::finish::RunFinisher)),
     };
     match run_worker(opts) {
         Ok(_) => Ok(()),

@@ -32,6 +32,15 @@ pub struct MergedPart {
     pub stopped_at: Option<u64>,
 }
 
+/// A part as the workers returned it.
+pub enum Returned {
+    /// Its merged result, for the coordinator to finish.
+    Merged(Box<MergedPart>),
+    /// Finished by its worker ([`fixplan_worker::finish`]): the bytes of
+    /// the caller's finisher, to be copied.
+    Finished(Vec<u8>),
+}
+
 impl MergedPart {
     /// Takes the coordinator's prepared part if it has one, else prepares
     /// it here (parts sent whole are prepared only when asked for).
@@ -91,11 +100,12 @@ impl Distributed {
     }
 
     /// Every part finished by now (at least one: waits for it), prepared
-    /// here in parallel if the run did not need to: preparing a part sent
-    /// whole is most of the coordinator's own work on it, so on a host with
-    /// several cores the coordinator keeps up with more workers. `None` once
-    /// all parts are out (the run is ended then).
-    pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<MergedPart, PartError>)>> {
+    /// here in parallel if the run did not need to and its worker did not
+    /// finish it: preparing a part sent whole is most of the coordinator's
+    /// own work on it, so on a host with several cores the coordinator
+    /// keeps up with more workers. `None` once all parts are out (the run
+    /// is ended then).
+    pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<Returned, PartError>)>> {
         let first = self.next_delivery()?;
         let more = self.ready.len().min(self.total - self.delivered);
         self.delivered += more;
@@ -103,7 +113,11 @@ impl Distributed {
             .chain(self.ready.drain(..more))
             .collect();
         Some(map_batch(batch, |(i, r)| {
-            (i, r.and_then(MergedPart::prepared))
+            let r = r.and_then(|mut m| match m.finished.take() {
+                Some(bytes) => Ok(Returned::Finished(bytes)),
+                None => MergedPart::prepared(m).map(|m| Returned::Merged(Box::new(m))),
+            });
+            (i, r)
         }))
     }
 
@@ -158,6 +172,18 @@ pub fn run_distributed(
     parts: Vec<PartInput>,
     opts: ClusterOptions,
 ) -> Result<Distributed, ClusterError> {
+    run_distributed_finishing(parts.into_iter().map(|p| (p, None)).collect(), opts)
+}
+
+/// [`run_distributed`] where the parts that go out whole come with what
+/// their worker needs to finish them ([`fixplan_worker::finish`]; `None`:
+/// the coordinator finishes the part); such parts come back as
+/// [`Returned::Finished`] from [`Distributed::next_parts`], unless their
+/// result was re-derived here or their worker could not finish them.
+pub fn run_distributed_finishing(
+    parts: Vec<(PartInput, Option<Vec<u8>>)>,
+    opts: ClusterOptions,
+) -> Result<Distributed, ClusterError> {
     iox::quiet_logs();
     let total = parts.len();
     let (tx, rx) = channel::<Vec<Delivery>>();
@@ -196,12 +222,12 @@ pub fn run_distributed(
 /// are prepared, for their exact combination count. Parts that need no
 /// worker (unpreparable, or without combinations) go to `tx` at once.
 fn plan(
-    parts: Vec<PartInput>,
+    parts: Vec<(PartInput, Option<Vec<u8>>)>,
     opts: &ClusterOptions,
     slots: usize,
     tx: &Sender<Vec<Delivery>>,
 ) -> Result<(Vec<PlannedPart>, u64), ClusterError> {
-    let est: Vec<(u64, usize)> = parts.iter().map(shards::estimate).collect();
+    let est: Vec<(u64, usize)> = parts.iter().map(|p| shards::estimate(&p.0)).collect();
     let target = shards::target_cost(&est, slots);
     let whole: Vec<bool> = est
         .iter()
@@ -210,14 +236,14 @@ fn plan(
     let encoded: Vec<_> = parts
         .par_iter()
         .zip(whole.par_iter())
-        .map(|(p, &whole)| ((!whole).then(|| p.prepare()), p.encode()))
+        .map(|((p, _), &whole)| ((!whole).then(|| p.prepare()), p.encode()))
         .collect();
     let mut planned = Vec::new();
-    for (i, (source, (prep, input))) in parts.into_iter().zip(encoded).enumerate() {
+    for (i, ((source, finish), (prep, input))) in parts.into_iter().zip(encoded).enumerate() {
         let input = input.map_err(|e| ClusterError::Input(i, e))?;
         let source = Arc::new(source);
-        let (prep, ranges, segments) = match prep {
-            None => (None, vec![WHOLE], est[i].1),
+        let (prep, ranges, segments, finish) = match prep {
+            None => (None, vec![WHOLE], est[i].1, finish),
             Some(Err(e)) => {
                 let _ = tx.send(vec![(i, Err(e.into()))]);
                 continue;
@@ -232,7 +258,7 @@ fn plan(
                     .shard_size
                     .unwrap_or_else(|| shards::shard_size(target, count, n))
                     .max(1);
-                (Some(Arc::new(prep)), shards::ranges(count, size), n)
+                (Some(Arc::new(prep)), shards::ranges(count, size), n, None)
             }
         };
         planned.push(PlannedPart {
@@ -242,6 +268,7 @@ fn plan(
             input,
             ranges,
             segments,
+            finish,
         });
     }
     Ok((planned, shards::batch_cost(&est, slots)))
@@ -257,6 +284,7 @@ fn without_combinations(prep: PreparedPart, source: Arc<PartInput>) -> MergedSha
         input: source,
         merged,
         stopped_at: None,
+        finished: None,
     }
 }
 

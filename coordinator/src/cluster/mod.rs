@@ -25,7 +25,9 @@ pub mod runtime;
 pub mod scheduler;
 pub mod verify;
 
-pub use distributed::{run_distributed, Distributed, MergedPart};
+pub use distributed::{
+    run_distributed, run_distributed_finishing, Distributed, MergedPart, Returned,
+};
 pub use fixplan_worker::part_input::PartInput;
 pub use fixplan_worker::protocol::TransportChoice;
 pub use options::{ClusterError, ClusterOptions};

@@ -1,13 +1,16 @@
-//! Writing a results file: MCAP, zstd chunks, summary and indexes. A chunk
-//! holds whole parts (three messages each: part, fixtures, scene), a few
-//! of them ([`CHUNK_BYTES`], [`CHUNK_PARTS`]), and is flushed when closed,
-//! so a run killed at any moment leaves a file whose complete chunks hold
-//! whole parts; `--resume` reads them back.
+//! Writing a results file: MCAP, one zstd chunk per part (three messages:
+//! part, fixtures, scene), summary and indexes. Chunks come finished
+//! ([`PartChunk`]: made by a worker, or by the solving thread of an
+//! embedded run), so writing a part is a copy. The file is flushed every
+//! few parts ([`FLUSH_BYTES`], [`FLUSH_PARTS`]), so a run killed at any
+//! moment leaves a file whose complete chunks hold whole parts;
+//! `--resume` reads them back.
 
+use super::chunk::{PartChunk, CHANNEL_FIXTURES, CHANNEL_PART, CHANNEL_RUN, CHANNEL_SCENE};
+use super::mcap_file::McapFile;
 use super::messages::*;
 use super::schemas::{fixtures_schema, part_schema, run_schema, scene_schema};
-use mcap::records::{MessageHeader, Metadata};
-use mcap::{Compression, WriteOptions, Writer};
+use mcap::records::{Channel, Metadata};
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
@@ -15,9 +18,10 @@ use std::io::BufWriter;
 /// Why a results file could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum OutError {
-    /// The MCAP writer failed (usually the disk).
-    #[error("MCAP: {0}")]
-    Mcap(#[from] mcap::McapError),
+    /// Writing failed (usually the disk), or a chunk could not be
+    /// compressed.
+    #[error("writing the results file: {0}")]
+    Io(#[from] std::io::Error),
     /// A message could not be serialised.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),
@@ -36,41 +40,41 @@ pub struct PartMessages {
     pub scene: Vec<u8>,
 }
 
-/// A chunk is closed once its parts' fixtures and scene messages hold this
-/// many bytes. A chunk per part made zstd's per-chunk start (tables,
-/// headers, indexes) and the flush most of the coordinator's cost of
-/// writing; a few parts together also compress better (their scenes share
-/// the plate). Counted on those two channels only, whose bytes do not
-/// depend on timing, so chunks close at the same parts in every run.
-pub const CHUNK_BYTES: usize = 256 * 1024;
-
-/// At most this many parts in a chunk: what a run killed at the wrong
-/// moment has to redo at most, when parts are small.
-pub const CHUNK_PARTS: usize = 16;
-
-/// A results file being written, whole parts per flushed chunk, so a run
-/// killed at any moment leaves whole parts behind.
-pub struct ResultsWriter {
-    w: Writer<BufWriter<File>>,
-    run: u16,
-    part: u16,
-    fixtures: u16,
-    scene: u16,
-    /// Parts in the open chunk, and their fixtures and scene bytes.
-    open: (usize, usize),
+impl PartMessages {
+    /// The part's chunk (compressed here: on the solving thread, or the
+    /// worker, never the writer's).
+    pub fn chunk(&self) -> std::io::Result<PartChunk> {
+        let seq = self.index as u32;
+        PartChunk::encode(
+            self.index as u64 * NS_PER_PART,
+            &[
+                (CHANNEL_PART, seq, &self.part),
+                (CHANNEL_FIXTURES, seq, &self.fixtures),
+                (CHANNEL_SCENE, seq, &self.scene),
+            ],
+        )
+    }
 }
 
-/// The write options of every results file, embedded or distributed
-/// (deterministic: single-threaded zstd, chunks closed only by
-/// [`ResultsWriter`] at part boundaries).
-pub fn write_options() -> WriteOptions {
-    WriteOptions::new()
-        .compression(Some(Compression::Zstd))
-        .chunk_size(None)
-        .compression_threads(0)
-        .compression_level(1)
-        .profile("")
-        .library(format!("fixplan {}", env!("CARGO_PKG_VERSION")))
+/// The file is flushed once this many compressed bytes were written since
+/// the last flush...
+pub const FLUSH_BYTES: usize = 256 * 1024;
+
+/// ... or this many parts: what a run killed at the wrong moment has to
+/// redo at most, when parts are small.
+pub const FLUSH_PARTS: usize = 16;
+
+/// A results file being written, a chunk per part, so a run killed at
+/// any moment leaves whole parts behind.
+pub struct ResultsWriter {
+    w: McapFile<BufWriter<File>>,
+    /// Parts and bytes written since the last flush.
+    unflushed: (usize, usize),
+}
+
+/// The library string of every results file.
+fn library() -> String {
+    format!("fixplan {}", env!("CARGO_PKG_VERSION"))
 }
 
 /// The [`METADATA_RUN`] record of `run`: tool, version, kit name, kit and
@@ -106,71 +110,59 @@ impl ResultsWriter {
     /// Starts a file: schemas, channels, the `/fixplan/run` message and the
     /// [`METADATA_RUN`] metadata record.
     pub fn create(file: File, run: &RunMsg) -> Result<ResultsWriter, OutError> {
-        let mut w = write_options().create(BufWriter::new(file))?;
-        let none = BTreeMap::new();
-        let chan = |w: &mut Writer<_>, name: &str, schema: Vec<u8>, topic: &str| {
-            let s = w.add_schema(name, "jsonschema", &schema)?;
-            w.add_channel(s, topic, "json", &none)
-        };
-        let run_ch = chan(&mut w, SCHEMA_RUN, run_schema(), TOPIC_RUN)?;
-        let part = chan(&mut w, SCHEMA_PART, part_schema(), TOPIC_PART)?;
-        let fixtures = chan(&mut w, SCHEMA_FIXTURES, fixtures_schema(), TOPIC_FIXTURES)?;
-        let scene = chan(&mut w, SCHEMA_SCENE, scene_schema(), TOPIC_SCENE)?;
-        let mut out = ResultsWriter {
-            w,
-            run: run_ch,
-            part,
-            fixtures,
-            scene,
-            open: (0, 0),
-        };
+        let mut w = McapFile::new(BufWriter::with_capacity(FLUSH_BYTES, file), "", &library())?;
+        let channels = [
+            (CHANNEL_RUN, SCHEMA_RUN, run_schema(), TOPIC_RUN),
+            (CHANNEL_PART, SCHEMA_PART, part_schema(), TOPIC_PART),
+            (
+                CHANNEL_FIXTURES,
+                SCHEMA_FIXTURES,
+                fixtures_schema(),
+                TOPIC_FIXTURES,
+            ),
+            (CHANNEL_SCENE, SCHEMA_SCENE, scene_schema(), TOPIC_SCENE),
+        ];
+        for (id, name, schema, topic) in channels {
+            w.schema(id, name, "jsonschema", &schema)?;
+            w.channel(Channel {
+                id,
+                schema_id: id,
+                topic: topic.into(),
+                message_encoding: "json".into(),
+                metadata: BTreeMap::new(),
+            })?;
+        }
         let data = serde_json::to_vec(run)?;
-        out.message(out.run, 0, 0, &data)?;
-        out.w.flush()?;
-        // After the flush: no chunk is open, so the chunks stay as they were.
-        out.w.write_metadata(&run_metadata(run)?)?;
-        Ok(out)
+        w.chunk(&PartChunk::encode(0, &[(CHANNEL_RUN, 0, &data)])?)?;
+        w.metadata(&run_metadata(run)?)?;
+        w.flush()?;
+        Ok(ResultsWriter {
+            w,
+            unflushed: (0, 0),
+        })
     }
 
-    fn message(
-        &mut self,
-        channel: u16,
-        seq: u32,
-        log_time: u64,
-        data: &[u8],
-    ) -> Result<(), OutError> {
-        let header = MessageHeader {
-            channel_id: channel,
-            sequence: seq,
-            log_time,
-            publish_time: log_time,
-        };
-        self.w.write_to_known_channel(&header, data)?;
-        Ok(())
-    }
-
-    /// Writes one part's messages into the open chunk, and closes and
-    /// flushes the chunk once it is full ([`CHUNK_BYTES`], [`CHUNK_PARTS`]).
+    /// Writes one part's messages (compressing them here: resumed and
+    /// merged files; a run writes finished chunks, [`Self::write_chunk`]).
     pub fn write_part(&mut self, m: &PartMessages) -> Result<(), OutError> {
-        let t = m.index as u64 * NS_PER_PART;
-        let seq = m.index as u32;
-        self.message(self.part, seq, t, &m.part)?;
-        self.message(self.fixtures, seq, t, &m.fixtures)?;
-        self.message(self.scene, seq, t, &m.scene)?;
-        let (parts, bytes) = self.open;
-        self.open = (parts + 1, bytes + m.fixtures.len() + m.scene.len());
-        if self.open.0 >= CHUNK_PARTS || self.open.1 >= CHUNK_BYTES {
+        self.write_chunk(&m.chunk()?)
+    }
+
+    /// Writes one part's chunk, and flushes the file every few parts.
+    pub fn write_chunk(&mut self, c: &PartChunk) -> Result<(), OutError> {
+        self.w.chunk(c)?;
+        let (parts, bytes) = self.unflushed;
+        self.unflushed = (parts + 1, bytes + c.compressed.len());
+        if self.unflushed.0 >= FLUSH_PARTS || self.unflushed.1 >= FLUSH_BYTES {
             self.w.flush()?;
-            self.open = (0, 0);
+            self.unflushed = (0, 0);
         }
         Ok(())
     }
 
     /// Writes the summary and indexes; the file is complete after this.
-    pub fn finish(mut self) -> Result<File, OutError> {
-        self.w.finish()?;
-        let buf = self.w.into_inner();
-        buf.into_inner()
-            .map_err(|e| OutError::Mcap(mcap::McapError::Io(e.into_error())))
+    pub fn finish(self) -> Result<File, OutError> {
+        let buf = self.w.finish()?;
+        buf.into_inner().map_err(|e| OutError::Io(e.into_error()))
     }
 }

@@ -3,7 +3,7 @@
 
 use crate::cluster::ClusterOptions;
 use crate::job::solve::Preparation;
-use crate::job::JobContext;
+use crate::job::{JobContext, Solved};
 use fixplan_catalog::CatalogPart;
 
 /// Where the enumeration runs.
@@ -33,6 +33,21 @@ impl Backend {
         }
     }
 }
+
+/// What a backend hands back for a job.
+#[derive(Debug)]
+pub enum PartDone {
+    /// Solved here or merged from the workers' shards: the caller
+    /// finishes it.
+    Solved(Solved),
+    /// Finished by a worker of the cluster: the bytes of the run's
+    /// finisher ([`super::finish`]), to be copied.
+    Finished(Vec<u8>),
+}
+
+/// What a worker needs to finish job `i` itself ([`fixplan_worker::finish`]);
+/// `None`: the caller finishes it.
+pub type RemoteFinish<'a> = dyn Fn(usize) -> Option<Vec<u8>> + Sync + 'a;
 
 /// One part to solve: the catalogue entry, the run inputs it is solved
 /// with, and how to prepare it.

@@ -2,10 +2,11 @@
 //! per grid step, its steps come back merged and become the same result as
 //! the embedded search's; unreadable parts never leave this process.
 
-use super::backend::PartJob;
+use super::backend::{PartDone, PartJob, RemoteFinish};
 use crate::cluster::distributed::map_batch;
 use crate::cluster::{
-    run_distributed, ClusterError, ClusterOptions, Distributed, MergedPart, PartError,
+    run_distributed_finishing, ClusterError, ClusterOptions, Distributed, MergedPart, PartError,
+    Returned,
 };
 use crate::job::search::step_summary;
 use crate::job::solve::Preparation;
@@ -35,8 +36,14 @@ fn steps_of(job: &PartJob) -> Vec<u32> {
 }
 
 /// Starts the coordinator for `jobs` (all of one search: the first job's
-/// `--good-enough` is the run's).
-pub fn start(jobs: &[PartJob], opts: &ClusterOptions) -> Result<ClusterJobs, ClusterError> {
+/// `--good-enough` is the run's). Jobs of one plain enumeration (no grid
+/// steps, no `--good-enough`) go with `remote(i)`, for their worker to
+/// finish them.
+pub fn start(
+    jobs: &[PartJob],
+    opts: &ClusterOptions,
+    remote: Option<&RemoteFinish>,
+) -> Result<ClusterJobs, ClusterError> {
     let mut inputs = Vec::new();
     let mut map = Vec::new();
     let mut direct = Vec::new();
@@ -45,21 +52,24 @@ pub fn start(jobs: &[PartJob], opts: &ClusterOptions) -> Result<ClusterJobs, Clu
             direct.push(i);
             continue;
         };
-        for (k, step) in steps_of(job).into_iter().enumerate() {
+        let steps = steps_of(job);
+        let plain = steps.len() == 1 && job.ctx.search.good_enough.is_none();
+        for (k, step) in steps.into_iter().enumerate() {
             let mut params = part_params(job.ctx, job.part);
             params.grid_step = step;
-            inputs.push(PartInput {
+            let input = PartInput {
                 part: part.clone(),
                 kit: job.ctx.kit.clone(),
                 params,
                 units: job.ctx.units,
-            });
+            };
+            inputs.push((input, remote.filter(|_| plain).and_then(|r| r(i))));
             map.push((i, k));
         }
     }
     let mut opts = opts.clone();
     opts.good_enough = jobs.first().and_then(|j| j.ctx.search.good_enough);
-    let dist = run_distributed(inputs, opts)?;
+    let dist = run_distributed_finishing(inputs, opts)?;
     Ok(ClusterJobs { dist, map, direct })
 }
 
@@ -131,10 +141,11 @@ impl ClusterJobs {
     /// back together are prepared, reported and handed over in parallel
     /// (`send` makes their messages): the coordinator's work per part is
     /// what limits how many workers it serves.
-    pub fn deliver(mut self, jobs: &[PartJob], send: &(dyn Fn(usize, Solved) -> bool + Sync)) {
+    pub fn deliver(mut self, jobs: &[PartJob], send: &(dyn Fn(usize, PartDone) -> bool + Sync)) {
         for &i in &self.direct {
             let job = &jobs[i];
-            if !send(i, solve_part(job.ctx, job.part, Preparation::Fresh)) {
+            let solved = solve_part(job.ctx, job.part, Preparation::Fresh);
+            if !send(i, PartDone::Solved(solved)) {
                 return;
             }
         }
@@ -148,7 +159,22 @@ impl ClusterJobs {
             let ms = (now - t_prev).as_secs_f64() * 1e3 / parts.len() as f64;
             t_prev = now;
             let map = &self.map;
-            let outs = map_batch(parts, |(n, r)| {
+            // Parts their workers finished are handed over as they are.
+            let mut finished = Vec::new();
+            let mut merged = Vec::new();
+            for (n, r) in parts {
+                match r {
+                    Ok(Returned::Finished(bytes)) => finished.push((map[n].0, bytes)),
+                    Ok(Returned::Merged(m)) => merged.push((n, Ok(*m))),
+                    Err(e) => merged.push((n, Err(e))),
+                }
+            }
+            for (i, bytes) in finished {
+                if !send(i, PartDone::Finished(bytes)) {
+                    return self.end();
+                }
+            }
+            let outs = map_batch(merged, |(n, r)| {
                 let (i, k) = map[n];
                 (i, k, step_out(&jobs[i], r, ms))
             });
@@ -170,12 +196,17 @@ impl ClusterJobs {
                 .collect();
             let taken = map_batch(done, |(i, done)| {
                 let ms = done.iter().map(|s| s.2).sum();
-                send(i, from_steps(&jobs[i], done, ms))
+                send(i, PartDone::Solved(from_steps(&jobs[i], done, ms)))
             });
             if !taken.into_iter().all(|t| t) {
                 break;
             }
         }
+        self.end();
+    }
+
+    /// Ends the run and logs its figures.
+    fn end(mut self) {
         let s = self.dist.finish();
         tracing::info!(
             role = "coordinator",

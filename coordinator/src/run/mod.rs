@@ -12,6 +12,7 @@
 
 pub mod backend;
 pub mod cluster_jobs;
+pub mod finish;
 pub mod ordered;
 pub mod outcome;
 pub mod progress;
@@ -20,14 +21,14 @@ pub mod slice;
 pub mod solve;
 
 use crate::job::solve::Preparation;
-use crate::job::{JobContext, SearchOptions};
+use crate::job::{solve_part, JobContext, SearchOptions};
 use crate::output::messages::{CatalogInfo, RunMsg};
 use anyhow::{Context, Result};
-use backend::{Backend, PartJob};
+use backend::{Backend, PartDone, PartJob};
 use fixplan_catalog::{load_catalog_with, load_kit, ArcMode, Catalog, KitSpec, LoadOptions};
-use outcome::{part_outcome, PartOutcome};
+use outcome::{part_outcome, OutcomeError, PartOutcome};
 use progress::{progress_line, summary_table, Progress, Totals};
-use solve::solve_in_order;
+use solve::solve_in_order_finishing;
 use std::path::{Path, PathBuf};
 
 /// Everything a catalogue run needs besides the catalogue and the kit.
@@ -161,14 +162,31 @@ pub fn run_parts(
         })
         .collect();
     let partial = resume::partial_path(&opts.output);
-    let solved = solve_in_order(
+    let remote = |i: usize| finish::context(start + i, jobs[i].part);
+    let solved = solve_in_order_finishing(
         &jobs,
         &opts.backend,
-        |i, solved| part_outcome(&ctx, start + i, jobs[i].part, solved),
-        |_, out: Result<PartOutcome, serde_json::Error>| {
+        Some(&remote),
+        |i, done| match done {
+            PartDone::Solved(s) => part_outcome(&ctx, start + i, jobs[i].part, s),
+            PartDone::Finished(bytes) => {
+                finish::outcome(&bytes, start + i, jobs[i].part).or_else(|e| {
+                    // Never from a fixplan worker of this version: solved
+                    // here rather than lost.
+                    tracing::warn!(
+                        role = "coordinator",
+                        "{}: a worker's finished part is unusable ({e}); solving it here",
+                        jobs[i].part.id
+                    );
+                    let s = solve_part(&ctx, jobs[i].part, Preparation::Fresh);
+                    part_outcome(&ctx, start + i, jobs[i].part, s)
+                })
+            }
+        },
+        |_, out: Result<PartOutcome, OutcomeError>| {
             let o = out.with_context(|| format!("writing {}", partial.display()))?;
             writer
-                .write_part(&o.messages)
+                .write_chunk(&o.chunk)
                 .with_context(|| format!("writing {}", partial.display()))?;
             if let Some(line) = progress_line(&o) {
                 progress.log(&line);

@@ -1,19 +1,32 @@
 //! What a solved part becomes in the results file: its three messages
-//! (part, fixtures, scene) and the summary the progress display shows.
+//! (part, fixtures, scene) in one compressed chunk, and the summary the
+//! progress display shows.
 
 use crate::job::{JobContext, Solved};
 use crate::output::messages::{FixturesMsg, PartMsg, STOPPED_GOOD_ENOUGH};
-use crate::output::PartMessages;
+use crate::output::{PartChunk, PartMessages};
 use crate::view::scene::{scene_json, PartScene};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::Status;
 
-/// A part ready to be written: its serialised messages and what the
-/// progress display and summary count.
+/// Why a part's messages could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum OutcomeError {
+    /// A message could not be serialised.
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// Its chunk could not be compressed.
+    #[error("compressing: {0}")]
+    Compress(#[from] std::io::Error),
+}
+
+/// A part ready to be written: its chunk and what the progress display
+/// and summary count.
 #[derive(Debug, Clone)]
 pub struct PartOutcome {
-    /// The part's messages, serialised once, written as they are.
-    pub messages: PartMessages,
+    /// The part's messages, serialised and compressed once, copied into
+    /// the file.
+    pub chunk: PartChunk,
     /// Catalogue id.
     pub id: String,
     /// `ok`, `no_fixture` or `invalid`.
@@ -37,7 +50,7 @@ pub fn part_outcome(
     index: usize,
     cp: &CatalogPart,
     solved: Solved,
-) -> Result<PartOutcome, serde_json::Error> {
+) -> Result<PartOutcome, OutcomeError> {
     let Solved {
         result,
         timing,
@@ -92,13 +105,14 @@ pub fn part_outcome(
         part: cp.id.clone(),
         result,
     })?;
+    let messages = PartMessages {
+        index,
+        part,
+        fixtures,
+        scene,
+    };
     Ok(PartOutcome {
-        messages: PartMessages {
-            index,
-            part,
-            fixtures,
-            scene,
-        },
+        chunk: messages.chunk()?,
         id: cp.id.clone(),
         status,
         error,

@@ -4,10 +4,11 @@
 //! `fixplan coordinator` and `fixplan study` all go through
 //! [`solve_in_order`].
 
-use super::backend::{Backend, PartJob};
+use super::backend::{Backend, PartDone, PartJob, RemoteFinish};
 use super::ordered::Reorder;
 use crate::job::{solve_part, Solved};
 use anyhow::{Context, Result};
+use fixplan_core::SolveResult;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{mpsc, Condvar, Mutex};
 
@@ -20,6 +21,32 @@ pub fn solve_in_order<T: Send>(
     jobs: &[PartJob],
     backend: &Backend,
     finish: impl Fn(usize, Solved) -> T + Sync,
+    deliver: impl FnMut(usize, T) -> Result<()>,
+) -> Result<()> {
+    let finish = |i, done| match done {
+        PartDone::Solved(s) => finish(i, s),
+        // Never: no job was given a remote finish.
+        PartDone::Finished(_) => finish(
+            i,
+            Solved {
+                result: SolveResult::invalid(format!("job {i}: finished by a worker unasked")),
+                timing: Default::default(),
+                search: Default::default(),
+            },
+        ),
+    };
+    solve_in_order_finishing(jobs, backend, None, finish, deliver)
+}
+
+/// [`solve_in_order`] where the cluster's workers may finish jobs
+/// themselves: `remote(i)` is what a worker needs to finish job `i`, and
+/// such jobs come to `finish` as [`PartDone::Finished`] (not always: a
+/// job whose result was re-derived here comes solved).
+pub fn solve_in_order_finishing<T: Send>(
+    jobs: &[PartJob],
+    backend: &Backend,
+    remote: Option<&RemoteFinish>,
+    finish: impl Fn(usize, PartDone) -> T + Sync,
     mut deliver: impl FnMut(usize, T) -> Result<()>,
 ) -> Result<()> {
     let (tx, rx) = mpsc::channel::<(usize, T)>();
@@ -27,7 +54,7 @@ pub fn solve_in_order<T: Send>(
     // Parts delivered so far, for the embedded drivers' window.
     let gate = (Mutex::new(0usize), Condvar::new());
     let (cluster, drivers) = match backend {
-        Backend::Cluster(c) => (Some(super::cluster_jobs::start(jobs, c)?), None),
+        Backend::Cluster(c) => (Some(super::cluster_jobs::start(jobs, c, remote)?), None),
         Backend::Embedded { threads } => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads.unwrap_or_else(fixplan_worker::host::cores))
@@ -123,7 +150,7 @@ impl Drivers<'_, '_> {
     fn run<T: Send>(
         &self,
         tx: &mpsc::Sender<(usize, T)>,
-        finish: &(impl Fn(usize, Solved) -> T + Sync),
+        finish: &(impl Fn(usize, PartDone) -> T + Sync),
     ) {
         loop {
             let i = self.next.fetch_add(1, Ordering::SeqCst);
@@ -133,7 +160,7 @@ impl Drivers<'_, '_> {
             let job = &self.jobs[i];
             let out = self.pool.install(|| {
                 let solved = solve_part(job.ctx, job.part, job.preparation);
-                finish(i, solved)
+                finish(i, PartDone::Solved(solved))
             });
             if tx.send((i, out)).is_err() {
                 break;

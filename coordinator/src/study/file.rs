@@ -1,6 +1,6 @@
 //! The study as an MCAP file: `/fixplan/study` (one message per kit) and
-//! `/fixplan/study_summary`, JSON with their schemas, with the same writer
-//! options and message clock as a results file.
+//! `/fixplan/study_summary`, JSON with their schemas, with the message clock of a results file, written by the `mcap` crate's
+//! writer (a study is one small file, written at the end).
 
 use super::messages::{
     study_schema, summary_schema, StudyKitMsg, StudyReport, StudySummaryMsg, SCHEMA_STUDY,
@@ -12,11 +12,22 @@ use mcap::records::MessageHeader;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+/// Deterministic options: single-threaded zstd, one chunk.
+fn write_options() -> mcap::WriteOptions {
+    mcap::WriteOptions::new()
+        .compression(Some(mcap::Compression::Zstd))
+        .chunk_size(None)
+        .compression_threads(0)
+        .compression_level(1)
+        .profile("")
+        .library(format!("fixplan {}", env!("CARGO_PKG_VERSION")))
+}
+
 /// Writes the study to `path`, for Foxglove or for [`read_mcap`].
 pub fn write_mcap(path: &Path, rep: &StudyReport) -> Result<()> {
     let file = std::fs::File::create(path)
         .with_context(|| format!("{}: cannot create", path.display()))?;
-    let mut w = crate::output::writer::write_options().create(std::io::BufWriter::new(file))?;
+    let mut w = write_options().create(std::io::BufWriter::new(file))?;
     let none = BTreeMap::new();
     let s1 = w.add_schema(
         SCHEMA_STUDY,

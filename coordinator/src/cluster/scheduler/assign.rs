@@ -2,7 +2,7 @@
 //! reported (and so holds none any more), sized so that the workers run
 //! out of work together.
 
-use super::state::{requeue, Settings, ShardStatus, State, ROLE};
+use super::state::{requeue, Settings, ShardStatus, State, ROLE, WHOLE};
 use fixplan_worker::protocol::{Assign, Next};
 use std::time::Instant;
 use tracing::info;
@@ -91,6 +91,11 @@ fn lease_batch(st: &mut State, s: &Settings, worker: &str, limit: u64) -> Option
             range: sh.range.clone(),
             input,
             good_enough: s.good_enough,
+            finish: part
+                .finish
+                .as_ref()
+                .filter(|_| sh.range == WHOLE)
+                .map(|f| f.as_ref().clone()),
         });
     }
     Some(batch)

@@ -44,6 +44,12 @@ pub(super) fn take_result(
         }
     };
     accept(st, &r, worker, checked, deep);
+    let mut r = r;
+    if deep {
+        // What was re-derived is the result, not the worker's messages of
+        // it: the coordinator finishes the part itself.
+        r.finished = None;
+    }
     hold(st, p, r, &shard_range);
     Ok(())
 }
@@ -151,6 +157,7 @@ fn hold(st: &mut State, p: usize, r: ShardDone, shard_range: &Range<u64>) {
         shard: r.shard_id,
         hit: r.hit,
         result,
+        finished: r.finished,
     });
     if !open && !part.closed {
         close(st, p);
@@ -176,7 +183,15 @@ fn close(st: &mut State, p: usize) {
     let stop = part.stop;
     // Shards past the stop: results that came in are left out, the others
     // are never handed out (or are duplicates later).
-    let kept = std::mem::take(&mut part.partials)
+    let partials = std::mem::take(&mut part.partials);
+    // Finished by its worker: a whole part's one shard, not stopped.
+    let finished = match partials.as_slice() {
+        [one] if stop.is_none() && part.shard_ids.end - part.shard_ids.start == 1 => {
+            one.finished.clone()
+        }
+        _ => None,
+    };
+    let kept = partials
         .into_iter()
         .map(|h| h.result)
         .filter(|r| stop.is_none_or(|s| r.range.start <= s))
@@ -186,6 +201,7 @@ fn close(st: &mut State, p: usize) {
         input: part.source.clone(),
         merged: merge(part.top_k(), kept),
         stopped_at: stop,
+        finished,
     };
     st.open_parts -= 1;
     for id in part.shard_ids.clone() {

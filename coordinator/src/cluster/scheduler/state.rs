@@ -35,6 +35,9 @@ pub(crate) struct PlannedPart {
     pub ranges: Vec<Range<u64>>,
     /// Its segment count (estimated for a whole part), for shard costs.
     pub segments: usize,
+    /// For a part that goes out whole: what a worker needs to finish it
+    /// ([`fixplan_worker::finish`]), if the caller wants it finished there.
+    pub finish: Option<Vec<u8>>,
 }
 
 /// A part's shard results merged, as the scheduler hands it over. The
@@ -51,6 +54,10 @@ pub(crate) struct MergedShards {
     pub merged: PartialResult,
     /// `--good-enough`: the combination where the part stopped.
     pub stopped_at: Option<u64>,
+    /// The part as the worker finished it ([`fixplan_worker::finish`]),
+    /// unless the coordinator must finish it (a result it re-derived, or a
+    /// worker that did not).
+    pub finished: Option<Vec<u8>>,
 }
 
 /// A finished part under its index in the caller's list.
@@ -76,6 +83,8 @@ pub(super) struct PartSlot {
     pub(super) top: Vec<Fixture>,
     /// Delivered (merged or failed): later results are duplicates.
     pub(super) closed: bool,
+    /// [`PlannedPart::finish`].
+    pub(super) finish: Option<Arc<Vec<u8>>>,
 }
 
 impl PartSlot {
@@ -121,6 +130,8 @@ pub(super) struct ShardResult {
     pub(super) shard: u64,
     pub(super) hit: Option<u64>,
     pub(super) result: PartialResult,
+    /// [`MergedShards::finished`], of a whole part's one shard.
+    pub(super) finished: Option<Vec<u8>>,
 }
 
 pub(super) struct WorkerSlot {
@@ -275,6 +286,7 @@ impl State {
             partials: Vec::new(),
             top: Vec::new(),
             closed: false,
+            finish: part.finish.map(Arc::new),
         });
         self.part_index.push(part.index);
         self.open_parts += 1;

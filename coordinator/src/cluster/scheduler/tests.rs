@@ -11,6 +11,22 @@ use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
 use std::time::Duration;
 
+/// A run's settings for a test: zenoh, one worker needed.
+fn settings(verify: VerifyPolicy, batch_cost: u64) -> Settings {
+    Settings {
+        run_id: "run".into(),
+        host_id: "host".into(),
+        transport: TransportChoice::Zenoh,
+        iox: None,
+        iox_clients: 1,
+        lease: Duration::from_secs(300),
+        min_workers: 1,
+        verify,
+        good_enough: None,
+        batch_cost,
+    }
+}
+
 fn core(parts: usize, shard: u64, verify: VerifyPolicy) -> Scheduler {
     let (c, rx) = core_rx(parts, shard, verify);
     // Keep the channel open for parts that do close.
@@ -38,21 +54,11 @@ fn core_rx(parts: usize, shard: u64, verify: VerifyPolicy) -> (Scheduler, Receiv
                 prep: Some(Arc::new(prep)),
                 source: Arc::new(source),
                 input: vec![i as u8],
+                finish: None,
             }
         })
         .collect();
-    let settings = Settings {
-        run_id: "run".into(),
-        host_id: "host".into(),
-        transport: TransportChoice::Zenoh,
-        iox: None,
-        iox_clients: 1,
-        lease: Duration::from_secs(300),
-        min_workers: 1,
-        verify,
-        good_enough: None,
-        batch_cost: 1,
-    };
+    let settings = settings(verify, 1);
     let (tx, rx) = channel();
     (Scheduler::new(settings, planned, tx), rx)
 }
@@ -69,6 +75,7 @@ fn honest(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
                 micros: 1,
                 result: prep.enumerate_range(a.range.clone()),
                 hit: None,
+                finished: None,
             }))
         })
         .collect()
@@ -192,6 +199,7 @@ fn nothing_else_of_a_report_counts_after_a_bad_result() {
                 micros: 1,
                 result,
                 hit: None,
+                finished: None,
             };
             (bad, Outcome::Done(Box::new(done)))
         })
@@ -259,4 +267,107 @@ fn batches_shrink_as_the_queue_runs_out() {
     assert!(sizes[0] <= total / 4 + max_shard, "{sizes:?}");
     assert!(sizes.last() < sizes.first(), "{sizes:?}");
     assert_eq!(sizes.iter().sum::<u64>(), total);
+}
+
+/// `n` parts planned whole and unprepared, each with a finish context.
+fn whole_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
+    let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
+    let planned = (0..n)
+        .map(|i| {
+            let w = 100.0 + 10.0 * i as f64;
+            let source = PartInput {
+                part: Part::polygon(&[[0.0, 0.0], [w, 0.0], [w, 60.0], [0.0, 60.0]]),
+                kit: kit.clone(),
+                params: Params::default(),
+                units,
+            };
+            PlannedPart {
+                index: i,
+                ranges: vec![WHOLE],
+                segments: 4,
+                prep: None,
+                input: source.encode().expect("encode"),
+                source: Arc::new(source),
+                finish: Some(vec![b'c', i as u8]),
+            }
+        })
+        .collect();
+    let settings = settings(verify, u64::MAX);
+    let (tx, rx) = channel();
+    (Scheduler::new(settings, planned, tx), rx)
+}
+
+/// Honest results of whole parts, each with `finished` bytes naming its
+/// shard.
+fn finished_outcomes(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+    batch
+        .iter()
+        .map(|a| {
+            let input = PartInput::decode(a.input.as_deref().expect("input")).expect("decode");
+            let mut result = input.prepare().expect("prepare").enumerate_all();
+            result.range = 0..u64::MAX;
+            assert_eq!(a.range, WHOLE);
+            let ctx = a.finish.clone().expect("a finish context");
+            let p = c.lock().shards[a.shard_id as usize].part;
+            assert_eq!(ctx, vec![b'c', p as u8], "the part's own context");
+            Outcome::Done(Box::new(ShardDone {
+                shard_id: a.shard_id,
+                digest: a.digest,
+                micros: 1,
+                result,
+                hit: None,
+                finished: Some(vec![b'f', p as u8]),
+            }))
+        })
+        .collect()
+}
+
+fn finished_of(rx: &Receiver<Vec<Delivery>>) -> Vec<(usize, Option<Vec<u8>>)> {
+    let mut out: Vec<_> = rx
+        .try_iter()
+        .flatten()
+        .map(|(i, r)| (i, r.expect("merged").finished))
+        .collect();
+    out.sort();
+    out
+}
+
+/// Runs every shard with [`finished_outcomes`] as worker `w`.
+fn finish_all(c: &Scheduler) {
+    let mut outcomes = Vec::new();
+    loop {
+        match report(c, "w", outcomes) {
+            Frame::Msg(Msg::Reply {
+                next: Next::Work(b),
+                ..
+            }) => outcomes = finished_outcomes(c, &b),
+            Frame::Msg(Msg::Reply {
+                next: Next::Done, ..
+            }) => break,
+            f => panic!("{f:?}"),
+        }
+    }
+}
+
+#[test]
+fn whole_parts_come_back_finished_unless_re_derived() {
+    // Re-derived: the coordinator finishes the part from the checked result.
+    let (c, rx) = whole_parts(3, VerifyPolicy::All);
+    join(&c, "w");
+    finish_all(&c);
+    assert_eq!(finished_of(&rx), vec![(0, None), (1, None), (2, None)]);
+    // Trusted (past its full checks, not sampled): the worker's bytes.
+    let (c, rx) = whole_parts(3, VerifyPolicy::Sample { one_in: u64::MAX });
+    join(&c, "w");
+    if let Some(w) = c.lock().workers.get_mut("w") {
+        w.rederived = crate::cluster::verify::FULL_CHECKS;
+    }
+    finish_all(&c);
+    let got = finished_of(&rx);
+    assert_eq!(
+        got,
+        (0..3u8)
+            .map(|p| (p as usize, Some(vec![b'f', p])))
+            .collect::<Vec<_>>()
+    );
 }

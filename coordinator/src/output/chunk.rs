@@ -1,0 +1,90 @@
+//! A part's messages as one finished MCAP chunk: records laid out,
+//! compressed and checksummed wherever the part was solved (a worker, or a
+//! solving thread of the embedded run), so that writing the results file
+//! is a copy. Compressing was most of the coordinator's work per part.
+
+use serde::{Deserialize, Serialize};
+use std::cell::RefCell;
+
+/// Channel ids of a results file (schema `i` belongs to channel `i`): the
+/// ids the MCAP writer gave them before chunks were made by the workers,
+/// and what every chunk's message records name.
+pub const CHANNEL_RUN: u16 = 1;
+/// `/fixplan/part`.
+pub const CHANNEL_PART: u16 = 2;
+/// `/fixplan/fixtures`.
+pub const CHANNEL_FIXTURES: u16 = 3;
+/// `/fixplan/scene`.
+pub const CHANNEL_SCENE: u16 = 4;
+
+/// zstd level of every chunk: the fastest, as the MCAP writer used before
+/// (the files are small beside the enumeration's time; a worker's CPU is
+/// better spent enumerating).
+const LEVEL: i32 = 1;
+
+/// MCAP opcode of a message record.
+const OP_MESSAGE: u8 = 0x05;
+
+/// One chunk of a results file, ready to be copied into it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PartChunk {
+    /// Log time of every message of the chunk (the part's place in the
+    /// catalogue, [`super::messages::NS_PER_PART`] apart).
+    pub log_time: u64,
+    /// The records' bytes before compression.
+    pub uncompressed_size: u64,
+    /// CRC-32 of those bytes.
+    pub uncompressed_crc: u32,
+    /// The records, zstd-compressed.
+    #[serde(with = "serde_bytes")]
+    pub compressed: Vec<u8>,
+    /// Channel of each message and its record's offset in the
+    /// uncompressed records (the chunk's message indexes).
+    pub offsets: Vec<(u16, u64)>,
+}
+
+thread_local! {
+    /// One zstd context per thread: making one per chunk cost as much as
+    /// compressing a small part.
+    static COMPRESSOR: RefCell<Option<zstd::bulk::Compressor<'static>>> = const { RefCell::new(None) };
+}
+
+fn compress(records: &[u8]) -> std::io::Result<Vec<u8>> {
+    COMPRESSOR.with(|c| {
+        let mut c = c.borrow_mut();
+        if c.is_none() {
+            *c = Some(zstd::bulk::Compressor::new(LEVEL)?);
+        }
+        match c.as_mut() {
+            Some(z) => z.compress(records),
+            None => Err(std::io::Error::other("no zstd context")),
+        }
+    })
+}
+
+impl PartChunk {
+    /// The chunk of `messages` (channel, sequence, data), all logged at
+    /// `log_time`, in this order.
+    pub fn encode(log_time: u64, messages: &[(u16, u32, &[u8])]) -> std::io::Result<PartChunk> {
+        let size: usize = messages.iter().map(|m| 31 + m.2.len()).sum();
+        let mut records = Vec::with_capacity(size);
+        let mut offsets = Vec::with_capacity(messages.len());
+        for &(channel, sequence, data) in messages {
+            offsets.push((channel, records.len() as u64));
+            records.push(OP_MESSAGE);
+            records.extend_from_slice(&(22 + data.len() as u64).to_le_bytes());
+            records.extend_from_slice(&channel.to_le_bytes());
+            records.extend_from_slice(&sequence.to_le_bytes());
+            records.extend_from_slice(&log_time.to_le_bytes());
+            records.extend_from_slice(&log_time.to_le_bytes());
+            records.extend_from_slice(data);
+        }
+        Ok(PartChunk {
+            log_time,
+            uncompressed_size: records.len() as u64,
+            uncompressed_crc: crc32fast::hash(&records),
+            compressed: compress(&records)?,
+            offsets,
+        })
+    }
+}

@@ -1,0 +1,31 @@
+//! Workers that finish whole parts. A part enumerated as one shard can be
+//! turned into what the results file holds right where it was solved, so
+//! the coordinator only checks a sample and copies bytes: building the
+//! report, the messages and compressing them was most of the coordinator's
+//! work per part, and what capped the workers one coordinator serves.
+//!
+//! What a finished part is belongs to the coordinator (its messages, the
+//! results file); this crate only carries it: the coordinator's binary
+//! gives its worker loop a [`Finisher`], and the bytes travel opaque in
+//! [`crate::protocol::Assign::finish`] and
+//! [`crate::protocol::ShardDone::finished`].
+
+use crate::part_input::PartInput;
+use fixplan_core::{PartialResult, PreparedPart};
+
+/// Turns a whole part's enumeration into the coordinator's bytes.
+pub trait Finisher: Send + Sync {
+    /// The finished part, from its input, prepared part, whole result
+    /// (range `0..combinations`), the enumeration's time, and the
+    /// coordinator's `context` ([`crate::protocol::Assign::finish`]). An
+    /// error is logged by the coordinator, which then finishes the part
+    /// itself.
+    fn finish(
+        &self,
+        input: &PartInput,
+        prep: &PreparedPart,
+        result: &PartialResult,
+        micros: u64,
+        context: &[u8],
+    ) -> Result<Vec<u8>, String>;
+}
