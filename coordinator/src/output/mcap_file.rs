@@ -285,8 +285,11 @@ impl<W: Write> McapFile<W> {
 mod tests {
     use super::*;
 
+    /// A message as read back: channel, log time, data.
+    type Sent = (u16, u64, Vec<u8>);
+
     /// A file of `parts` chunks of three messages, and what each holds.
-    fn file(parts: u64) -> (Vec<u8>, Vec<(u16, u64, Vec<u8>)>) {
+    fn file(parts: u64) -> (Vec<u8>, Vec<Sent>) {
         let mut f = McapFile::new(Vec::new(), "", "test").expect("header");
         for id in 1..=3u16 {
             f.schema(id, &format!("s{id}"), "jsonschema", b"{}")
@@ -327,7 +330,7 @@ mod tests {
     fn the_mcap_crate_reads_what_it_writes_streamed_and_indexed() {
         let (bytes, sent) = file(5);
         // Streamed, with every CRC checked.
-        let streamed: Vec<(u16, u64, Vec<u8>)> = mcap::MessageStream::new(&bytes)
+        let streamed: Vec<Sent> = mcap::MessageStream::new(&bytes)
             .expect("stream")
             .map(|m| {
                 let m = m.expect("message");
