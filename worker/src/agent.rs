@@ -312,6 +312,11 @@ impl Agent {
         for (i, mut a) in batch.into_iter().enumerate() {
             if out[i].is_none() {
                 a.input = a.input.take().or_else(|| replay.input_for(&a));
+                if let Some(o) = self.refinished(replay, &a) {
+                    replay.put(&a, &o);
+                    out[i] = Some(o);
+                    continue;
+                }
                 todo.push(a);
                 at.push(i);
             }
@@ -324,6 +329,26 @@ impl Agent {
             }
         }
         out.into_iter().flatten().collect()
+    }
+
+    /// A shard enumerated before under another finish context, finished
+    /// for `a` (a part listed many times is enumerated once).
+    fn refinished(&mut self, replay: &Replay, a: &Assign) -> Option<Outcome> {
+        let (finisher, context) = (self.opts.finisher.clone()?, a.finish.as_ref()?);
+        let Outcome::Done(mut done) = replay.enumerated(a)? else {
+            return None;
+        };
+        let prepared = self.prepared(a);
+        let (input, prep) = prepared.as_ref().as_ref().ok()?;
+        done.finished = finished(
+            finisher.as_ref(),
+            input,
+            prep,
+            &done.result,
+            done.micros,
+            context,
+        );
+        Some(Outcome::Done(done))
     }
 
     /// Enumerates the shards of `batch` side by side on the pool.

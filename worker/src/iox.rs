@@ -2,11 +2,14 @@
 //! through shared memory.
 //!
 //! One request-response service `SERVICE` (`[u8]` -> `[u8]`, the same
-//! frames as over zenoh) with the coordinator as its only server, plus two
+//! frames as over zenoh) with the coordinator as its only server, plus
 //! event services for wake-ups: `SERVICE/req` (workers notify, the
-//! coordinator listens) and `SERVICE/resp` (the coordinator notifies, the
-//! workers listen). A request is encoded straight into a loaned
-//! shared-memory slice; replies are decoded in place.
+//! coordinator listens) and one `SERVICE/resp/<client id>` per worker
+//! (its own listener, the coordinator notifies it when its reply is
+//! out). One shared response event woke every worker for every reply: its
+//! cost grew with the workers (64 sends per reply at 64 workers). A
+//! request is encoded straight into a loaned shared-memory slice; replies
+//! are decoded in place.
 //!
 //! Each run gets its own iceoryx2 global prefix (`fxp<pid>x<nonce>_`), so
 //! runs and tests never meet; [`remove_stale`] deletes the resources of
@@ -77,6 +80,53 @@ fn name(s: &str) -> Result<ServiceName, LinkError> {
     ServiceName::new(s).map_err(err("service name"))
 }
 
+/// The event service that wakes the client `client` of `service` when its
+/// reply is out.
+fn response_event(service: &str, client: u128) -> Result<ServiceName, LinkError> {
+    name(&format!("{service}/resp/{client:032x}"))
+}
+
+/// The coordinator's notifiers of its clients' response events, opened at
+/// a client's first reply.
+struct Wakers<'n> {
+    node: &'n Node<Ipc>,
+    service: &'n str,
+    notifiers: std::collections::HashMap<u128, Notifier<Ipc>>,
+}
+
+impl Wakers<'_> {
+    /// Wakes `client`. A client whose event cannot be opened (gone) is
+    /// not woken: a live one finds its reply at its next poll anyway.
+    fn wake(&mut self, client: u128) {
+        if !self.notifiers.contains_key(&client) {
+            let opened = response_event(self.service, client).and_then(|n| {
+                let ev = self
+                    .node
+                    .service_builder(&n)
+                    .event()
+                    .open()
+                    .map_err(err("open response event"))?;
+                ev.notifier_builder().create().map_err(err("notifier"))
+            });
+            match opened {
+                Ok(n) => {
+                    self.notifiers.insert(client, n);
+                }
+                Err(e) => {
+                    tracing::debug!(
+                        role = "coordinator",
+                        "iceoryx2: cannot wake client {client:032x}: {e}"
+                    );
+                    return;
+                }
+            }
+        }
+        if let Some(n) = self.notifiers.get(&client) {
+            let _ = n.notify();
+        }
+    }
+}
+
 /// The worker's end.
 pub struct IoxClient {
     client: Client<Ipc, [u8], (), [u8], ()>,
@@ -121,10 +171,13 @@ impl IoxClient {
             .map_err(err("open request event"))?;
         let notifier = req.notifier_builder().create().map_err(err("notifier"))?;
         let resp = node
-            .service_builder(&name(&format!("{service}/resp"))?)
+            .service_builder(&response_event(service, client.id().value())?)
             .event()
-            .open()
-            .map_err(err("open response event"))?;
+            .max_notifiers(1)
+            .max_listeners(1)
+            .max_nodes(2)
+            .create()
+            .map_err(err("create response event"))?;
         let listener = resp.listener_builder().create().map_err(err("listener"))?;
         Ok(IoxClient {
             client,
@@ -208,18 +261,17 @@ pub fn serve(
         .create()
         .map_err(err("create request event"))?;
     let listener = req.listener_builder().create().map_err(err("listener"))?;
-    let resp = node
-        .service_builder(&name(&format!("{service}/resp"))?)
-        .event()
-        .max_notifiers(1)
-        .max_listeners(max_clients)
-        .max_nodes(max_clients + 2)
-        .create()
-        .map_err(err("create response event"))?;
-    let notifier = resp.notifier_builder().create().map_err(err("notifier"))?;
+    let mut wakers = Wakers {
+        node: &node,
+        service,
+        notifiers: Default::default(),
+    };
+    let mut answered = Vec::new();
     ready();
     while !ctl.stop.load(Ordering::SeqCst) {
         if ctl.cleanup.swap(false, Ordering::SeqCst) {
+            // Reopened at the next reply: a gone worker's event is let go.
+            wakers.notifiers.clear();
             node.try_cleanup_dead_nodes();
         }
         // Idle wake-ups cost ~40 us each (perf), so wait long while the run
@@ -231,9 +283,9 @@ pub fn serve(
             Duration::from_millis(100)
         };
         listener.timed_wait(|_| {}, wait).map_err(err("wait"))?;
-        let mut answered = false;
         while let Some(active) = server.receive().map_err(err("receive"))? {
             let reply = handle(active.payload());
+            answered.push(active.origin().value());
             match active.loan_slice_uninit(reply.len()) {
                 Ok(r) => {
                     if let Err(e) = r.write_from_slice(&reply).send() {
@@ -247,10 +299,11 @@ pub fn serve(
                     tracing::warn!(role = "coordinator", "iceoryx2: cannot loan a reply: {e:?}");
                 }
             }
-            answered = true;
         }
-        if answered {
-            let _ = notifier.notify();
+        answered.sort_unstable();
+        answered.dedup();
+        for client in answered.drain(..) {
+            wakers.wake(client);
         }
     }
     Ok(())

@@ -29,6 +29,9 @@ fn key(a: &Assign) -> Key {
 #[derive(Default)]
 pub struct Replay {
     results: Mutex<HashMap<Key, Outcome>>,
+    /// The same outcomes by shard alone (no finish context): a part listed
+    /// many times is enumerated once and only finished under each place.
+    shards: Mutex<HashMap<Key, Outcome>>,
     /// Parts' wire inputs by digest: a replayed shard skips preparing its
     /// part, so a later shard of it that is not in the cache (sent without
     /// input: the coordinator believes this worker has it) takes it here.
@@ -84,7 +87,27 @@ impl Replay {
         if a.input.is_some() || matches!(o, Outcome::Done(_)) {
             let mut results = self.results.lock().unwrap_or_else(|e| e.into_inner());
             results.insert(key(a), o.clone());
+            drop(results);
+            let mut shard = key(a);
+            shard.4 = None;
+            let mut shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
+            shards.entry(shard).or_insert_with(|| o.clone());
         }
+    }
+
+    /// The enumeration of `a`'s shard recorded under another finish
+    /// context (renamed to `a`'s shard id), to be finished again.
+    pub fn enumerated(&self, a: &Assign) -> Option<Outcome> {
+        let mut shard = key(a);
+        shard.4 = None;
+        let shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
+        let mut o = shards.get(&shard)?.clone();
+        drop(shards);
+        match &mut o {
+            Outcome::Done(d) => d.shard_id = a.shard_id,
+            Outcome::Failed(f) => f.shard_id = a.shard_id,
+        }
+        Some(o)
     }
 
     /// Shards answered from the cache, and shards computed, so far.

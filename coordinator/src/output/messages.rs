@@ -92,17 +92,34 @@ impl CatalogInfo {
 
 /// `sha256:` of the catalogue's content, independent of where it lives:
 /// what tells `--resume` that a file was written from the same parts.
+/// Each entry is streamed into the hash as one JSON line (building JSON
+/// values first cost the coordinator more per part than copying its
+/// results).
 pub fn catalog_digest(c: &Catalog) -> String {
+    /// One catalogue entry as hashed.
+    #[derive(Serialize)]
+    struct Entry<'a> {
+        id: &'a str,
+        part: Result<&'a fixplan_core::Part, String>,
+        quantity: f64,
+        top_k: Option<usize>,
+        wrenches: &'a Option<Vec<[f64; 3]>>,
+    }
     let mut h = Sha256::new();
     h.update(format!("units={:?}\n", c.units));
     for p in &c.parts {
-        let part = match &p.part {
-            Ok(part) => serde_json::json!({"ok": part}),
-            Err(e) => serde_json::json!({"err": e.to_string()}),
+        let entry = Entry {
+            id: &p.id,
+            part: p.part.as_ref().map_err(|e| e.to_string()),
+            quantity: p.quantity,
+            top_k: p.top_k,
+            wrenches: &p.wrenches,
         };
-        let entry = serde_json::json!({"id": p.id, "part": part, "quantity": p.quantity,
-            "top_k": p.top_k, "wrenches": p.wrenches});
-        h.update(entry.to_string());
+        // Writing into a hash cannot fail; a part that cannot be written
+        // as JSON (never) is hashed by its error.
+        if let Err(e) = serde_json::to_writer(&mut h, &entry) {
+            h.update(e.to_string());
+        }
         h.update(b"\n");
     }
     let d = h.finalize();
