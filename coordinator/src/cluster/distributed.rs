@@ -9,6 +9,7 @@ use super::scheduler::{
 };
 use crate::job::shards;
 use fixplan_core::{PartialResult, PreparedPart};
+use fixplan_worker::finish::Finisher;
 use fixplan_worker::iox;
 use fixplan_worker::part_input::PartInput;
 use fixplan_worker::protocol::{DataPath, TransportChoice};
@@ -172,17 +173,20 @@ pub fn run_distributed(
     parts: Vec<PartInput>,
     opts: ClusterOptions,
 ) -> Result<Distributed, ClusterError> {
-    run_distributed_finishing(parts.into_iter().map(|p| (p, None)).collect(), opts)
+    run_distributed_finishing(parts.into_iter().map(|p| (p, None)).collect(), opts, None)
 }
 
 /// [`run_distributed`] where the parts that go out whole come with what
 /// their worker needs to finish them ([`fixplan_worker::finish`]; `None`:
 /// the coordinator finishes the part); such parts come back as
 /// [`Returned::Finished`] from [`Distributed::next_parts`], unless their
-/// result was re-derived here or their worker could not finish them.
+/// worker could not finish them. `finisher` is the workers' own: a
+/// finished part whose result is re-derived is finished again with it and
+/// compared (without one, such a part comes back merged).
 pub fn run_distributed_finishing(
     parts: Vec<(PartInput, Option<Vec<u8>>)>,
     opts: ClusterOptions,
+    finisher: Option<Arc<dyn Finisher>>,
 ) -> Result<Distributed, ClusterError> {
     iox::quiet_logs();
     let total = parts.len();
@@ -207,7 +211,9 @@ pub fn run_distributed_finishing(
     if planned.is_empty() {
         return Ok(dist);
     }
-    let scheduler = Scheduler::new(settings(&opts, batch_cost), planned, tx);
+    let mut settings = settings(&opts, batch_cost);
+    settings.finisher = finisher;
+    let scheduler = Scheduler::new(settings, planned, tx);
     let zopts = zenoh_options(&opts);
     let mut rt = Runtime::start(Arc::new(scheduler), &zopts, &opts.key_prefix)?;
     start_local_workers(&mut rt, &opts, &zopts, threads)?;
@@ -304,6 +310,7 @@ fn settings(opts: &ClusterOptions, batch_cost: u64) -> Settings {
         verify: opts.verify,
         good_enough: opts.good_enough,
         batch_cost,
+        finisher: None,
     }
 }
 

@@ -9,7 +9,8 @@ use fixplan_core::admissibility::Scratch;
 use fixplan_core::clamp::Accumulator;
 use fixplan_core::combinations::combination_at;
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
-use fixplan_worker::part_input::short_hex;
+use fixplan_worker::finish::Finisher;
+use fixplan_worker::part_input::{short_hex, PartInput};
 use fixplan_worker::protocol::Digest;
 use std::cmp::Ordering;
 use std::ops::Range;
@@ -109,6 +110,9 @@ pub enum CheckError {
         /// The `--good-enough` threshold.
         good_enough: f64,
     },
+    /// A finished part that is not what its (checked) result makes.
+    #[error("its finished part differs from the result's: {0}")]
+    Finished(String),
     /// The result covers other combinations than the shard.
     #[error("result for combinations {range:?}, shard is {shard:?}")]
     WrongRange {
@@ -342,6 +346,27 @@ pub fn check_stop(
         }
         _ => Ok(()),
     }
+}
+
+/// Whether the finished part `theirs` a worker sent with the whole part's
+/// result `result` (checked before) is what the coordinator's finisher
+/// makes of that result: finished here the same way (with the worker's
+/// timing) and compared.
+pub fn check_finished(
+    finisher: &dyn Finisher,
+    source: &PartInput,
+    prep: &PreparedPart,
+    result: &PartialResult,
+    micros: u64,
+    context: &[u8],
+    theirs: &[u8],
+) -> Result<(), CheckError> {
+    let mut whole = result.clone();
+    whole.range = 0..result.counts.combinations;
+    let ours = finisher
+        .finish(source, prep, &whole, micros, context)
+        .map_err(|e| CheckError::Finished(format!("the coordinator cannot finish it: {e}")))?;
+    finisher.same(&ours, theirs).map_err(CheckError::Finished)
 }
 
 /// Checks a shard result against the shard it answers and the part's

@@ -47,7 +47,16 @@ pub enum PartDone {
 
 /// What a worker needs to finish job `i` itself ([`fixplan_worker::finish`]);
 /// `None`: the caller finishes it.
-pub type RemoteFinish<'a> = dyn Fn(usize) -> Option<Vec<u8>> + Sync + 'a;
+pub type RemoteContext<'a> = dyn Fn(usize) -> Option<Vec<u8>> + Sync + 'a;
+
+/// Jobs finished by the workers of a cluster: what each needs, and the
+/// workers' finisher (the coordinator checks finished parts with it).
+pub struct RemoteFinish<'a> {
+    /// What the worker of job `i` is sent to finish it.
+    pub context: &'a RemoteContext<'a>,
+    /// The workers' finisher.
+    pub finisher: std::sync::Arc<dyn fixplan_worker::finish::Finisher>,
+}
 
 /// One part to solve: the catalogue entry, the run inputs it is solved
 /// with, and how to prepare it.

@@ -63,13 +63,13 @@ pub fn start(
                 params,
                 units: job.ctx.units,
             };
-            inputs.push((input, remote.filter(|_| plain).and_then(|r| r(i))));
+            inputs.push((input, remote.filter(|_| plain).and_then(|r| (r.context)(i))));
             map.push((i, k));
         }
     }
     let mut opts = opts.clone();
     opts.good_enough = jobs.first().and_then(|j| j.ctx.search.good_enough);
-    let dist = run_distributed_finishing(inputs, opts)?;
+    let dist = run_distributed_finishing(inputs, opts, remote.map(|r| r.finisher.clone()))?;
     Ok(ClusterJobs { dist, map, direct })
 }
 

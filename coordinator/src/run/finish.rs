@@ -160,4 +160,141 @@ impl Finisher for RunFinisher {
         let f = RunFinisher::finished(input, prep, result, micros, context)?;
         postcard::to_allocvec(&f).map_err(|e| e.to_string())
     }
+
+    fn same(&self, ours: &[u8], theirs: &[u8]) -> Result<(), String> {
+        let ours: FinishedPart = postcard::from_bytes(ours).map_err(|e| e.to_string())?;
+        let theirs: FinishedPart =
+            postcard::from_bytes(theirs).map_err(|e| format!("malformed: {e}"))?;
+        same_part(&ours, &theirs)
+    }
+}
+
+/// Whether `theirs` holds what `ours` does: every field, and chunk
+/// records that decompress to ours (the same bytes by their size and
+/// CRC; the compressed bytes themselves may differ with another zstd
+/// build).
+fn same_part(ours: &FinishedPart, theirs: &FinishedPart) -> Result<(), String> {
+    let (a, b) = (&ours.chunk, &theirs.chunk);
+    let head = |f: &FinishedPart| {
+        (
+            f.index,
+            f.id.clone(),
+            f.status,
+            f.error.clone(),
+            f.admissible,
+            f.kept,
+        )
+    };
+    if head(ours) != head(theirs) {
+        return Err(format!(
+            "summary {:?}, the result's {:?}",
+            head(theirs),
+            head(ours)
+        ));
+    }
+    let index = (
+        a.log_time,
+        a.uncompressed_size,
+        a.uncompressed_crc,
+        &a.offsets,
+    );
+    if index
+        != (
+            b.log_time,
+            b.uncompressed_size,
+            b.uncompressed_crc,
+            &b.offsets,
+        )
+    {
+        return Err("its messages differ (sizes or CRC)".into());
+    }
+    let records = zstd::bulk::decompress(&b.compressed, a.uncompressed_size as usize)
+        .map_err(|e| format!("its chunk does not decompress: {e}"))?;
+    if records.len() as u64 != a.uncompressed_size
+        || crc32fast::hash(&records) != a.uncompressed_crc
+    {
+        return Err("its chunk does not hold its messages".into());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixplan_catalog::kit::{builtin_kit, METRIC_25};
+    use fixplan_core::{Params, Part};
+
+    /// A finished rectangle, as a worker sends it, and its pieces.
+    fn finished() -> (Vec<u8>, PartInput, PreparedPart, PartialResult, Vec<u8>) {
+        let (kit, units) = builtin_kit(METRIC_25).expect("kit");
+        let input = PartInput {
+            part: Part::polygon(&[[0.0, 0.0], [120.0, 0.0], [120.0, 60.0], [0.0, 60.0]]),
+            kit,
+            params: Params::default(),
+            units,
+        };
+        let prep = input.prepare().expect("prepare");
+        let result = prep.enumerate_all();
+        let context = postcard::to_allocvec(&FinishContext {
+            index: 3,
+            id: "rect".into(),
+            file: None,
+            warnings: vec![],
+            quantity: 1.0,
+        })
+        .expect("context");
+        let bytes = RunFinisher
+            .finish(&input, &prep, &result, 1500, &context)
+            .expect("finish");
+        (bytes, input, prep, result, context)
+    }
+
+    #[test]
+    fn a_finished_part_is_the_same_only_as_its_own_result() {
+        let (ours, input, prep, result, context) = finished();
+        let f = RunFinisher;
+        assert_eq!(f.same(&ours, &ours), Ok(()));
+        let part: FinishedPart = postcard::from_bytes(&ours).expect("decode");
+        assert_eq!((part.index, part.id.as_str()), (3, "rect"));
+        assert!(part.kept > 0, "a rectangle has fixtures");
+        // Another timing: another part message, told apart.
+        let later = f
+            .finish(&input, &prep, &result, 2500, &context)
+            .expect("finish");
+        assert!(f.same(&ours, &later).is_err());
+        // A result with its best fixture dropped.
+        let mut fewer = result.clone();
+        fewer.fixtures.remove(0);
+        let forged = f
+            .finish(&input, &prep, &fewer, 1500, &context)
+            .expect("finish");
+        assert!(f.same(&ours, &forged).is_err());
+        // The same header over other compressed bytes.
+        let mut swapped: FinishedPart = postcard::from_bytes(&ours).expect("decode");
+        let other: FinishedPart = postcard::from_bytes(&forged).expect("decode");
+        swapped.chunk.compressed = other.chunk.compressed;
+        let swapped = postcard::to_allocvec(&swapped).expect("encode");
+        assert!(f.same(&ours, &swapped).is_err());
+        assert!(f.same(&ours, b"junk").is_err());
+    }
+
+    #[test]
+    fn the_coordinator_reads_back_what_a_worker_finished() {
+        let (bytes, ..) = finished();
+        let cp = CatalogPart {
+            id: "rect".into(),
+            file: None,
+            part: Ok(Part::polygon(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])),
+            warnings: vec![],
+            quantity: 1.0,
+            top_k: None,
+            wrenches: None,
+        };
+        let o = outcome(&bytes, 3, &cp).expect("outcome");
+        assert_eq!(o.status, Status::Ok);
+        assert!(matches!(
+            outcome(&bytes, 4, &cp),
+            Err(FinishedError::OtherPart { got_index: 3, .. })
+        ));
+    }
 }

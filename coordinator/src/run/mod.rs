@@ -162,7 +162,11 @@ pub fn run_parts(
         })
         .collect();
     let partial = resume::partial_path(&opts.output);
-    let remote = |i: usize| finish::context(start + i, jobs[i].part);
+    let context = |i: usize| finish::context(start + i, jobs[i].part);
+    let remote = backend::RemoteFinish {
+        context: &context,
+        finisher: std::sync::Arc::new(finish::RunFinisher),
+    };
     let solved = solve_in_order_finishing(
         &jobs,
         &opts.backend,

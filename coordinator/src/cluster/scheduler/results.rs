@@ -45,9 +45,9 @@ pub(super) fn take_result(
     };
     accept(st, &r, worker, checked, deep);
     let mut r = r;
-    if deep {
-        // What was re-derived is the result, not the worker's messages of
-        // it: the coordinator finishes the part itself.
+    if deep && s.finisher.is_none() {
+        // The result was re-derived, its finished part cannot be checked:
+        // the caller finishes the part from the result.
         r.finished = None;
     }
     hold(st, p, r, &shard_range);
@@ -90,7 +90,19 @@ fn check(
     verify::check_stop(s.good_enough, shard_range, r.hit, &r.result)?;
     if deep {
         let prep = part.prepared().map_err(CheckError::CannotPrepare)?;
-        return verify::check(&prep, range, &r.result, &part.top, true);
+        let n = verify::check(&prep, range, &r.result, &part.top, true)?;
+        if let (Some(theirs), Some(f), Some(context)) = (&r.finished, &s.finisher, &part.finish) {
+            verify::check_finished(
+                f.as_ref(),
+                &part.source,
+                &prep,
+                &r.result,
+                r.micros,
+                context,
+                theirs,
+            )?;
+        }
+        return Ok(n);
     }
     match &part.prep {
         Some(prep) => verify::check(prep, range, &r.result, &part.top, false),
@@ -197,7 +209,9 @@ fn close(st: &mut State, p: usize) {
         .filter(|r| stop.is_none_or(|s| r.range.start <= s))
         .collect();
     let done = MergedShards {
-        prep: part.prep.clone(),
+        // The part is closed: its slot needs the prepared part no more, and
+        // handing over the only reference spares a copy of it.
+        prep: part.prep.take(),
         input: part.source.clone(),
         merged: merge(part.top_k(), kept),
         stopped_at: stop,

@@ -5,6 +5,7 @@
 use super::errors::PartError;
 use crate::cluster::verify::VerifyPolicy;
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
+use fixplan_worker::finish::Finisher;
 use fixplan_worker::part_input::{digest, PartInput};
 use fixplan_worker::protocol::{DataPath, Digest, TransportChoice};
 use std::collections::{HashMap, HashSet, VecDeque};
@@ -210,6 +211,10 @@ pub struct Settings {
     /// Cost of work ([`crate::job::shards::cost`]) handed out in one
     /// assignment at most: small shards travel together up to it.
     pub batch_cost: u64,
+    /// What the workers finish whole parts with: the coordinator checks
+    /// the finished parts whose results it re-derives with it. Without
+    /// one, such parts are finished by the caller instead.
+    pub finisher: Option<Arc<dyn Finisher>>,
 }
 
 /// Everything the scheduler changes, behind its one lock.

@@ -24,6 +24,7 @@ fn settings(verify: VerifyPolicy, batch_cost: u64) -> Settings {
         verify,
         good_enough: None,
         batch_cost,
+        finisher: None,
     }
 }
 
@@ -92,6 +93,8 @@ fn report(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>) -> Frame {
 #[test]
 fn a_banned_worker_s_work_on_open_parts_is_done_again() {
     let (mut c, rx) = core_rx(1, 4, VerifyPolicy::All);
+    // The slot hands its prepared part over when the part closes.
+    let prep = c.lock().parts[0].prep.clone().expect("prepared");
     let total = c.lock().queued_cost;
     c.settings.batch_cost = total / 4;
     join(&c, "a");
@@ -139,7 +142,6 @@ fn a_banned_worker_s_work_on_open_parts_is_done_again() {
     }
     let done = rx.try_recv().expect("the part");
     let Ok(f) = &done[0].1 else { panic!("failed") };
-    let prep = c.lock().parts[0].prep.clone().expect("prepared");
     assert_eq!(f.merged, prep.enumerate_all());
 }
 
@@ -298,7 +300,7 @@ fn whole_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Deliv
 }
 
 /// Honest results of whole parts, each with `finished` bytes naming its
-/// shard.
+/// part (`f`, part index: what [`Tag`] makes of its context).
 fn finished_outcomes(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
     batch
         .iter()
@@ -330,6 +332,28 @@ fn finished_of(rx: &Receiver<Vec<Delivery>>) -> Vec<(usize, Option<Vec<u8>>)> {
         .collect();
     out.sort();
     out
+}
+
+/// A finisher that tags a part's context: `c, p` becomes `f, p`.
+struct Tag;
+
+impl fixplan_worker::finish::Finisher for Tag {
+    fn finish(
+        &self,
+        _: &PartInput,
+        _: &fixplan_core::PreparedPart,
+        _: &fixplan_core::PartialResult,
+        _: u64,
+        context: &[u8],
+    ) -> Result<Vec<u8>, String> {
+        Ok(vec![b'f', context[1]])
+    }
+
+    fn same(&self, ours: &[u8], theirs: &[u8]) -> Result<(), String> {
+        (ours == theirs)
+            .then_some(())
+            .ok_or_else(|| format!("{theirs:?}, not {ours:?}"))
+    }
 }
 
 /// Runs every shard with [`finished_outcomes`] as worker `w`.
@@ -370,4 +394,38 @@ fn whole_parts_come_back_finished_unless_re_derived() {
             .map(|p| (p as usize, Some(vec![b'f', p])))
             .collect::<Vec<_>>()
     );
+}
+
+#[test]
+fn re_derived_parts_keep_their_finished_bytes_only_if_they_match() {
+    let with_tag = || {
+        let (mut c, rx) = whole_parts(3, VerifyPolicy::All);
+        c.settings.finisher = Some(Arc::new(Tag));
+        join(&c, "w");
+        (c, rx)
+    };
+    // Honest: checked against the coordinator's own, kept.
+    let (c, rx) = with_tag();
+    finish_all(&c);
+    let got = finished_of(&rx);
+    assert_eq!(
+        got,
+        (0..3u8)
+            .map(|p| (p as usize, Some(vec![b'f', p])))
+            .collect::<Vec<_>>()
+    );
+    // Forged finished bytes on an honest result: refused, worker banned.
+    let (c, rx) = with_tag();
+    let Next::Work(batch) = c.next_work("w") else {
+        panic!("no work")
+    };
+    let mut forged = finished_outcomes(&c, &batch);
+    if let Some(Outcome::Done(d)) = forged.first_mut() {
+        d.finished = Some(b"forged".to_vec());
+    }
+    assert!(matches!(report(&c, "w", forged), Frame::Refused(_)));
+    assert_eq!(c.stats().rejected, 1);
+    assert!(finished_of(&rx)
+        .iter()
+        .all(|(_, f)| f.as_deref() != Some(b"forged")));
 }
