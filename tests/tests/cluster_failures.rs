@@ -7,6 +7,7 @@ mod cluster_support;
 use cluster_support::*;
 use fixplan_coordinator::cluster::scheduler::Stats;
 use fixplan_coordinator::cluster::{run_distributed, Distributed, TransportChoice};
+use fixplan_coordinator::run::run_catalog;
 use fixplan_worker::protocol::{decode, encode, encode_as, Frame, Msg, Next, PROTOCOL_VERSION};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::time::Duration;
@@ -220,4 +221,43 @@ fn a_worker_with_bad_results_is_rejected_by_name() {
     let (got, stats) = collect(d);
     assert_eq!(got, want);
     assert!(stats.rejected >= 1, "{stats:?}");
+}
+
+/// A worker that sends honest results but finished parts that are not what
+/// they make (another timing in the part message): the coordinator's check
+/// of the re-derived ones catches it by name, and the file holds the
+/// embedded run's fixtures and scenes.
+#[test]
+fn a_worker_whose_finished_parts_differ_from_its_results_is_rejected() {
+    let _g = serial();
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let emb = dir.path().join("emb.mcap");
+    let dist = dir.path().join("dist.mcap");
+    run_catalog(&cat, &spec, &run_opts(&emb, 5, None)).unwrap();
+    let net = Net::new("forge");
+    let mut opts = net.options(TransportChoice::Zenoh);
+    opts.min_workers = 1;
+    let mut bad = net.worker_captured(&[
+        "--transport",
+        "zenoh",
+        "--name",
+        "forger-3",
+        "--fault",
+        "forge-finished",
+    ]);
+    let out = dist.clone();
+    let run = std::thread::spawn(move || run_catalog(&cat, &spec, &run_opts(&out, 5, Some(opts))));
+    let (code, err) = bad.wait_output(Duration::from_secs(60));
+    assert_eq!(code, Some(3), "{err}");
+    assert!(
+        err.contains("forger-3") && err.contains("failed verification"),
+        "{err}"
+    );
+    let _good = net.worker(&["--transport", "zenoh"]);
+    run.join().unwrap().unwrap();
+    assert_eq!(
+        fixplan_tests::channels(&emb),
+        fixplan_tests::channels(&dist)
+    );
 }
