@@ -29,9 +29,17 @@ pub trait Finisher: Send + Sync {
         context: &[u8],
     ) -> Result<Vec<u8>, String>;
 
-    /// Whether a worker's finished part (`theirs`) holds what the
-    /// coordinator's own finishing of the same result (`ours`) does: how
+    /// Whether a worker's finished part (`theirs`) holds what finishing
+    /// the same inputs here makes ([`Finisher::finish`]'s arguments): how
     /// the coordinator checks a finished part whose result it re-derived.
     /// The error says what differs.
-    fn same(&self, ours: &[u8], theirs: &[u8]) -> Result<(), String>;
+    fn check(
+        &self,
+        input: &PartInput,
+        prep: &PreparedPart,
+        result: &PartialResult,
+        micros: u64,
+        context: &[u8],
+        theirs: &[u8],
+    ) -> Result<(), String>;
 }

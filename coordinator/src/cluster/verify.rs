@@ -363,10 +363,9 @@ pub fn check_finished(
 ) -> Result<(), CheckError> {
     let mut whole = result.clone();
     whole.range = 0..result.counts.combinations;
-    let ours = finisher
-        .finish(source, prep, &whole, micros, context)
-        .map_err(|e| CheckError::Finished(format!("the coordinator cannot finish it: {e}")))?;
-    finisher.same(&ours, theirs).map_err(CheckError::Finished)
+    finisher
+        .check(source, prep, &whole, micros, context, theirs)
+        .map_err(CheckError::Finished)
 }
 
 /// Checks a shard result against the shard it answers and the part's

@@ -66,6 +66,47 @@ impl PartChunk {
     /// The chunk of `messages` (channel, sequence, data), all logged at
     /// `log_time`, in this order.
     pub fn encode(log_time: u64, messages: &[(u16, u32, &[u8])]) -> std::io::Result<PartChunk> {
+        let (records, mut chunk) = PartChunk::laid_out(log_time, messages);
+        chunk.compressed = compress(&records)?;
+        Ok(chunk)
+    }
+
+    /// [`PartChunk::encode`] without the compressed bytes (empty): what
+    /// the chunk holds by its sizes and CRC, for comparing a chunk made
+    /// elsewhere without compressing this one.
+    pub fn unpacked(log_time: u64, messages: &[(u16, u32, &[u8])]) -> PartChunk {
+        PartChunk::laid_out(log_time, messages).1
+    }
+
+    /// Whether `other` holds the records this chunk describes: the same
+    /// time, sizes, CRC and offsets, and compressed bytes that decompress
+    /// to records of that size and CRC (the compressed bytes themselves may
+    /// differ with another zstd build).
+    pub fn holds_same(&self, other: &PartChunk) -> Result<(), String> {
+        let index = |c: &PartChunk| {
+            (
+                c.log_time,
+                c.uncompressed_size,
+                c.uncompressed_crc,
+                c.offsets.clone(),
+            )
+        };
+        if index(self) != index(other) {
+            return Err("its messages differ (sizes or CRC)".into());
+        }
+        let records = zstd::bulk::decompress(&other.compressed, self.uncompressed_size as usize)
+            .map_err(|e| format!("its chunk does not decompress: {e}"))?;
+        if records.len() as u64 != self.uncompressed_size
+            || crc32fast::hash(&records) != self.uncompressed_crc
+        {
+            return Err("its chunk does not hold its messages".into());
+        }
+        Ok(())
+    }
+
+    /// The records of `messages` and the chunk's index of them (nothing
+    /// compressed yet).
+    fn laid_out(log_time: u64, messages: &[(u16, u32, &[u8])]) -> (Vec<u8>, PartChunk) {
         let size: usize = messages.iter().map(|m| 31 + m.2.len()).sum();
         let mut records = Vec::with_capacity(size);
         let mut offsets = Vec::with_capacity(messages.len());
@@ -79,12 +120,13 @@ impl PartChunk {
             records.extend_from_slice(&log_time.to_le_bytes());
             records.extend_from_slice(data);
         }
-        Ok(PartChunk {
+        let chunk = PartChunk {
             log_time,
             uncompressed_size: records.len() as u64,
             uncompressed_crc: crc32fast::hash(&records),
-            compressed: compress(&records)?,
+            compressed: Vec::new(),
             offsets,
-        })
+        };
+        (records, chunk)
     }
 }

@@ -44,15 +44,25 @@ impl PartMessages {
     /// The part's chunk (compressed here: on the solving thread, or the
     /// worker, never the writer's).
     pub fn chunk(&self) -> std::io::Result<PartChunk> {
+        PartChunk::encode(self.log_time(), &self.records())
+    }
+
+    /// [`PartMessages::chunk`] uncompressed ([`PartChunk::unpacked`]).
+    pub fn unpacked_chunk(&self) -> PartChunk {
+        PartChunk::unpacked(self.log_time(), &self.records())
+    }
+
+    fn log_time(&self) -> u64 {
+        self.index as u64 * NS_PER_PART
+    }
+
+    fn records(&self) -> [(u16, u32, &[u8]); 3] {
         let seq = self.index as u32;
-        PartChunk::encode(
-            self.index as u64 * NS_PER_PART,
-            &[
-                (CHANNEL_PART, seq, &self.part),
-                (CHANNEL_FIXTURES, seq, &self.fixtures),
-                (CHANNEL_SCENE, seq, &self.scene),
-            ],
-        )
+        [
+            (CHANNEL_PART, seq, &self.part),
+            (CHANNEL_FIXTURES, seq, &self.fixtures),
+            (CHANNEL_SCENE, seq, &self.scene),
+        ]
     }
 }
 

@@ -7,9 +7,9 @@
 //! workers. The fixtures and scene messages are byte for byte what the
 //! coordinator would have made; the part message's timing is the worker's.
 
-use super::outcome::{part_outcome, OutcomeError, PartOutcome};
+use super::outcome::{part_outcome_packed, OutcomeError, PartOutcome};
 use crate::job::{JobContext, SearchOptions, Solved, Timing};
-use crate::output::PartChunk;
+use crate::output::{PartChunk, PartMessages};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::{PartialResult, PreparedPart, Status};
 use fixplan_worker::finish::Finisher;
@@ -98,12 +98,14 @@ pub fn outcome(bytes: &[u8], index: usize, cp: &CatalogPart) -> Result<PartOutco
 pub struct RunFinisher;
 
 impl RunFinisher {
+    /// The finished part, its chunk made by `pack`.
     fn finished(
         input: &PartInput,
         prep: &PreparedPart,
         result: &PartialResult,
         micros: u64,
         context: &[u8],
+        pack: impl FnOnce(&PartMessages) -> std::io::Result<PartChunk>,
     ) -> Result<FinishedPart, String> {
         let c: FinishContext = postcard::from_bytes(context).map_err(|e| e.to_string())?;
         let cp = CatalogPart {
@@ -134,8 +136,8 @@ impl RunFinisher {
             },
             search: Default::default(),
         };
-        let o =
-            part_outcome(&ctx, c.index, &cp, solved).map_err(|e: OutcomeError| e.to_string())?;
+        let o = part_outcome_packed(&ctx, c.index, &cp, solved, pack)
+            .map_err(|e: OutcomeError| e.to_string())?;
         Ok(FinishedPart {
             index: c.index,
             id: o.id,
@@ -157,24 +159,32 @@ impl Finisher for RunFinisher {
         micros: u64,
         context: &[u8],
     ) -> Result<Vec<u8>, String> {
-        let f = RunFinisher::finished(input, prep, result, micros, context)?;
+        let f = RunFinisher::finished(input, prep, result, micros, context, |m| m.chunk())?;
         postcard::to_allocvec(&f).map_err(|e| e.to_string())
     }
 
-    fn same(&self, ours: &[u8], theirs: &[u8]) -> Result<(), String> {
-        let ours: FinishedPart = postcard::from_bytes(ours).map_err(|e| e.to_string())?;
+    fn check(
+        &self,
+        input: &PartInput,
+        prep: &PreparedPart,
+        result: &PartialResult,
+        micros: u64,
+        context: &[u8],
+        theirs: &[u8],
+    ) -> Result<(), String> {
+        // Laid out, not compressed: the check compares what the chunks hold.
+        let ours = RunFinisher::finished(input, prep, result, micros, context, |m| {
+            Ok(m.unpacked_chunk())
+        })?;
         let theirs: FinishedPart =
             postcard::from_bytes(theirs).map_err(|e| format!("malformed: {e}"))?;
         same_part(&ours, &theirs)
     }
 }
 
-/// Whether `theirs` holds what `ours` does: every field, and chunk
-/// records that decompress to ours (the same bytes by their size and
-/// CRC; the compressed bytes themselves may differ with another zstd
-/// build).
+/// Whether `theirs` holds what `ours` describes: every field, and a chunk
+/// with the same records ([`PartChunk::holds_same`]).
 fn same_part(ours: &FinishedPart, theirs: &FinishedPart) -> Result<(), String> {
-    let (a, b) = (&ours.chunk, &theirs.chunk);
     let head = |f: &FinishedPart| {
         (
             f.index,
@@ -192,30 +202,7 @@ fn same_part(ours: &FinishedPart, theirs: &FinishedPart) -> Result<(), String> {
             head(ours)
         ));
     }
-    let index = (
-        a.log_time,
-        a.uncompressed_size,
-        a.uncompressed_crc,
-        &a.offsets,
-    );
-    if index
-        != (
-            b.log_time,
-            b.uncompressed_size,
-            b.uncompressed_crc,
-            &b.offsets,
-        )
-    {
-        return Err("its messages differ (sizes or CRC)".into());
-    }
-    let records = zstd::bulk::decompress(&b.compressed, a.uncompressed_size as usize)
-        .map_err(|e| format!("its chunk does not decompress: {e}"))?;
-    if records.len() as u64 != a.uncompressed_size
-        || crc32fast::hash(&records) != a.uncompressed_crc
-    {
-        return Err("its chunk does not hold its messages".into());
-    }
-    Ok(())
+    ours.chunk.holds_same(&theirs.chunk)
 }
 
 #[cfg(test)]
@@ -253,7 +240,8 @@ mod tests {
     fn a_finished_part_is_the_same_only_as_its_own_result() {
         let (ours, input, prep, result, context) = finished();
         let f = RunFinisher;
-        assert_eq!(f.same(&ours, &ours), Ok(()));
+        let check = |theirs: &[u8]| f.check(&input, &prep, &result, 1500, &context, theirs);
+        assert_eq!(check(&ours), Ok(()));
         let part: FinishedPart = postcard::from_bytes(&ours).expect("decode");
         assert_eq!((part.index, part.id.as_str()), (3, "rect"));
         assert!(part.kept > 0, "a rectangle has fixtures");
@@ -261,21 +249,21 @@ mod tests {
         let later = f
             .finish(&input, &prep, &result, 2500, &context)
             .expect("finish");
-        assert!(f.same(&ours, &later).is_err());
+        assert!(check(&later).is_err());
         // A result with its best fixture dropped.
         let mut fewer = result.clone();
         fewer.fixtures.remove(0);
         let forged = f
             .finish(&input, &prep, &fewer, 1500, &context)
             .expect("finish");
-        assert!(f.same(&ours, &forged).is_err());
+        assert!(check(&forged).is_err());
         // The same header over other compressed bytes.
         let mut swapped: FinishedPart = postcard::from_bytes(&ours).expect("decode");
         let other: FinishedPart = postcard::from_bytes(&forged).expect("decode");
         swapped.chunk.compressed = other.chunk.compressed;
         let swapped = postcard::to_allocvec(&swapped).expect("encode");
-        assert!(f.same(&ours, &swapped).is_err());
-        assert!(f.same(&ours, b"junk").is_err());
+        assert!(check(&swapped).is_err());
+        assert!(check(b"junk").is_err());
     }
 
     #[test]

@@ -51,6 +51,18 @@ pub fn part_outcome(
     cp: &CatalogPart,
     solved: Solved,
 ) -> Result<PartOutcome, OutcomeError> {
+    part_outcome_packed(ctx, index, cp, solved, |m| m.chunk())
+}
+
+/// [`part_outcome`] with its chunk made by `pack` (compressed, or only
+/// described: [`PartMessages::unpacked_chunk`]).
+pub fn part_outcome_packed(
+    ctx: &JobContext,
+    index: usize,
+    cp: &CatalogPart,
+    solved: Solved,
+    pack: impl FnOnce(&PartMessages) -> std::io::Result<PartChunk>,
+) -> Result<PartOutcome, OutcomeError> {
     let Solved {
         result,
         timing,
@@ -112,7 +124,7 @@ pub fn part_outcome(
         scene,
     };
     Ok(PartOutcome {
-        chunk: messages.chunk()?,
+        chunk: pack(&messages)?,
         id: cp.id.clone(),
         status,
         error,

@@ -349,7 +349,16 @@ impl fixplan_worker::finish::Finisher for Tag {
         Ok(vec![b'f', context[1]])
     }
 
-    fn same(&self, ours: &[u8], theirs: &[u8]) -> Result<(), String> {
+    fn check(
+        &self,
+        _: &PartInput,
+        _: &fixplan_core::PreparedPart,
+        _: &fixplan_core::PartialResult,
+        _: u64,
+        context: &[u8],
+        theirs: &[u8],
+    ) -> Result<(), String> {
+        let ours = [b'f', context[1]];
         (ours == theirs)
             .then_some(())
             .ok_or_else(|| format!("{theirs:?}, not {ours:?}"))
