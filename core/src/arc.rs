@@ -10,6 +10,7 @@
 //! Tolerances are absolute lengths passed by the caller: validation needs a
 //! tolerance relative to the part's size, distances need none.
 
+use crate::angle_set::rem_tau;
 use crate::geometry::{cross, point_segment_dist2, segments_intersect, v2, Aabb, V2};
 use std::f64::consts::PI;
 
@@ -307,7 +308,7 @@ impl GrownArc {
         let w = q - self.center;
         let rel = self.sweep.signum() * (w.y.atan2(w.x) - self.start_angle);
         let half = 0.5 * self.sweep.abs();
-        let wrapped = (rel - half + PI).rem_euclid(2.0 * PI) - PI + half;
+        let wrapped = rem_tau(rel - half + PI) - PI + half;
         wrapped * self.radius
     }
 

@@ -29,11 +29,10 @@
 
 mod trig;
 
-use crate::angle_set::wrap_angle;
+use crate::angle_set::{rem_tau, wrap_angle};
 use crate::geometry::{cross, rot, rot_t, v2, BORDERLINE, EPS, V2};
 use crate::pose::{solve_poses, Line, Pose};
 use nalgebra::{Matrix3, Vector3};
-use std::f64::consts::TAU;
 use trig::{circ_dist, Angles, Trig, COS16, SAMPLES, SIN16};
 
 /// An arc segment's grown circle `|p - centre| = radius` in the part frame;
@@ -432,7 +431,7 @@ impl Reduced {
         let theta0 = cross(c1, l1).atan2(c1.dot(&l1));
         let (s, c) = theta0.sin_cos();
         let ok = (rot(c, s, c1) - l1).norm() <= EPS && (rot(c, s, c2) - l2).norm() <= EPS;
-        ok.then_some(theta0.rem_euclid(TAU))
+        ok.then_some(rem_tau(theta0))
     }
 
     fn rows_at(&self, c: f64, s: f64) -> [(V2, f64, f64); 2] {
@@ -529,8 +528,8 @@ impl Reduced {
         let x = 1.0 - self.rho0 * self.rho0 / (2.0 * z.norm_squared());
         if x >= -1.0 - EPS {
             let delta = x.max(-1.0).acos();
-            out.push((theta0 + delta).rem_euclid(TAU));
-            out.push((theta0 - delta).rem_euclid(TAU));
+            out.push(rem_tau(theta0 + delta));
+            out.push(rem_tau(theta0 - delta));
         }
     }
 

@@ -2,6 +2,7 @@
 //! vanishes at a known pose.
 
 use super::*;
+use std::f64::consts::TAU;
 
 fn rnd(state: &mut u64) -> f64 {
     *state ^= *state << 13;

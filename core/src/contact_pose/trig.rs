@@ -9,6 +9,7 @@
 //! Subdivision with Taylor bounds has neither problem, reports the near-zero
 //! minimum of a near-tangent configuration directly, and allocates nothing.
 
+use crate::angle_set::rem_tau;
 use std::f64::consts::{FRAC_1_SQRT_2, TAU};
 
 /// Highest harmonic kept: the eliminant of SPEC 8.4 has degree <= 4.
@@ -312,8 +313,8 @@ pub(super) fn linear_roots(f: &Trig, out: &mut Angles) {
     }
     let phi = f.b[1].atan2(f.a[1]);
     let delta = x.clamp(-1.0, 1.0).acos();
-    out.push((phi - delta).rem_euclid(TAU));
-    out.push((phi + delta).rem_euclid(TAU));
+    out.push(rem_tau(phi - delta));
+    out.push(rem_tau(phi + delta));
 }
 
 /// Up to this many angles are kept; more means a degenerate (near-constant
@@ -361,7 +362,7 @@ impl Angles {
 
 /// Distance between two angles around the circle.
 pub(super) fn circ_dist(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(TAU);
+    let d = rem_tau(a - b);
     d.min(TAU - d)
 }
 

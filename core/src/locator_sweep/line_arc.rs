@@ -21,7 +21,7 @@
 //! pieces are narrow.
 
 use super::pieces::{LinePiece, Quad, ThirdPiece, MAX_CHORDS, QUAD_SLACK, S_SLACK};
-use crate::angle_set::AngleSet;
+use crate::angle_set::{rem_tau, AngleSet};
 use crate::geometry::{cross, rot, V2};
 use crate::segments::{Feature, Segment};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -84,7 +84,7 @@ impl Sinusoid {
         let v0 = self.alpha + self.amp * (t0 - self.phi).cos();
         let v1 = self.alpha + self.amp * (t1 - self.phi).cos();
         let (mut lo, mut hi) = (v0.min(v1), v0.max(v1));
-        let inside = |x: f64| (x - t0).rem_euclid(TAU) <= t1 - t0;
+        let inside = |x: f64| rem_tau(x - t0) <= t1 - t0;
         if inside(self.phi) {
             hi = self.alpha + self.amp;
         }
