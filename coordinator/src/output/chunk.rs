@@ -104,6 +104,40 @@ impl PartChunk {
         Ok(())
     }
 
+    /// Whether this chunk, made elsewhere, has the shape of part
+    /// `index`'s: its log time, one message on each part channel in order
+    /// at offsets inside its records, and a zstd frame that declares its
+    /// records' size. The coordinator copies unchecked chunks into the
+    /// results file; this keeps a worker's bug from making a part
+    /// unreadable there or misplacing it on the timeline, at the cost of
+    /// reading a frame header (the contents are checked on the sample).
+    pub fn fits(&self, log_time: u64) -> Result<(), String> {
+        if self.log_time != log_time {
+            return Err(format!("its log time is {}, not {log_time}", self.log_time));
+        }
+        let channels: Vec<u16> = self.offsets.iter().map(|o| o.0).collect();
+        if channels != [CHANNEL_PART, CHANNEL_FIXTURES, CHANNEL_SCENE] {
+            return Err(format!("its messages are on channels {channels:?}"));
+        }
+        let starts = self.offsets.iter().map(|o| o.1);
+        if self.offsets[0].1 != 0
+            || starts.clone().zip(starts.skip(1)).any(|(a, b)| a >= b)
+            || self.offsets[2].1 >= self.uncompressed_size
+        {
+            return Err(format!(
+                "its message offsets {:?} do not fit {} bytes",
+                self.offsets, self.uncompressed_size
+            ));
+        }
+        match zstd::zstd_safe::get_frame_content_size(&self.compressed) {
+            Ok(Some(n)) if n == self.uncompressed_size => Ok(()),
+            _ => Err(format!(
+                "its compressed bytes are not a zstd frame of {} bytes",
+                self.uncompressed_size
+            )),
+        }
+    }
+
     /// The records of `messages` and the chunk's index of them (nothing
     /// compressed yet).
     fn laid_out(log_time: u64, messages: &[(u16, u32, &[u8])]) -> (Vec<u8>, PartChunk) {
@@ -128,5 +162,53 @@ impl PartChunk {
             offsets,
         };
         (records, chunk)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part_chunk(log_time: u64) -> PartChunk {
+        PartChunk::encode(
+            log_time,
+            &[
+                (CHANNEL_PART, 7, b"{\"part\":1}"),
+                (CHANNEL_FIXTURES, 7, b"{\"fixtures\":[]}"),
+                (CHANNEL_SCENE, 7, b"{\"entities\":[]}"),
+            ],
+        )
+        .expect("compress")
+    }
+
+    #[test]
+    fn a_part_chunk_fits_its_place_and_nothing_else() {
+        let ok = part_chunk(7_000);
+        assert_eq!(ok.fits(7_000), Ok(()));
+        assert!(ok.fits(8_000).unwrap_err().contains("log time"));
+        let mut swapped = ok.clone();
+        swapped.offsets.swap(0, 1);
+        assert!(swapped.fits(7_000).unwrap_err().contains("channels"));
+        let mut short = ok.clone();
+        short.uncompressed_size = short.offsets[2].1;
+        assert!(short.fits(7_000).unwrap_err().contains("offsets"));
+        let mut size = ok.clone();
+        size.uncompressed_size += 1;
+        assert!(size.fits(7_000).unwrap_err().contains("zstd"));
+        let mut junk = ok.clone();
+        junk.compressed = b"not zstd".to_vec();
+        assert!(junk.fits(7_000).unwrap_err().contains("zstd"));
+        let mut missing = ok;
+        missing.offsets.pop();
+        assert!(missing.fits(7_000).is_err());
+    }
+
+    #[test]
+    fn a_chunk_holds_the_records_it_describes() {
+        let ok = part_chunk(0);
+        assert_eq!(ok.holds_same(&ok), Ok(()));
+        let mut other = part_chunk(0);
+        other.compressed = part_chunk(1).compressed;
+        assert!(ok.holds_same(&other).is_err());
     }
 }

@@ -9,6 +9,7 @@
 
 use super::outcome::{part_outcome_packed, OutcomeError, PartOutcome};
 use crate::job::{JobContext, SearchOptions, Solved, Timing};
+use crate::output::messages::NS_PER_PART;
 use crate::output::{PartChunk, PartMessages};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::{PartialResult, PreparedPart, Status};
@@ -69,6 +70,9 @@ pub enum FinishedError {
         /// Its id.
         got_id: String,
     },
+    /// Its chunk has not the shape of a part's ([`PartChunk::fits`]).
+    #[error("its chunk: {0}")]
+    BadChunk(String),
 }
 
 /// The outcome of part `index` (`cp`) from its worker's bytes.
@@ -80,6 +84,9 @@ pub fn outcome(bytes: &[u8], index: usize, cp: &CatalogPart) -> Result<PartOutco
             got_id: f.id,
         });
     }
+    f.chunk
+        .fits(index as u64 * NS_PER_PART)
+        .map_err(FinishedError::BadChunk)?;
     Ok(PartOutcome {
         chunk: f.chunk,
         id: f.id,
@@ -283,6 +290,13 @@ mod tests {
         assert!(matches!(
             outcome(&bytes, 4, &cp),
             Err(FinishedError::OtherPart { got_index: 3, .. })
+        ));
+        let mut bad: FinishedPart = postcard::from_bytes(&bytes).expect("decode");
+        bad.chunk.compressed.truncate(3);
+        let bad = postcard::to_allocvec(&bad).expect("encode");
+        assert!(matches!(
+            outcome(&bad, 3, &cp),
+            Err(FinishedError::BadChunk(_))
         ));
     }
 }
