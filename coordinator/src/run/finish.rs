@@ -1,6 +1,6 @@
 //! Parts finished by the worker that solved them ([`fixplan_worker::finish`]):
 //! what the coordinator sends with a whole part ([`context`]), what the
-//! worker makes of it ([`RunFinisher`], the very [`part_outcome`] the
+//! worker makes of it ([`RunFinisher`], the very [`part_outcome`](super::outcome::part_outcome) the
 //! coordinator would run, compressed), and how the coordinator takes it
 //! back ([`outcome`]). The coordinator then copies the chunk: its own work
 //! per part is a check and a copy, so one coordinator serves many more
