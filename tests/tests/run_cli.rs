@@ -382,19 +382,23 @@ fn resumes_after_sigkill() {
     let want: Vec<_> = parts.iter().map(|(i, _)| i.clone()).collect();
     assert_eq!(ids, want);
     assert_eq!(got, export_lines(&reference));
-    // The fixtures channel is the same bytes.
-    let bytes = |p: &Path| {
-        let mut v = Vec::new();
-        ResultsFile::open(p)
-            .unwrap()
-            .for_each_part(|_, m| {
-                v.push(m.fixtures);
-                true
-            })
-            .unwrap();
-        v
-    };
-    assert_eq!(bytes(&res), bytes(&reference));
+    // The fixtures and scene channels are the same bytes.
+    assert_eq!(fixtures_and_scenes(&res), fixtures_and_scenes(&reference));
+}
+
+/// Each part's fixtures and scene messages, in file order: what two runs
+/// of one catalogue write byte for byte alike (only part messages carry
+/// timings).
+fn fixtures_and_scenes(results: &Path) -> Vec<(Vec<u8>, Vec<u8>)> {
+    let mut v = Vec::new();
+    ResultsFile::open(results)
+        .unwrap()
+        .for_each_part(|_, m| {
+            v.push((m.fixtures, m.scene));
+            true
+        })
+        .unwrap();
+    v
 }
 
 /// A run of the sample catalogue cut after its 12th part (between two
@@ -446,18 +450,7 @@ fn resumes_a_run_of_parts_with_arcs_through_workers() {
     };
     assert!(arcs(&got[..kept]) >= 2 && arcs(&got[kept..]) >= 5);
     assert_eq!(got, export_lines(&whole));
-    let messages = |p: &Path| {
-        let mut v = Vec::new();
-        ResultsFile::open(p)
-            .unwrap()
-            .for_each_part(|_, m| {
-                v.push((m.fixtures, m.scene));
-                true
-            })
-            .unwrap();
-        v
-    };
-    assert_eq!(messages(&res), messages(&whole));
+    assert_eq!(fixtures_and_scenes(&res), fixtures_and_scenes(&whole));
 }
 
 #[test]
