@@ -234,11 +234,8 @@ fn finished(
     micros: u64,
     context: &[u8],
 ) -> Option<Vec<u8>> {
-    // The embedded run numbers a whole part's combinations from 0.
-    let mut whole = result.clone();
-    whole.range = 0..result.counts.combinations;
     let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        f.finish(input, prep, &whole, micros, context)
+        f.finish(input, prep, result, micros, context)
     }));
     match out {
         Ok(Ok(bytes)) => Some(bytes),

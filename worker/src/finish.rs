@@ -15,8 +15,9 @@ use fixplan_core::{PartialResult, PreparedPart};
 
 /// Turns a whole part's enumeration into the coordinator's bytes.
 pub trait Finisher: Send + Sync {
-    /// The finished part, from its input, prepared part, whole result
-    /// (range `0..combinations`), the enumeration's time, and the
+    /// The finished part, from its input, prepared part, the result of
+    /// its one shard (whatever range that shard was labelled with), the
+    /// enumeration's time, and the
     /// coordinator's `context` ([`crate::protocol::Assign::finish`]). An
     /// error is logged by the coordinator, which then finishes the part
     /// itself.

@@ -361,10 +361,8 @@ pub fn check_finished(
     context: &[u8],
     theirs: &[u8],
 ) -> Result<(), CheckError> {
-    let mut whole = result.clone();
-    whole.range = 0..result.counts.combinations;
     finisher
-        .check(source, prep, &whole, micros, context, theirs)
+        .check(source, prep, result, micros, context, theirs)
         .map_err(CheckError::Finished)
 }
 

@@ -132,8 +132,12 @@ impl RunFinisher {
             shard_size: None,
             search: &search,
         };
-        // As the coordinator closes a part: its shards merged (one here).
-        let merged = fixplan_core::merge(prep.top_k(), vec![result.clone()]);
+        // As the coordinator closes a part: its shards merged (one here),
+        // numbered from 0 as the embedded run numbers a whole part (a
+        // worker's whole shard is labelled with an open range).
+        let mut whole = result.clone();
+        whole.range = 0..result.counts.combinations;
+        let merged = fixplan_core::merge(prep.top_k(), vec![whole]);
         let solved = Solved {
             result: fixplan_core::report(prep, &merged),
             timing: Timing {
