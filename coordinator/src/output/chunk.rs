@@ -16,6 +16,8 @@ pub const CHANNEL_PART: u16 = 2;
 pub const CHANNEL_FIXTURES: u16 = 3;
 /// `/fixplan/scene`.
 pub const CHANNEL_SCENE: u16 = 4;
+/// A part's chunk holds one message on each, in this order.
+pub const PART_CHANNELS: [u16; 3] = [CHANNEL_PART, CHANNEL_FIXTURES, CHANNEL_SCENE];
 
 /// zstd level of every chunk: the fastest, as the MCAP writer used before
 /// (the files are small beside the enumeration's time; a worker's CPU is
@@ -116,7 +118,7 @@ impl PartChunk {
             return Err(format!("its log time is {}, not {log_time}", self.log_time));
         }
         let channels: Vec<u16> = self.offsets.iter().map(|o| o.0).collect();
-        if channels != [CHANNEL_PART, CHANNEL_FIXTURES, CHANNEL_SCENE] {
+        if channels != PART_CHANNELS {
             return Err(format!("its messages are on channels {channels:?}"));
         }
         let starts = self.offsets.iter().map(|o| o.1);

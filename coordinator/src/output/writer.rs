@@ -6,7 +6,9 @@
 //! moment leaves a file whose complete chunks hold whole parts;
 //! `--resume` reads them back.
 
-use super::chunk::{PartChunk, CHANNEL_FIXTURES, CHANNEL_PART, CHANNEL_RUN, CHANNEL_SCENE};
+use super::chunk::{
+    PartChunk, CHANNEL_FIXTURES, CHANNEL_PART, CHANNEL_RUN, CHANNEL_SCENE, PART_CHANNELS,
+};
 use super::mcap_file::McapFile;
 use super::messages::*;
 use super::schemas::{fixtures_schema, part_schema, run_schema, scene_schema};
@@ -58,10 +60,11 @@ impl PartMessages {
 
     fn records(&self) -> [(u16, u32, &[u8]); 3] {
         let seq = self.index as u32;
+        let [part, fixtures, scene] = PART_CHANNELS;
         [
-            (CHANNEL_PART, seq, &self.part),
-            (CHANNEL_FIXTURES, seq, &self.fixtures),
-            (CHANNEL_SCENE, seq, &self.scene),
+            (part, seq, &self.part),
+            (fixtures, seq, &self.fixtures),
+            (scene, seq, &self.scene),
         ]
     }
 }
