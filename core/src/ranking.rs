@@ -141,7 +141,12 @@ impl TopK {
 
 /// Merges ranked lists into the best `k` (all when `k == 0`), sorted.
 pub fn merge_ranked(mut lists: Vec<Vec<Fixture>>, k: usize) -> Vec<Fixture> {
-    let mut all: Vec<Fixture> = lists.drain(..).flatten().collect();
+    // A whole part's one list (the common case in a cluster run) is sorted
+    // in place rather than copied.
+    let mut all: Vec<Fixture> = match lists.len() {
+        1 => lists.pop().unwrap_or_default(),
+        _ => lists.drain(..).flatten().collect(),
+    };
     all.sort_by(Fixture::rank_cmp);
     if k != 0 {
         all.truncate(k);

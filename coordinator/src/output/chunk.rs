@@ -3,6 +3,7 @@
 //! solving thread of the embedded run), so that writing the results file
 //! is a copy. Compressing was most of the coordinator's work per part.
 
+use bytes::Bytes;
 use serde::{Deserialize, Serialize};
 use std::cell::RefCell;
 
@@ -37,9 +38,11 @@ pub struct PartChunk {
     pub uncompressed_size: u64,
     /// CRC-32 of those bytes.
     pub uncompressed_crc: u32,
-    /// The records, zstd-compressed.
-    #[serde(with = "serde_bytes")]
-    pub compressed: Vec<u8>,
+    /// The records, zstd-compressed. Not in the serde form: a finished
+    /// part carries them raw after its head (`run::finish`), so that the
+    /// coordinator copies them from the buffer they arrived in.
+    #[serde(skip)]
+    pub compressed: Bytes,
     /// Channel of each message and its record's offset in the
     /// uncompressed records (the chunk's message indexes).
     pub offsets: Vec<(u16, u64)>,
@@ -69,7 +72,7 @@ impl PartChunk {
     /// `log_time`, in this order.
     pub fn encode(log_time: u64, messages: &[(u16, u32, &[u8])]) -> std::io::Result<PartChunk> {
         let (records, mut chunk) = PartChunk::laid_out(log_time, messages);
-        chunk.compressed = compress(&records)?;
+        chunk.compressed = compress(&records)?.into();
         Ok(chunk)
     }
 
@@ -160,7 +163,7 @@ impl PartChunk {
             log_time,
             uncompressed_size: records.len() as u64,
             uncompressed_crc: crc32fast::hash(&records),
-            compressed: Vec::new(),
+            compressed: Bytes::new(),
             offsets,
         };
         (records, chunk)
@@ -198,7 +201,7 @@ mod tests {
         size.uncompressed_size += 1;
         assert!(size.fits(7_000).unwrap_err().contains("zstd"));
         let mut junk = ok.clone();
-        junk.compressed = b"not zstd".to_vec();
+        junk.compressed = Bytes::from_static(b"not zstd");
         assert!(junk.fits(7_000).unwrap_err().contains("zstd"));
         let mut missing = ok;
         missing.offsets.pop();

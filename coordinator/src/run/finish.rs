@@ -11,6 +11,7 @@ use super::outcome::{part_outcome_packed, OutcomeError, PartOutcome};
 use crate::job::{JobContext, SearchOptions, Solved, Timing};
 use crate::output::messages::NS_PER_PART;
 use crate::output::{PartChunk, PartMessages};
+use bytes::Bytes;
 use fixplan_catalog::CatalogPart;
 use fixplan_core::{PartialResult, PreparedPart, Status};
 use fixplan_worker::finish::Finisher;
@@ -40,6 +41,26 @@ struct FinishedPart {
     admissible: Option<u64>,
     kept: usize,
     chunk: PartChunk,
+}
+
+impl FinishedPart {
+    /// The wire form: the postcard head, then the chunk's compressed
+    /// records raw, so that the coordinator writes them from the buffer
+    /// they arrived in.
+    fn to_bytes(&self) -> Result<Vec<u8>, postcard::Error> {
+        let raw = &self.chunk.compressed;
+        let mut v = postcard::to_extend(self, Vec::with_capacity(256 + raw.len()))?;
+        v.extend_from_slice(raw);
+        Ok(v)
+    }
+
+    /// Reads [`FinishedPart::to_bytes`]; the chunk's bytes are a view of
+    /// `bytes`.
+    fn from_bytes(bytes: Bytes) -> Result<FinishedPart, postcard::Error> {
+        let (mut f, raw) = postcard::take_from_bytes::<FinishedPart>(&bytes)?;
+        f.chunk.compressed = bytes.slice_ref(raw);
+        Ok(f)
+    }
 }
 
 /// What the worker of part `index` (`cp`) is sent to finish it; `None` for
@@ -76,8 +97,12 @@ pub enum FinishedError {
 }
 
 /// The outcome of part `index` (`cp`) from its worker's bytes.
-pub fn outcome(bytes: &[u8], index: usize, cp: &CatalogPart) -> Result<PartOutcome, FinishedError> {
-    let f: FinishedPart = postcard::from_bytes(bytes)?;
+pub fn outcome(
+    bytes: Vec<u8>,
+    index: usize,
+    cp: &CatalogPart,
+) -> Result<PartOutcome, FinishedError> {
+    let f = FinishedPart::from_bytes(bytes.into())?;
     if f.index != index || f.id != cp.id {
         return Err(FinishedError::OtherPart {
             got_index: f.index,
@@ -171,7 +196,7 @@ impl Finisher for RunFinisher {
         context: &[u8],
     ) -> Result<Vec<u8>, String> {
         let f = RunFinisher::finished(input, prep, result, micros, context, |m| m.chunk())?;
-        postcard::to_allocvec(&f).map_err(|e| e.to_string())
+        f.to_bytes().map_err(|e| e.to_string())
     }
 
     fn check(
@@ -187,8 +212,8 @@ impl Finisher for RunFinisher {
         let ours = RunFinisher::finished(input, prep, result, micros, context, |m| {
             Ok(m.unpacked_chunk())
         })?;
-        let theirs: FinishedPart =
-            postcard::from_bytes(theirs).map_err(|e| format!("malformed: {e}"))?;
+        let theirs = FinishedPart::from_bytes(Bytes::copy_from_slice(theirs))
+            .map_err(|e| format!("malformed: {e}"))?;
         same_part(&ours, &theirs)
     }
 }
@@ -253,7 +278,14 @@ mod tests {
         let f = RunFinisher;
         let check = |theirs: &[u8]| f.check(&input, &prep, &result, 1500, &context, theirs);
         assert_eq!(check(&ours), Ok(()));
-        let part: FinishedPart = postcard::from_bytes(&ours).expect("decode");
+        let decode =
+            |b: &[u8]| FinishedPart::from_bytes(Bytes::copy_from_slice(b)).expect("decode");
+        let part = decode(&ours);
+        assert_eq!(
+            part.to_bytes().expect("encode"),
+            ours,
+            "the wire form reads back"
+        );
         assert_eq!((part.index, part.id.as_str()), (3, "rect"));
         assert!(part.kept > 0, "a rectangle has fixtures");
         // Another timing: another part message, told apart.
@@ -269,10 +301,9 @@ mod tests {
             .expect("finish");
         assert!(check(&forged).is_err());
         // The same header over other compressed bytes.
-        let mut swapped: FinishedPart = postcard::from_bytes(&ours).expect("decode");
-        let other: FinishedPart = postcard::from_bytes(&forged).expect("decode");
-        swapped.chunk.compressed = other.chunk.compressed;
-        let swapped = postcard::to_allocvec(&swapped).expect("encode");
+        let mut swapped = decode(&ours);
+        swapped.chunk.compressed = decode(&forged).chunk.compressed;
+        let swapped = swapped.to_bytes().expect("encode");
         assert!(check(&swapped).is_err());
         assert!(check(b"junk").is_err());
     }
@@ -289,17 +320,17 @@ mod tests {
             top_k: None,
             wrenches: None,
         };
-        let o = outcome(&bytes, 3, &cp).expect("outcome");
+        let o = outcome(bytes.clone(), 3, &cp).expect("outcome");
         assert_eq!(o.status, Status::Ok);
         assert!(matches!(
-            outcome(&bytes, 4, &cp),
+            outcome(bytes.clone(), 4, &cp),
             Err(FinishedError::OtherPart { got_index: 3, .. })
         ));
-        let mut bad: FinishedPart = postcard::from_bytes(&bytes).expect("decode");
+        let mut bad = FinishedPart::from_bytes(bytes.into()).expect("decode");
         bad.chunk.compressed.truncate(3);
-        let bad = postcard::to_allocvec(&bad).expect("encode");
+        let bad = bad.to_bytes().expect("encode");
         assert!(matches!(
-            outcome(&bad, 3, &cp),
+            outcome(bad, 3, &cp),
             Err(FinishedError::BadChunk(_))
         ));
     }

@@ -174,7 +174,7 @@ pub fn run_parts(
         |i, done| match done {
             PartDone::Solved(s) => part_outcome(&ctx, start + i, jobs[i].part, s),
             PartDone::Finished(bytes) => {
-                finish::outcome(&bytes, start + i, jobs[i].part).or_else(|e| {
+                finish::outcome(bytes, start + i, jobs[i].part).or_else(|e| {
                     // Never from a fixplan worker of this version: solved
                     // here rather than lost.
                     tracing::warn!(

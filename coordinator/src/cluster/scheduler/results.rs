@@ -195,11 +195,12 @@ fn close(st: &mut State, p: usize) {
     let stop = part.stop;
     // Shards past the stop: results that came in are left out, the others
     // are never handed out (or are duplicates later).
-    let partials = std::mem::take(&mut part.partials);
-    // Finished by its worker: a whole part's one shard, not stopped.
-    let finished = match partials.as_slice() {
+    let mut partials = std::mem::take(&mut part.partials);
+    // Finished by its worker: a whole part's one shard, not stopped (moved
+    // out: a chunk is kilobytes, copied once already off the wire).
+    let finished = match partials.as_mut_slice() {
         [one] if stop.is_none() && part.shard_ids.end - part.shard_ids.start == 1 => {
-            one.finished.clone()
+            one.finished.take()
         }
         _ => None,
     };
