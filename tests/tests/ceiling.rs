@@ -1,5 +1,6 @@
-//! `fixplan bench-coordinator`'s replay mode: simulated workers in this
-//! process answer from recorded results, and the coordinator's results
+//! `fixplan bench-coordinator`'s replay mode: simulated workers (in this
+//! process, and in their own through the command) answer from recorded
+//! results, and the coordinator's results
 //! file holds the same fixtures and scenes as the embedded run's. Loopback only (a
 //! unix socket and iceoryx2 under a fresh prefix), a few seconds.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
@@ -25,6 +26,10 @@ fn replayed_run_equals_embedded() {
         transport: TransportChoice::Auto,
         verify: VerifyPolicy::All,
         keep: None,
+        in_process: true,
+        serve_replay: None,
+        prefix: String::new(),
+        rounds: 2,
     };
     let replay = Arc::new(Replay::default());
     let warm = dir.path().join("warm.mcap");
@@ -55,4 +60,42 @@ fn replayed_run_equals_embedded() {
     assert_eq!(e.len(), cat.parts.len());
     assert_eq!(channels(&warm), e);
     assert_eq!(channels(&replayed), e);
+}
+
+/// The command as shipped: the simulated workers in a process of their own
+/// (this executable again), every shard of the measured run replayed (the
+/// command fails otherwise), a row of figures for the count asked.
+#[test]
+fn bench_coordinator_runs_its_workers_in_their_own_process() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_fixplan-it"))
+        .args([
+            "bench-coordinator",
+            "--repeat",
+            "1",
+            "--simulated-workers",
+            "2",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.contains("2 workers: warm-up"), "{stderr}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let row: Vec<&str> = stdout
+        .lines()
+        .map(|l| l.split_whitespace().collect::<Vec<_>>())
+        .find(|cols| cols.first() == Some(&"2"))
+        .unwrap_or_else(|| panic!("no row for 2 workers in {stdout}"));
+    let (parts, shards): (usize, u64) = (row[1].parse().unwrap(), row[4].parse().unwrap());
+    let catalogue = format!("catalogue: {parts} parts");
+    assert!(
+        stdout.starts_with(&catalogue),
+        "every part written: {stdout}"
+    );
+    assert!(shards > 0, "{stdout}");
+    let us_per_part: f64 = row[5].parse().unwrap();
+    assert!(
+        us_per_part > 0.0,
+        "the coordinator's CPU is measured: {stdout}"
+    );
 }

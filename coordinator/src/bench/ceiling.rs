@@ -1,6 +1,6 @@
 //! `fixplan bench-coordinator`: the coordinator's ceiling. Simulated
-//! workers in this process answer every shard at once with its real
-//! result, computed beforehand ([`Replay`]), over the transport a real
+//! workers ([`super::replay_workers`]) answer every shard at once with its
+//! real result, computed beforehand ([`Replay`]), over the transport a real
 //! run uses (join over zenoh on a unix socket, shards over iceoryx2 or
 //! zenoh); the coordinator is the real `fixplan run --workers` path
 //! ([`run_catalog`] with a cluster backend), results file included. So
@@ -9,26 +9,25 @@
 //! Per count of simulated workers: a warm-up run (the same run, whose
 //! shards are enumerated once and recorded) then the measured run, in
 //! which every shard is replayed. The coordinator's CPU is this process's
-//! CPU time over the measured run minus the simulated workers' threads'
-//! (what their zenoh sessions do on zenoh's shared threads still counts
-//! as the coordinator's: joins and liveliness, little with iceoryx2).
+//! CPU time over the measured run; with `--in-process` (workers in this
+//! process), minus the simulated workers' threads' (what their zenoh
+//! sessions do on zenoh's shared threads then counts as the
+//! coordinator's).
 
-use crate::cluster::cpu_time::{monotonic_micros, process_micros, thread_micros};
+use super::replay_workers::{round_endpoint, serve_main, start_workers, WorkerProcess};
+use crate::cluster::cpu_time::{monotonic_micros, process_micros};
 use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
 use crate::job::SearchOptions;
 use crate::run::backend::Backend;
-use crate::run::finish::RunFinisher;
 use crate::run::{run_catalog, RunOptions};
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
-use fixplan_worker::agent::{run_worker, WorkerOptions};
 use fixplan_worker::host::unique_name;
 use fixplan_worker::replay::Replay;
 use fixplan_worker::zenoh_link::ZenohOptions;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// `fixplan bench-coordinator` options.
 #[derive(clap::Args, Debug, Clone)]
@@ -57,6 +56,22 @@ pub struct CeilingArgs {
     /// default they go to a temporary directory, removed at the end.
     #[arg(long, value_name = "DIR")]
     pub keep: Option<PathBuf>,
+    /// Run the simulated workers in this process rather than in one of
+    /// their own: one `perf record` sees both sides, but the workers'
+    /// zenoh sessions then share the coordinator's zenoh threads, whose
+    /// CPU counts as the coordinator's.
+    #[arg(long)]
+    pub in_process: bool,
+    /// Be the simulated workers of another measurement, joining at
+    /// `BASE-R.sock` for its run R (started by the measurement itself).
+    #[arg(long, value_name = "BASE", hide = true)]
+    pub serve_replay: Option<PathBuf>,
+    /// With `--serve-replay`: the measurement's key prefix.
+    #[arg(long, hide = true, default_value = "")]
+    pub prefix: String,
+    /// With `--serve-replay`: how many runs to serve.
+    #[arg(long, hide = true, default_value_t = 2)]
+    pub rounds: usize,
 }
 
 /// One run's figures.
@@ -74,6 +89,9 @@ pub struct Ceiling {
     pub workers_cpu: f64,
     /// Shards replayed and shards enumerated during the run.
     pub replayed: (u64, u64),
+    /// The run's start and end, monotonic clock microseconds (for `perf
+    /// report --time`).
+    pub window: (u64, u64),
 }
 
 impl Ceiling {
@@ -90,73 +108,22 @@ fn repeated(cat: &Catalog, n: usize) -> Catalog {
     c
 }
 
-/// Starts `n` simulated workers once the coordinator listens on `sock`;
-/// each thread returns its CPU time in microseconds.
-fn start_workers(
-    n: usize,
-    sock: PathBuf,
-    prefix: &str,
-    transport: TransportChoice,
-    replay: &Arc<Replay>,
-) -> JoinHandle<Vec<u64>> {
-    let (prefix, replay) = (prefix.to_string(), replay.clone());
-    std::thread::spawn(move || {
-        let until = Instant::now() + Duration::from_secs(30);
-        while std::os::unix::net::UnixStream::connect(&sock).is_err() && Instant::now() < until {
-            std::thread::sleep(Duration::from_millis(1));
-        }
-        let ep = format!("unixsock-stream/{}", sock.display());
-        let threads: Vec<_> = (0..n)
-            .map(|i| {
-                let opts = WorkerOptions {
-                    zenoh: ZenohOptions {
-                        connect: vec![ep.clone()],
-                        ..ZenohOptions::default()
-                    },
-                    key_prefix: prefix.clone(),
-                    threads: Some(1),
-                    transport,
-                    name: Some(format!("replay-{i}")),
-                    replay: Some(replay.clone()),
-                    finisher: Some(Arc::new(RunFinisher)),
-                    ..WorkerOptions::default()
-                };
-                std::thread::Builder::new()
-                    .name(format!("replay-{i}"))
-                    .spawn(move || {
-                        if let Err(e) = run_worker(opts) {
-                            eprintln!("simulated worker {i}: {e}");
-                        }
-                        thread_micros()
-                    })
-            })
-            .collect();
-        threads
-            .into_iter()
-            .flatten()
-            .map(|t| t.join().unwrap_or(0))
-            .collect()
-    })
-}
-
-/// One run of the real coordinator path with `n` simulated workers,
-/// writing `output`.
-pub fn run_once(
+/// The options of a cluster run of `catalog` for `n` one-thread workers
+/// joining at `sock` under `prefix`, writing `output`.
+fn run_options(
     catalog: &Catalog,
-    spec: &KitSpec,
     a: &CeilingArgs,
     n: usize,
-    replay: &Arc<Replay>,
+    sock: &Path,
+    prefix: &str,
     output: &Path,
-) -> Result<Ceiling> {
-    let sock = std::env::temp_dir().join(format!("{}.sock", unique_name("ceiling")));
-    let prefix = unique_name("ceiling");
+) -> RunOptions {
     let copts = ClusterOptions {
         zenoh: ZenohOptions {
             listen: vec![format!("unixsock-stream/{}", sock.display())],
             ..ZenohOptions::default()
         },
-        key_prefix: prefix.clone(),
+        key_prefix: prefix.to_string(),
         transport: a.transport,
         min_workers: n,
         expected_threads: Some(n),
@@ -166,7 +133,7 @@ pub fn run_once(
         verify: a.verify,
         ..ClusterOptions::default()
     };
-    let opts = RunOptions {
+    RunOptions {
         catalog: catalog.source.clone(),
         kit: a.kit.clone(),
         top_k: None,
@@ -178,30 +145,118 @@ pub fn run_once(
         search: SearchOptions::default(),
         backend: Backend::Cluster(copts),
         arcs: None,
-    };
-    let (h0, m0) = replay.counts();
+    }
+}
+
+/// One coordinator run, its workers started elsewhere: the figures of
+/// [`Ceiling`] but the workers'.
+fn coordinate(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    opts: &RunOptions,
+    sock: &Path,
+    n: usize,
+) -> Result<Ceiling> {
     let cpu0 = process_micros();
+    let from = monotonic_micros();
     let t0 = Instant::now();
-    let workers = start_workers(n, sock.clone(), &prefix, a.transport, replay);
-    let totals = run_catalog(catalog, spec, &opts);
+    let totals = run_catalog(catalog, spec, opts);
     let wall = t0.elapsed().as_secs_f64();
-    let worker_micros: u64 = workers.join().unwrap_or_default().iter().sum();
     let process = process_micros().saturating_sub(cpu0);
-    let _ = std::fs::remove_file(&sock);
-    let totals = totals?;
-    let (h1, m1) = replay.counts();
+    let to = monotonic_micros();
+    let _ = std::fs::remove_file(sock);
     Ok(Ceiling {
         workers: n,
-        parts: totals.parts(),
+        parts: totals?.parts(),
         wall,
         process_cpu: process as f64 * 1e-6,
+        workers_cpu: 0.0,
+        replayed: (0, 0),
+        window: (from, to),
+    })
+}
+
+/// One run of the real coordinator path with `n` simulated workers in
+/// this process, writing `output`.
+pub fn run_once(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    a: &CeilingArgs,
+    n: usize,
+    replay: &Arc<Replay>,
+    output: &Path,
+) -> Result<Ceiling> {
+    let base = std::env::temp_dir().join(unique_name("ceiling"));
+    let (sock, prefix) = round_endpoint(&base, &unique_name("ceiling"), 0);
+    let opts = run_options(catalog, a, n, &sock, &prefix, output);
+    let (h0, m0) = replay.counts();
+    let workers = start_workers(n, sock.clone(), &prefix, a.transport, replay);
+    let run = coordinate(catalog, spec, &opts, &sock, n);
+    let worker_micros: u64 = workers.join().unwrap_or_default().iter().sum();
+    let (h1, m1) = replay.counts();
+    Ok(Ceiling {
         workers_cpu: worker_micros as f64 * 1e-6,
         replayed: (h1 - h0, m1 - m0),
+        ..run?
     })
+}
+
+/// The warm-up and measured runs with `n` simulated workers in a process
+/// of their own, writing `output`.
+fn run_twice_apart(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    a: &CeilingArgs,
+    n: usize,
+    output: &Path,
+) -> Result<[Ceiling; 2]> {
+    let base = std::env::temp_dir().join(unique_name("ceiling"));
+    let prefix = unique_name("ceiling");
+    let workers = WorkerProcess::spawn(&base, &prefix, n, a.transport, 2)?;
+    let run = |round| {
+        let (sock, prefix) = round_endpoint(&base, &prefix, round);
+        let opts = run_options(catalog, a, n, &sock, &prefix, output);
+        coordinate(catalog, spec, &opts, &sock, n)
+    };
+    let (warm, measured) = (run(0)?, run(1)?);
+    match workers.finish()?[..] {
+        [w, m] => Ok([
+            Ceiling {
+                replayed: w.replayed,
+                ..warm
+            },
+            Ceiling {
+                replayed: m.replayed,
+                ..measured
+            },
+        ]),
+        ref other => bail!("the simulated workers served {} runs of 2", other.len()),
+    }
+}
+
+/// The warm-up and measured runs with `n` simulated workers, as asked.
+fn run_twice(
+    catalog: &Catalog,
+    spec: &KitSpec,
+    a: &CeilingArgs,
+    n: usize,
+    replay: &Arc<Replay>,
+    output: &Path,
+) -> Result<[Ceiling; 2]> {
+    if a.in_process {
+        let warm = run_once(catalog, spec, a, n, replay, output)?;
+        Ok([warm, run_once(catalog, spec, a, n, replay, output)?])
+    } else {
+        run_twice_apart(catalog, spec, a, n, output)
+    }
 }
 
 /// Runs the measurements and prints them.
 pub fn bench_main(a: &CeilingArgs) -> Result<()> {
+    if let Some(base) = &a.serve_replay {
+        let n = a.simulated_workers.first().copied().unwrap_or(1).max(1);
+        return serve_main(base, &a.prefix, n, a.transport, a.rounds);
+    }
     let path = a
         .catalog
         .clone()
@@ -228,10 +283,8 @@ pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     for &n in &a.simulated_workers {
         let n = n.max(1);
         let out = dir.join(format!("replay-{n}.mcap"));
-        let warm = run_once(&catalog, &spec, a, n, &replay, &out)?;
-        let from = monotonic_micros();
-        let run = run_once(&catalog, &spec, a, n, &replay, &out)?;
-        let to = monotonic_micros();
+        let [warm, run] = run_twice(&catalog, &spec, a, n, &replay, &out)?;
+        let (from, to) = run.window;
         if run.replayed.1 > 0 {
             bail!(
                 "{n} workers: {} shards were not replayed (the plan changed between the runs)",
@@ -281,7 +334,7 @@ fn print_table(rows: &[Ceiling]) {
     }
     println!(
         "(wall: coordinator start to results file renamed; shards: replayed in the run; coord us/pt: \
-         this process's CPU minus the simulated workers' threads', per part; coord cpu: that \
-         over the wall time, 100% = one core)"
+         this process's CPU per part (with --in-process, minus the simulated workers' threads'); \
+         coord cpu: that over the wall time, 100% = one core)"
     );
 }

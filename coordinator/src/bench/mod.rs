@@ -7,3 +7,4 @@
 pub mod ceiling;
 pub mod cluster;
 pub mod parts;
+pub mod replay_workers;

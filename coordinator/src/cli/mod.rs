@@ -155,14 +155,15 @@ enum Cmd {
     /// Measure the coordinator's ceiling: parts/s and its CPU per part when
     /// workers cost nothing.
     ///
-    /// Simulated workers in this process (one thread each, `--simulated-
-    /// workers 1,8,64`) answer every shard at once with its real result,
-    /// computed in a warm-up run of the same catalogue and replayed in the
-    /// measured run, over the transport of a real run. The coordinator is
-    /// the `fixplan run --workers` path, results file included. Prints per
-    /// count: wall time, parts/s, and the coordinator's CPU per part (this
-    /// process's CPU minus the simulated workers' threads'). Profile it with
-    /// `perf record -g fixplan bench-coordinator ...`.
+    /// Simulated workers (one thread each, `--simulated-workers 1,8,64`),
+    /// in a process of their own, answer every shard at once with its real
+    /// result, computed in a warm-up run of the same catalogue and replayed
+    /// in the measured run, over the transport of a real run. The
+    /// coordinator is the `fixplan run --workers` path, results file
+    /// included. Prints per count: wall time, parts/s, and the
+    /// coordinator's CPU per part (this process's CPU). Profile it with
+    /// `perf record -k CLOCK_MONOTONIC fixplan bench-coordinator
+    /// --in-process ...` and the printed `perf report --time` window.
     BenchCoordinator(crate::bench::ceiling::CeilingArgs),
     /// Measure the enumeration per part on one thread: wall time, where it
     /// goes (setup enumeration, clamp placement, admissibility checks,
