@@ -23,6 +23,7 @@ fn replayed_run_equals_embedded() {
         kit: spec.name.clone(),
         repeat: 1,
         simulated_workers: vec![2],
+        threads_per_worker: 1,
         transport: TransportChoice::Auto,
         verify: VerifyPolicy::All,
         keep: None,

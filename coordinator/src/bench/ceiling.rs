@@ -45,6 +45,10 @@ pub struct CeilingArgs {
     /// `1,8,64`.
     #[arg(long, value_delimiter = ',', default_value = "1,8,64")]
     pub simulated_workers: Vec<usize>,
+    /// Threads of each simulated worker (as `fixplan worker --threads`):
+    /// a few workers of many threads against many of one.
+    #[arg(long, default_value_t = 1)]
+    pub threads_per_worker: usize,
     /// The simulated workers' transport, as `fixplan worker --transport`.
     #[arg(long, default_value = "auto")]
     pub transport: TransportChoice,
@@ -126,8 +130,8 @@ fn run_options(
         key_prefix: prefix.to_string(),
         transport: a.transport,
         min_workers: n,
-        expected_threads: Some(n),
-        worker_threads: Some(1),
+        expected_threads: Some(n * a.threads_per_worker.max(1)),
+        worker_threads: Some(a.threads_per_worker.max(1)),
         iox_clients: Some(n),
         quiet: true,
         verify: a.verify,
@@ -190,7 +194,8 @@ pub fn run_once(
     let (sock, prefix) = round_endpoint(&base, &unique_name("ceiling"), 0);
     let opts = run_options(catalog, a, n, &sock, &prefix, output);
     let (h0, m0) = replay.counts();
-    let workers = start_workers(n, sock.clone(), &prefix, a.transport, replay);
+    let threads = a.threads_per_worker.max(1);
+    let workers = start_workers(n, threads, sock.clone(), &prefix, a.transport, replay);
     let run = coordinate(catalog, spec, &opts, &sock, n);
     let worker_micros: u64 = workers.join().unwrap_or_default().iter().sum();
     let (h1, m1) = replay.counts();
@@ -212,7 +217,8 @@ fn run_twice_apart(
 ) -> Result<[Ceiling; 2]> {
     let base = std::env::temp_dir().join(unique_name("ceiling"));
     let prefix = unique_name("ceiling");
-    let workers = WorkerProcess::spawn(&base, &prefix, n, a.transport, 2)?;
+    let threads = a.threads_per_worker.max(1);
+    let workers = WorkerProcess::spawn(&base, &prefix, (n, threads), a.transport, 2)?;
     let run = |round| {
         let (sock, prefix) = round_endpoint(&base, &prefix, round);
         let opts = run_options(catalog, a, n, &sock, &prefix, output);
@@ -255,7 +261,8 @@ fn run_twice(
 pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     if let Some(base) = &a.serve_replay {
         let n = a.simulated_workers.first().copied().unwrap_or(1).max(1);
-        return serve_main(base, &a.prefix, n, a.transport, a.rounds);
+        let workers = (n, a.threads_per_worker.max(1));
+        return serve_main(base, &a.prefix, workers, a.transport, a.rounds);
     }
     let path = a
         .catalog
@@ -270,12 +277,13 @@ pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     let dir = a.keep.clone().unwrap_or_else(|| tmp.clone());
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     println!(
-        "catalogue: {} parts ({} x {}), kit {}, transport {}, results files in {}",
+        "catalogue: {} parts ({} x {}), kit {}, transport {}, {} thread(s) a worker, results files in {}",
         catalog.parts.len(),
         a.repeat,
         cat.parts.len(),
         spec.name,
         a.transport,
+        a.threads_per_worker.max(1),
         dir.display()
     );
     let replay = Arc::new(Replay::default());

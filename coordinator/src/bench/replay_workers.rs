@@ -29,10 +29,12 @@ pub fn round_endpoint(base: &Path, prefix: &str, round: usize) -> (PathBuf, Stri
     (PathBuf::from(sock), format!("{prefix}-{round}"))
 }
 
-/// Starts `n` simulated workers once the coordinator listens on `sock`;
-/// each thread returns its CPU time in microseconds.
+/// Starts `n` simulated workers of `threads` threads once the coordinator
+/// listens on `sock`; each returns its agent thread's CPU time in
+/// microseconds.
 pub fn start_workers(
     n: usize,
+    threads: usize,
     sock: PathBuf,
     prefix: &str,
     transport: TransportChoice,
@@ -45,7 +47,7 @@ pub fn start_workers(
             std::thread::sleep(Duration::from_millis(1));
         }
         let ep = format!("unixsock-stream/{}", sock.display());
-        let threads: Vec<_> = (0..n)
+        let agents: Vec<_> = (0..n)
             .map(|i| {
                 let opts = WorkerOptions {
                     zenoh: ZenohOptions {
@@ -53,7 +55,7 @@ pub fn start_workers(
                         ..ZenohOptions::default()
                     },
                     key_prefix: prefix.clone(),
-                    threads: Some(1),
+                    threads: Some(threads),
                     transport,
                     name: Some(format!("replay-{i}")),
                     replay: Some(replay.clone()),
@@ -70,7 +72,7 @@ pub fn start_workers(
                     })
             })
             .collect();
-        threads
+        agents
             .into_iter()
             .flatten()
             .map(|t| t.join().unwrap_or(0))
@@ -89,14 +91,15 @@ pub struct Served {
 
 const SERVED: &str = "served";
 
-/// `fixplan bench-coordinator --serve-replay BASE`: `rounds` runs of `n`
-/// simulated workers, run `r` joining the coordinator at
+/// `fixplan bench-coordinator --serve-replay BASE`: `rounds` runs of
+/// `workers` (count, threads each) simulated workers, run `r` joining the
+/// coordinator at
 /// [`round_endpoint`]`(BASE, prefix, r)`, one [`Replay`] for all (the
 /// first run records, the next replay). Prints one line per run.
 pub fn serve_main(
     base: &Path,
     prefix: &str,
-    n: usize,
+    (n, threads): (usize, usize),
     transport: TransportChoice,
     rounds: usize,
 ) -> Result<()> {
@@ -105,7 +108,7 @@ pub fn serve_main(
         let (sock, prefix) = round_endpoint(base, prefix, round);
         let (h0, m0) = replay.counts();
         let cpu0 = process_micros();
-        let workers = start_workers(n, sock, &prefix, transport, &replay);
+        let workers = start_workers(n, threads, sock, &prefix, transport, &replay);
         if workers.join().is_err() {
             bail!("the simulated workers of run {round} panicked");
         }
@@ -124,11 +127,12 @@ pub struct WorkerProcess {
 }
 
 impl WorkerProcess {
-    /// Starts this executable as `rounds` runs of `n` simulated workers.
+    /// Starts this executable as `rounds` runs of `workers` (count,
+    /// threads each) simulated workers.
     pub fn spawn(
         base: &Path,
         prefix: &str,
-        n: usize,
+        (n, threads): (usize, usize),
         transport: TransportChoice,
         rounds: usize,
     ) -> Result<WorkerProcess> {
@@ -145,6 +149,7 @@ impl WorkerProcess {
             .arg(base)
             .args(["--prefix", prefix])
             .args(["--simulated-workers", &n.to_string()])
+            .args(["--threads-per-worker", &threads.to_string()])
             .args(["--transport", &transport.to_string()])
             .args(["--rounds", &rounds.to_string()])
             .stdin(Stdio::null())
