@@ -46,8 +46,13 @@ pub fn estimate(input: &fixplan_worker::part_input::PartInput) -> (u64, usize) {
 
 /// Batches per expected worker thread: assignments group small shards up
 /// to about `total cost / (slots x BATCHES_PER_SLOT)`, so that a catalogue
-/// of small parts needs tens of round trips per worker, not one per part.
-pub const BATCHES_PER_SLOT: u64 = 32;
+/// of small parts needs a few round trips per worker thread, not one per
+/// part. Each round trip costs the coordinator: 32 here cost 64 simulated
+/// worker threads (8 workers of 8) 25-29 us of coordinator CPU a part, 8
+/// cost 22-23 (`fixplan bench-coordinator`, 21,000 parts); the tail stays
+/// balanced by guided self-scheduling, which shrinks batches as the queue
+/// empties.
+pub const BATCHES_PER_SLOT: u64 = 8;
 
 /// Shards in one assignment at most, whatever their cost: keeps messages
 /// (inputs out, results back) and what a lost worker takes with it
