@@ -155,12 +155,12 @@ enum Cmd {
     /// Measure the coordinator's ceiling: parts/s and its CPU per part when
     /// workers cost nothing.
     ///
-    /// Simulated workers (one thread each, `--simulated-workers 1,8,64`),
-    /// in a process of their own, answer every shard at once with its real
-    /// result, computed in a warm-up run of the same catalogue and replayed
-    /// in the measured run, over the transport of a real run. The
-    /// coordinator is the `fixplan run --workers` path, results file
-    /// included. Prints per count: wall time, parts/s, and the
+    /// Simulated workers (`--simulated-workers 1,8,64`, one thread each
+    /// unless `--threads-per-worker`), in a process of their own, answer
+    /// every shard at once with its real result, computed in a warm-up run
+    /// of the same catalogue and replayed in the measured run, over the
+    /// transport of a real run. The coordinator is the `fixplan run
+    /// --workers` path, results file included. Prints per count: wall time, parts/s, and the
     /// coordinator's CPU per part (this process's CPU). Profile it with
     /// `perf record -k CLOCK_MONOTONIC fixplan bench-coordinator
     /// --in-process ...` and the printed `perf report --time` window.
