@@ -29,7 +29,9 @@ pub enum Fault {
     /// Finish whole parts with a made-up timing: honest results, finished
     /// parts that are not what they make.
     ForgeFinished,
-    /// Sleep this long before sending each result.
+    /// Take this much longer over every shard (a slow machine: the run
+    /// lasts as long whatever the size of its assignments, which tests
+    /// that upset a worker mid-run rely on).
     SlowMs(u64),
 }
 
@@ -367,15 +369,16 @@ impl Agent {
             .collect();
         let fault = self.opts.fault;
         let finisher = self.opts.finisher.as_deref();
-        let outcomes = self.pool.install(|| {
+        self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| shard_outcome(fault, finisher, a, &prep))
+                .map(|(a, prep)| {
+                    if let Some(Fault::SlowMs(ms)) = fault {
+                        std::thread::sleep(Duration::from_millis(ms));
+                    }
+                    shard_outcome(fault, finisher, a, &prep)
+                })
                 .collect::<Vec<_>>()
-        });
-        if let Some(Fault::SlowMs(ms)) = fault {
-            std::thread::sleep(Duration::from_millis(ms));
-        }
-        outcomes
+        })
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent

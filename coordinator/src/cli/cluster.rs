@@ -165,7 +165,8 @@ pub struct WorkerArgs {
     /// Claim another protocol version (tests of the version check).
     #[arg(long, hide = true, default_value_t = PROTOCOL_VERSION)]
     pub protocol_version: u16,
-    /// Misbehave (tests of the coordinator's checks): corrupt-score, slow:MS.
+    /// Misbehave (tests of the coordinator's checks): corrupt-score,
+    /// forge-finished, slow:MS (every shard MS longer).
     #[arg(long, hide = true)]
     pub fault: Option<Fault>,
 }
