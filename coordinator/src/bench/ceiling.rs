@@ -240,23 +240,6 @@ fn run_twice_apart(
     }
 }
 
-/// The warm-up and measured runs with `n` simulated workers, as asked.
-fn run_twice(
-    catalog: &Catalog,
-    spec: &KitSpec,
-    a: &CeilingArgs,
-    n: usize,
-    replay: &Arc<Replay>,
-    output: &Path,
-) -> Result<[Ceiling; 2]> {
-    if a.in_process {
-        let warm = run_once(catalog, spec, a, n, replay, output)?;
-        Ok([warm, run_once(catalog, spec, a, n, replay, output)?])
-    } else {
-        run_twice_apart(catalog, spec, a, n, output)
-    }
-}
-
 /// Runs the measurements and prints them.
 pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     if let Some(base) = &a.serve_replay {
@@ -291,7 +274,12 @@ pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     for &n in &a.simulated_workers {
         let n = n.max(1);
         let out = dir.join(format!("replay-{n}.mcap"));
-        let [warm, run] = run_twice(&catalog, &spec, a, n, &replay, &out)?;
+        let [warm, run] = if a.in_process {
+            let warm = run_once(&catalog, &spec, a, n, &replay, &out)?;
+            [warm, run_once(&catalog, &spec, a, n, &replay, &out)?]
+        } else {
+            run_twice_apart(&catalog, &spec, a, n, &out)?
+        };
         let (from, to) = run.window;
         if run.replayed.1 > 0 {
             bail!(
