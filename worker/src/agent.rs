@@ -186,6 +186,9 @@ fn shard_outcome(
             message,
         })
     };
+    if let Some(Fault::SlowMs(ms)) = fault {
+        std::thread::sleep(Duration::from_millis(ms));
+    }
     let (input, prep) = match prepared {
         Ok((input, prep)) => (input, prep),
         Err(e) => return failed(e.to_string()),
@@ -371,12 +374,7 @@ impl Agent {
         let finisher = self.opts.finisher.as_deref();
         self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| {
-                    if let Some(Fault::SlowMs(ms)) = fault {
-                        std::thread::sleep(Duration::from_millis(ms));
-                    }
-                    shard_outcome(fault, finisher, a, &prep)
-                })
+                .map(|(a, prep)| shard_outcome(fault, finisher, a, &prep))
                 .collect::<Vec<_>>()
         })
     }
