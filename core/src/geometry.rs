@@ -76,14 +76,19 @@ pub fn point_segment_dist2(p: V2, a: V2, b: V2) -> f64 {
 }
 
 /// Whether the closed segments `[a,b]` and `[c,d]` share a point.
+///
+/// The orientation signs are exact (Shewchuk's adaptive `orient2d`): with
+/// plain floats, points that a rounded `a + t (b - a)` left a few ulps off
+/// one line zigzag across it, and two disjoint pieces of that line far
+/// apart then "cross", so a valid part with a long edge split in pieces
+/// (a flattened outline, a DXF line drawn in parts) was refused as
+/// self-intersecting.
 pub fn segments_intersect(a: V2, b: V2, c: V2, d: V2) -> bool {
-    let d1 = cross(b - a, c - a);
-    let d2 = cross(b - a, d - a);
-    let d3 = cross(d - c, a - c);
-    let d4 = cross(d - c, b - c);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
+    let d1 = orientation(a, b, c);
+    let d2 = orientation(a, b, d);
+    let d3 = orientation(c, d, a);
+    let d4 = orientation(c, d, b);
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
         return true;
     }
     let on = |p: V2, q: V2, r: V2, o: f64| {
@@ -94,6 +99,18 @@ pub fn segments_intersect(a: V2, b: V2, c: V2, d: V2) -> bool {
             && r.y <= p.y.max(q.y)
     };
     on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4)
+}
+
+/// The exact sign (-1, 0 or 1) of `cross(b - a, c - a)`: positive when
+/// `a, b, c` turn counter-clockwise.
+fn orientation(a: V2, b: V2, c: V2) -> f64 {
+    let at = |p: V2| robust::Coord { x: p.x, y: p.y };
+    let o = robust::orient2d(at(a), at(b), at(c));
+    if o == 0.0 {
+        0.0
+    } else {
+        o.signum()
+    }
 }
 
 /// Squared distance between closed segments (0 when they intersect).
@@ -322,6 +339,42 @@ mod tests {
         let d = segment_segment_dist2(v2(0., 0.), v2(1., 0.), v2(2., 1.), v2(3., 1.));
         assert!((d - 2.0).abs() < 1e-12);
         assert!((point_segment_dist2(v2(0.5, 2.), v2(0., 0.), v2(1., 0.)) - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn pieces_of_one_line_do_not_cross() {
+        // From a proptest failure: a line cut in 71 pieces by a rounded
+        // `a + t (b - a)`. With float orientation signs pieces 5 and 58,
+        // 16 units apart, "crossed" (the points zigzag by an ulp).
+        let (a, b) = (
+            v2(-2.636239160009008, -10.03044312761639),
+            v2(10.731626504360504, 11.46822085391039),
+        );
+        let p: Vec<V2> = (0..=71).map(|i| a + (b - a) * (i as f64 / 71.0)).collect();
+        for i in 0..71 {
+            if i < 70 {
+                assert!(segments_intersect(p[i], p[i + 1], p[i + 1], p[i + 2]));
+            }
+            for j in i + 2..71 {
+                assert!(
+                    !segments_intersect(p[i], p[i + 1], p[j], p[j + 1]),
+                    "{i} x {j}"
+                );
+            }
+        }
+        // Exactly collinear overlapping and touching pieces still meet.
+        assert!(segments_intersect(
+            v2(0., 0.),
+            v2(2., 2.),
+            v2(1., 1.),
+            v2(3., 3.)
+        ));
+        assert!(!segments_intersect(
+            v2(0., 0.),
+            v2(1., 1.),
+            v2(2., 2.),
+            v2(3., 3.)
+        ));
     }
 
     #[test]

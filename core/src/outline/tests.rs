@@ -535,17 +535,23 @@ fn grown_edges_of_the_notch_and_fillets() {
 }
 
 /// Polyline of an edge between fractions `t0` and `t1`, chords at most
-/// `max_len` long and within `err` of an arc.
+/// `max_len` long and within `err` of an arc. The chord count is that of
+/// the range itself: counting the whole edge first and then scaling it to
+/// the range clamps a short range near a vertex to a couple of chords,
+/// too coarse to see a loop of 1e-5 there.
 fn polyline(e: &Edge, t0: f64, t1: f64, err: f64, max_len: f64) -> Vec<V2> {
-    let k = match e {
-        Edge::Line { .. } => 1,
+    let share = t1 - t0;
+    let by_len = e.length() * share / max_len;
+    let by_err = match e {
+        Edge::Line { .. } => 1.0,
+        // Half the angle a chord within `err` subtends, in a form that
+        // does not round to 0 when err/radius is below an ulp of 1.
         Edge::Arc(arc) => {
-            let by_err =
-                (arc.sweep.abs() / (2.0 * (1.0 - err / arc.radius).max(-1.0).acos())).ceil();
-            by_err.max(arc.length() / max_len).clamp(1.0, 1e5) as usize
+            let half = 2.0 * (err / (2.0 * arc.radius)).sqrt().min(1.0).asin();
+            arc.sweep.abs() * share / (2.0 * half)
         }
     };
-    let k = ((k as f64) * (t1 - t0)).ceil().max(1.0) as usize;
+    let k = by_err.max(by_len).ceil().clamp(1.0, 1e5) as usize;
     (0..=k)
         .map(|i| e.point_at(t0 + (t1 - t0) * i as f64 / k as f64))
         .collect()
