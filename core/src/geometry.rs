@@ -84,6 +84,15 @@ pub fn point_segment_dist2(p: V2, a: V2, b: V2) -> f64 {
 /// (a flattened outline, a DXF line drawn in parts) was refused as
 /// self-intersecting.
 pub fn segments_intersect(a: V2, b: V2, c: V2, d: V2) -> bool {
+    // Disjoint boxes share no point: most pairs a clearance test meets
+    // end here, before the four orientations.
+    if a.x.max(b.x) < c.x.min(d.x)
+        || c.x.max(d.x) < a.x.min(b.x)
+        || a.y.max(b.y) < c.y.min(d.y)
+        || c.y.max(d.y) < a.y.min(b.y)
+    {
+        return false;
+    }
     let d1 = orientation(a, b, c);
     let d2 = orientation(a, b, d);
     let d3 = orientation(c, d, a);
