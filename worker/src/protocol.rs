@@ -8,6 +8,7 @@
 //! [`Msg`] encoded with `postcard` (binary, so floats cross processes bit
 //! for bit).
 
+use bytes::Bytes;
 use fixplan_core::PartialResult;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -121,9 +122,11 @@ pub struct Assign {
     /// The combinations to enumerate.
     pub range: Range<u64>,
     /// The part's wire input ([`crate::part_input::PartInput::encode`]),
-    /// only the first time this worker gets a shard of the part.
-    #[serde(with = "serde_bytes")]
-    pub input: Option<Vec<u8>>,
+    /// only the first time this worker gets a shard of the part. Shared
+    /// bytes (serialised as `serde_bytes` would, so the wire is the same)
+    /// because the coordinator sends one part's input to every worker
+    /// without copying it for each.
+    pub input: Option<Bytes>,
     /// `--good-enough`: stop the shard at its first combination that admits
     /// a fixture scoring this or better ([`ShardDone::hit`]).
     pub good_enough: Option<f64>,
@@ -131,8 +134,7 @@ pub struct Assign {
     /// coordinator's [`crate::finish::Finisher`] needs besides the part's
     /// input and result (its place and name in the catalogue), opaque to
     /// the worker. Workers without a finisher ignore it.
-    #[serde(with = "serde_bytes")]
-    pub finish: Option<Vec<u8>>,
+    pub finish: Option<Bytes>,
 }
 
 /// A finished shard (of the worker named in the [`Msg::Report`]).
@@ -393,5 +395,46 @@ mod tests {
             }))],
         };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
+    }
+
+    /// `Assign`'s shared byte fields are on the wire exactly as the
+    /// `serde_bytes` vectors of protocol 5 were (so the version stays).
+    #[test]
+    fn shared_bytes_keep_the_wire_form() {
+        #[derive(Serialize)]
+        struct AsVectors {
+            shard_id: u64,
+            digest: Digest,
+            range: Range<u64>,
+            #[serde(with = "serde_bytes")]
+            input: Option<Vec<u8>>,
+            good_enough: Option<f64>,
+            #[serde(with = "serde_bytes")]
+            finish: Option<Vec<u8>>,
+        }
+        for (input, finish) in [
+            (Some(vec![1u8, 2, 250]), None),
+            (None, Some(vec![9u8; 300])),
+        ] {
+            let a = Assign {
+                shard_id: 7,
+                digest: [3; 32],
+                range: 0..40,
+                input: input.clone().map(Bytes::from),
+                good_enough: Some(1.5),
+                finish: finish.clone().map(Bytes::from),
+            };
+            let v = AsVectors {
+                shard_id: 7,
+                digest: [3; 32],
+                range: 0..40,
+                input,
+                good_enough: Some(1.5),
+                finish,
+            };
+            let wire = postcard::to_allocvec(&a).unwrap();
+            assert_eq!(wire, postcard::to_allocvec(&v).unwrap());
+            assert_eq!(postcard::from_bytes::<Assign>(&wire).unwrap(), a);
+        }
     }
 }

@@ -6,6 +6,7 @@
 //! Never used by `fixplan worker`.
 
 use crate::protocol::{Assign, Digest, Outcome};
+use bytes::Bytes;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -13,7 +14,7 @@ use std::sync::Mutex;
 /// What names a shard's result: the part, the range, `good_enough` (bits),
 /// and what finishing it needs (a part listed twice is finished under each
 /// of its places).
-type Key = (Digest, u64, u64, Option<u64>, Option<Vec<u8>>);
+type Key = (Digest, u64, u64, Option<u64>, Option<Bytes>);
 
 fn key(a: &Assign) -> Key {
     (
@@ -35,7 +36,7 @@ pub struct Replay {
     /// Parts' wire inputs by digest: a replayed shard skips preparing its
     /// part, so a later shard of it that is not in the cache (sent without
     /// input: the coordinator believes this worker has it) takes it here.
-    inputs: Mutex<HashMap<Digest, Vec<u8>>>,
+    inputs: Mutex<HashMap<Digest, Bytes>>,
     hits: AtomicU64,
     misses: AtomicU64,
 }
@@ -73,7 +74,7 @@ impl Replay {
     }
 
     /// The wire input of `a`'s part, if `a` came without it and it is known.
-    pub fn input_for(&self, a: &Assign) -> Option<Vec<u8>> {
+    pub fn input_for(&self, a: &Assign) -> Option<Bytes> {
         if a.input.is_some() {
             return None;
         }

@@ -81,21 +81,14 @@ fn lease_batch(st: &mut State, s: &Settings, worker: &str, limit: u64) -> Option
         let w = st.workers.get_mut(worker)?;
         w.leased.insert(id);
         // The part's input goes with its first shard to each worker.
-        let input = w
-            .parts_sent
-            .insert(sh.part)
-            .then(|| part.input.as_ref().clone());
+        let input = w.parts_sent.insert(sh.part).then(|| part.input.clone());
         batch.push(Assign {
             shard_id: id,
             digest: part.digest,
             range: sh.range.clone(),
             input,
             good_enough: s.good_enough,
-            finish: part
-                .finish
-                .as_ref()
-                .filter(|_| sh.range == WHOLE)
-                .map(|f| f.as_ref().clone()),
+            finish: part.finish.as_ref().filter(|_| sh.range == WHOLE).cloned(),
         });
     }
     Some(batch)

@@ -4,6 +4,7 @@
 
 use super::errors::PartError;
 use crate::cluster::verify::VerifyPolicy;
+use bytes::Bytes;
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
 use fixplan_worker::finish::Finisher;
 use fixplan_worker::part_input::{digest, PartInput};
@@ -70,7 +71,7 @@ pub(super) struct PartSlot {
     /// only when a result of theirs is re-derived.
     pub(super) prep: Option<Arc<PreparedPart>>,
     pub(super) source: Arc<PartInput>,
-    pub(super) input: Arc<Vec<u8>>,
+    pub(super) input: Bytes,
     /// What results must name to be taken for this part.
     pub(super) digest: Digest,
     /// Ids of its shards (contiguous, in combination order).
@@ -85,7 +86,7 @@ pub(super) struct PartSlot {
     /// Delivered (merged or failed): later results are duplicates.
     pub(super) closed: bool,
     /// [`PlannedPart::finish`].
-    pub(super) finish: Option<Arc<Vec<u8>>>,
+    pub(super) finish: Option<Bytes>,
 }
 
 impl PartSlot {
@@ -285,13 +286,13 @@ impl State {
             prep: part.prep,
             source: part.source,
             digest: digest(&part.input),
-            input: Arc::new(part.input),
+            input: Bytes::from(part.input),
             shard_ids: first..first + part.ranges.len() as u64,
             stop: None,
             partials: Vec::new(),
             top: Vec::new(),
             closed: false,
-            finish: part.finish.map(Arc::new),
+            finish: part.finish.map(Bytes::from),
         });
         self.part_index.push(part.index);
         self.open_parts += 1;
