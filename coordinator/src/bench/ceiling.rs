@@ -78,6 +78,13 @@ pub struct CeilingArgs {
     pub rounds: usize,
 }
 
+impl CeilingArgs {
+    /// Threads of each simulated worker (0 taken as 1).
+    fn worker_threads(&self) -> usize {
+        self.threads_per_worker.max(1)
+    }
+}
+
 /// One run's figures.
 #[derive(Debug, Clone)]
 pub struct Ceiling {
@@ -130,8 +137,8 @@ fn run_options(
         key_prefix: prefix.to_string(),
         transport: a.transport,
         min_workers: n,
-        expected_threads: Some(n * a.threads_per_worker.max(1)),
-        worker_threads: Some(a.threads_per_worker.max(1)),
+        expected_threads: Some(n * a.worker_threads()),
+        worker_threads: Some(a.worker_threads()),
         iox_clients: Some(n),
         quiet: true,
         verify: a.verify,
@@ -194,7 +201,7 @@ pub fn run_once(
     let (sock, prefix) = round_endpoint(&base, &unique_name("ceiling"), 0);
     let opts = run_options(catalog, a, n, &sock, &prefix, output);
     let (h0, m0) = replay.counts();
-    let threads = a.threads_per_worker.max(1);
+    let threads = a.worker_threads();
     let workers = start_workers(n, threads, sock.clone(), &prefix, a.transport, replay);
     let run = coordinate(catalog, spec, &opts, &sock, n);
     let worker_micros: u64 = workers.join().unwrap_or_default().iter().sum();
@@ -217,8 +224,7 @@ fn run_twice_apart(
 ) -> Result<[Ceiling; 2]> {
     let base = std::env::temp_dir().join(unique_name("ceiling"));
     let prefix = unique_name("ceiling");
-    let threads = a.threads_per_worker.max(1);
-    let workers = WorkerProcess::spawn(&base, &prefix, (n, threads), a.transport, 2)?;
+    let workers = WorkerProcess::spawn(&base, &prefix, (n, a.worker_threads()), a.transport, 2)?;
     let run = |round| {
         let (sock, prefix) = round_endpoint(&base, &prefix, round);
         let opts = run_options(catalog, a, n, &sock, &prefix, output);
@@ -244,7 +250,7 @@ fn run_twice_apart(
 pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     if let Some(base) = &a.serve_replay {
         let n = a.simulated_workers.first().copied().unwrap_or(1).max(1);
-        let workers = (n, a.threads_per_worker.max(1));
+        let workers = (n, a.worker_threads());
         return serve_main(base, &a.prefix, workers, a.transport, a.rounds);
     }
     let path = a
@@ -266,7 +272,7 @@ pub fn bench_main(a: &CeilingArgs) -> Result<()> {
         cat.parts.len(),
         spec.name,
         a.transport,
-        a.threads_per_worker.max(1),
+        a.worker_threads(),
         dir.display()
     );
     let replay = Arc::new(Replay::default());
