@@ -111,8 +111,10 @@ pub fn segments_intersect(a: V2, b: V2, c: V2, d: V2) -> bool {
 }
 
 /// The exact sign (-1, 0 or 1) of `cross(b - a, c - a)`: positive when
-/// `a, b, c` turn counter-clockwise.
-fn orientation(a: V2, b: V2, c: V2) -> f64 {
+/// `a, b, c` turn counter-clockwise. Every collinearity decision of polygon
+/// validation goes through it, so that a crossing and a fold-back are
+/// judged alike.
+pub(crate) fn orientation(a: V2, b: V2, c: V2) -> f64 {
     let at = |p: V2| robust::Coord { x: p.x, y: p.y };
     let o = robust::orient2d(at(a), at(b), at(c));
     if o == 0.0 {

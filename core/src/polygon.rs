@@ -3,7 +3,7 @@
 //! Errors carry the offending indices and coordinates so that a catalogue
 //! report can say "edge 4 crosses edge 9 at (12.5, 3.0)".
 
-use crate::geometry::{cross, signed_area, v2, V2};
+use crate::geometry::{cross, orientation, signed_area, v2, V2};
 use thiserror::Error;
 
 /// Which of SPEC 1's conditions a polygon breaks, and where; indices are
@@ -115,7 +115,7 @@ pub fn first_self_intersection(pts: &[V2]) -> Option<(usize, usize, V2)> {
                 let (shared, other_a, other_b) = if j == i + 1 { (b, a, d) } else { (a, b, c) };
                 let u = other_a - shared;
                 let w = other_b - shared;
-                if cross(u, w) == 0.0 && u.dot(&w) > 0.0 {
+                if orientation(shared, other_a, other_b) == 0.0 && u.dot(&w) > 0.0 {
                     let p = if u.norm_squared() < w.norm_squared() {
                         other_a
                     } else {
@@ -165,6 +165,27 @@ mod tests {
         let cw = [[0., 0.], [0., 1.], [1., 1.], [1., 0.]];
         let ccw = validate_polygon(&cw).unwrap();
         assert_eq!(ccw, vec![v2(0., 0.), v2(1., 0.), v2(1., 1.), v2(0., 1.)]);
+    }
+
+    #[test]
+    fn fold_back_is_decided_exactly() {
+        // `a` and `b` lie beyond `s` in nearly one direction: floats put
+        // the three on one line (cross product 0), exactly they are not
+        // (-3e-16), so edges 0 and 1 do not fold back over each other.
+        let (a, s, b) = (
+            v2(3.2552814678154287, 7.424325672893026),
+            v2(1.772112589385827, 5.844608707784413),
+            v2(3.348228321856763, 7.523322978134513),
+        );
+        assert_eq!(cross(a - s, b - s), 0.0);
+        let c = v2(-4.0, 12.0);
+        assert!(!matches!(
+            first_self_intersection(&[a, s, b, c]),
+            Some((0, 1, _))
+        ));
+        // An exact fold-back is still one.
+        let folded = [v2(0., 0.), v2(2., 0.), v2(1., 0.), v2(1., 5.)];
+        assert!(matches!(first_self_intersection(&folded), Some((0, 1, _))));
     }
 
     #[test]
