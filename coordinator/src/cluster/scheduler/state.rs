@@ -242,17 +242,20 @@ pub(super) struct State {
 impl State {
     /// Every shard of `parts` in the queue, in order.
     pub(super) fn new(parts: Vec<PlannedPart>) -> State {
+        // Sized once: growing these by doubling copied every slot again
+        // (about 1% of the coordinator's CPU on 84,000 parts).
+        let shards: usize = parts.iter().map(|p| p.ranges.len()).sum();
         let mut st = State {
-            parts: Vec::new(),
-            shards: Vec::new(),
-            queue: VecDeque::new(),
+            parts: Vec::with_capacity(parts.len()),
+            shards: Vec::with_capacity(shards),
+            queue: VecDeque::with_capacity(shards),
             workers: HashMap::new(),
             started: false,
             open_parts: 0,
             banned: HashSet::new(),
             queued_cost: 0,
             done: Vec::new(),
-            part_index: Vec::new(),
+            part_index: Vec::with_capacity(parts.len()),
             stats: Stats::default(),
         };
         for part in parts {
