@@ -611,10 +611,17 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut A
                 Class::Monotone(_) => monotone_root(f, lo, hi, out),
                 Class::Convex => convex_roots(f, b.tol, lo, hi, out),
                 Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
+                    // Halves with no wanted angle are dropped unexamined:
+                    // the halves kept are split exactly as before.
                     let m = 0.5 * (lo + hi);
-                    stack[n] = (m, hi);
-                    stack[n + 1] = (lo, m);
-                    n += 2;
+                    if within(m, hi) {
+                        stack[n] = (m, hi);
+                        n += 1;
+                    }
+                    if within(lo, m) {
+                        stack[n] = (lo, m);
+                        n += 1;
+                    }
                 }
                 Class::Split | Class::Flat => {
                     out.overflow |= budget == 0;
