@@ -318,8 +318,10 @@ struct Reduced {
 struct Sampled {
     f: Trig,
     d: Trig,
-    nx: Trig,
-    ny: Trig,
+    /// Samples of `N`'s components, transformed only for nearly parallel
+    /// rows, the one case that solves them (most solutions never do).
+    nx: [f64; SAMPLES],
+    ny: [f64; SAMPLES],
     /// How far a relative error of 1 in every term would move `F`.
     scale_f: f64,
     /// Largest `|b1| |b2|`: the scale of `D`.
@@ -438,9 +440,10 @@ impl Reduced {
         self.rows.map(|r| r.eval(c, s, self.rho0))
     }
 
-    /// `F`, `D`, `N` sampled at 16 angles and turned into coefficients;
-    /// sampling the very expressions that are solved avoids expanding them
-    /// symbolically (and the expansion's cancellation).
+    /// `F`, `D`, `N` sampled at 16 angles, `F` and `D` turned into
+    /// coefficients (`N` only where it is solved); sampling the very
+    /// expressions that are solved avoids expanding them symbolically (and
+    /// the expansion's cancellation).
     fn sample(&self) -> Sampled {
         let (mut f, mut d, mut nx, mut ny) = (
             [0.0; SAMPLES],
@@ -467,8 +470,8 @@ impl Reduced {
         Sampled {
             f: Trig::from_samples(&f),
             d: Trig::from_samples(&d),
-            nx: Trig::from_samples(&nx),
-            ny: Trig::from_samples(&ny),
+            nx,
+            ny,
             scale_f,
             max_dhat,
             max_nhat,
@@ -498,9 +501,9 @@ impl Reduced {
             // N = 0 (both components vanish there; either will do unless
             // it vanishes identically).
             let tol = NEAR_MISS * sm.max_dhat;
-            for n in [&sm.nx, &sm.ny] {
+            for n in [&sm.nx, &sm.ny].map(Trig::from_samples) {
                 if n.max_abs() > ROUNDING_REL * sm.max_nhat {
-                    trig::roots(n, tol, ROUNDING_REL * sm.max_nhat, within, out);
+                    trig::roots(&n, tol, ROUNDING_REL * sm.max_nhat, within, out);
                 }
             }
         }

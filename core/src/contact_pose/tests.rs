@@ -67,7 +67,7 @@ fn eliminant_degree() {
                 );
             }
         }
-        for t in [&sm.nx, &sm.ny] {
+        for t in [&sm.nx, &sm.ny].map(Trig::from_samples) {
             for j in 3..=4 {
                 assert!(
                     t.a[j].abs().max(t.b[j].abs()) < 1e-13 * sm.max_nhat,
