@@ -124,12 +124,7 @@ fn sweep(c: &mut Criterion) {
             edge: 0,
             s0: 0.0,
             s1: len,
-            feature: Feature::Line(LineFeature {
-                origin,
-                u,
-                n,
-                c: n.dot(&origin),
-            }),
+            feature: Feature::Line(LineFeature::new(origin, u, n)),
         }
     };
     let segs = [

@@ -585,12 +585,7 @@ mod tests {
             edge: 0,
             s0,
             s1,
-            feature: Feature::Line(LineFeature {
-                origin,
-                u,
-                n,
-                c: n.dot(&origin),
-            }),
+            feature: Feature::Line(LineFeature::new(origin, u, n)),
         }
     }
 

@@ -621,12 +621,7 @@ mod tests {
             edge: 0,
             s0: 0.0,
             s1: len,
-            feature: Feature::Line(LineFeature {
-                origin: a,
-                u,
-                n,
-                c: n.dot(&a),
-            }),
+            feature: Feature::Line(LineFeature::new(a, u, n)),
         }
     }
 

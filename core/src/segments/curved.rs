@@ -63,12 +63,7 @@ fn feature_of(grown: GrownEdge) -> Feature {
     match grown {
         GrownEdge::Line { a, b, normal } => {
             let u = (b - a).normalize();
-            Feature::Line(LineFeature {
-                origin: a,
-                u,
-                n: normal,
-                c: normal.dot(&a),
-            })
+            Feature::Line(LineFeature::new(a, u, normal))
         }
         GrownEdge::Arc(arc) => Feature::Arc(arc),
     }

@@ -41,12 +41,7 @@ pub(super) fn polygon_segments(part: &[V2], access: &[Vec<V2>], r: f64, trim: f6
                     edge: i,
                     s0,
                     s1,
-                    feature: Feature::Line(LineFeature {
-                        origin,
-                        u,
-                        n: nrm,
-                        c: nrm.dot(&origin),
-                    }),
+                    feature: Feature::Line(LineFeature::new(origin, u, nrm)),
                 });
             }
         }

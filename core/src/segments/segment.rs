@@ -22,6 +22,19 @@ pub struct LineFeature {
     pub c: f64,
 }
 
+impl LineFeature {
+    /// The grown line through `origin` along `u` with outward normal `n`;
+    /// `c` is derived, so it always agrees with `origin`.
+    pub fn new(origin: V2, u: V2, n: V2) -> LineFeature {
+        LineFeature {
+            origin,
+            u,
+            n,
+            c: n.dot(&origin),
+        }
+    }
+}
+
 /// What a segment lies on, in the part frame (lattice units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Feature {
