@@ -9,7 +9,7 @@ use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
 use crate::outline::{Outline, OutlineError, Vertex};
 use crate::polygon::{validate_polygon, PolygonError};
 use crate::segments::{distance_range, usable_segments, Segment};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use thiserror::Error;
 
 /// Why a part or kit cannot be enumerated. Messages name the place, so a
@@ -178,8 +178,13 @@ pub struct PreparedPart {
     pub(crate) access: Vec<Vec<V2>>,
     pub(crate) segments: Vec<Segment>,
     pub(crate) metric: Arc<dyn Metric>,
-    /// `pair[a * n + b]`: distance range between segments a and b.
-    pub(crate) pair: Vec<PairBounds>,
+    /// `pair[a * n + b]`: distance range between segments a and b, computed
+    /// on the first enumeration: they are about half of `prepare` (n^2
+    /// segment distances), and a coordinator prepares the parts it cuts
+    /// into shards only to count their combinations and finish their
+    /// results, which needs no bounds. Shared by clones, so a study's
+    /// kits computes them once.
+    pub(crate) pair: Arc<OnceLock<Vec<PairBounds>>>,
     /// Each segment as the setup sweep uses it, so that choosing a
     /// combination's pivot costs no trig per combination.
     pub(crate) swept: Vec<SweptSegment>,
@@ -314,7 +319,6 @@ pub fn prepare(
     let r = kit.locator_radius / l;
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
-    let pair = pair_bounds(&segments);
     let swept = segments.iter().map(SweptSegment::of).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
@@ -327,7 +331,7 @@ pub fn prepare(
         access,
         segments,
         metric,
-        pair,
+        pair: Arc::default(),
         swept,
         setting,
     })
@@ -471,7 +475,14 @@ impl PreparedPart {
     /// Distance range between segments `a` and `b` (pruning bound).
     #[inline]
     pub fn pair(&self, a: usize, b: usize) -> PairBounds {
-        self.pair[a * self.segments.len() + b]
+        self.pair_table()[a * self.segments.len() + b]
+    }
+
+    /// Every pair's [`Self::pair`], `a * n + b`: for loops that look up
+    /// many pairs and should check only once that they are computed.
+    #[inline]
+    pub(crate) fn pair_table(&self) -> &[PairBounds] {
+        self.pair.get_or_init(|| pair_bounds(&self.segments))
     }
 
     /// The usable segments (SPEC section 2), in the order that numbers

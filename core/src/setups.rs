@@ -135,7 +135,8 @@ impl PreparedPart {
     /// segments they touch (the annuli, with slack): true of every setup,
     /// as a rigid motion keeps distances.
     fn in_annuli(&self, combo: [usize; 3], locs: &[V2; 3]) -> bool {
-        in_annuli(combo.map(|i| combo.map(|j| self.pair(i, j))), locs)
+        let (table, n) = (self.pair_table(), self.segments.len());
+        in_annuli(combo.map(|i| combo.map(|j| table[i * n + j])), locs)
     }
 
     /// Keeps a pose whose contacts lie strictly inside their segments, in
@@ -236,6 +237,8 @@ impl PreparedPart {
         lines: bool,
     ) -> Option<Pivot<'_>> {
         let is_line = |k: usize| self.swept[combo[k]].is_line();
+        let (table, nseg) = (self.pair_table(), self.segments.len());
+        let pair = |a: usize, b: usize| table[a * nseg + b];
         let mut ranked = [(f64::INFINITY, [0usize; 3]); 6];
         let mut n = 0;
         for &roles in orders {
@@ -243,7 +246,7 @@ impl PreparedPart {
             if !is_line(p) || is_line(q) != lines {
                 continue;
             }
-            let (lo, hi) = annulus_sq(self.pair(combo[p], combo[q]));
+            let (lo, hi) = annulus_sq(pair(combo[p], combo[q]));
             // Insertion keeps the first of equal areas first.
             let mut k = n;
             while k > 0 && ranked[k - 1].0 > hi - lo {
@@ -256,7 +259,7 @@ impl PreparedPart {
         ranked[..n].iter().find_map(|&(_, roles)| {
             let [p, q, r] = roles.map(|k| combo[k]);
             let swept = [p, q, r].map(|i| &self.swept[i]);
-            let sweep = Sweep::new(swept, p == q, self.pair(p, r).dmax)?;
+            let sweep = Sweep::new(swept, p == q, pair(p, r).dmax)?;
             Some(Pivot { roles, sweep })
         })
     }
