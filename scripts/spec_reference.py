@@ -412,7 +412,8 @@ def subtract(lo, hi, ivs):
 
 
 class Seg:
-    __slots__ = ('idx', 'edge', 'P0', 'u', 'n', 'c', 's0', 's1', 'E0', 'E1')
+    __slots__ = ('idx', 'edge', 'P0', 'u', 'n', 'c', 's0', 's1', 'E0', 'E1',
+                 'kind', 'feat', 'C', 'rho', 'sg', 'a0', 'convex')
 
 
 def build_segments(part, access, r, trim):
@@ -444,6 +445,7 @@ def build_segments(part, access, r, trim):
             if b - a > EPS:
                 s = Seg()
                 s.edge = i
+                s.kind = 'line'
                 s.P0, s.u, s.n = P0, u, nn
                 s.c = dot(nn, P0)
                 s.s0, s.s1 = a, b
@@ -527,6 +529,11 @@ def score_contacts(pts, fs, applied, cen, rho):
     Mi = inv3(M, d)
     lc = matvec(Mi, ws[3])
     mu = (-lc[0], -lc[1], -lc[2], 1.0)
+    if min(mu) <= 0.0:
+        # only reachable with arcs: a (tangential, borderline) setup whose W is
+        # nearly singular, so a clamp lambda > eps in the plate frame rounds to
+        # <= 0 in the part frame: no finite score (C31)
+        return 1e300
     best = 0.0
     for p in applied:
         l0 = matvec(Mi, p)
@@ -538,15 +545,1203 @@ def score_contacts(pts, fs, applied, cen, rho):
     return best
 
 
+# ---------------------------------------------------------------- arcs (SPEC 8)
+TWO_PI = 2.0 * math.pi
+
+
+def norm_angle(a):
+    """angle in [0, 2 pi)"""
+    a = math.fmod(a, TWO_PI)
+    if a < 0.0:
+        a += TWO_PI
+    if a >= TWO_PI:
+        a = 0.0
+    return a
+
+
+class Edge:
+    """one edge of the true outline (part frame, lattice units)"""
+    __slots__ = ('kind', 'P0', 'P1', 'u', 'L', 'C', 'R', 'sweep', 'sg', 'a0')
+
+
+def make_edge(P0, P1, b):
+    e = Edge()
+    e.P0, e.P1 = P0, P1
+    dx, dy = P1[0] - P0[0], P1[1] - P0[1]
+    c = math.hypot(dx, dy)
+    if b == 0.0:
+        e.kind = 'line'
+        e.L = c
+        e.u = (dx / c, dy / c) if c > 0 else (1.0, 0.0)
+        return e
+    e.kind = 'arc'
+    e.sweep = 4.0 * math.atan(b)
+    e.sg = 1 if b > 0 else -1
+    e.R = c * (1.0 + b * b) / (4.0 * abs(b))
+    off = c * (1.0 - b * b) / (4.0 * b)
+    nl = (-dy / c, dx / c)
+    e.C = ((P0[0] + P1[0]) / 2 + off * nl[0], (P0[1] + P1[1]) / 2 + off * nl[1])
+    e.a0 = math.atan2(P0[1] - e.C[1], P0[0] - e.C[0])
+    e.L = e.R * abs(e.sweep)
+    return e
+
+
+def arc_rel(a0, sg, ang):
+    """angle travelled from a0 in the arc's own direction, in [0, 2 pi)"""
+    return norm_angle((ang - a0) * sg)
+
+
+def edge_tangents(e):
+    """unit tangent at start and at end (direction of travel)"""
+    if e.kind == 'line':
+        return e.u, e.u
+    a1 = e.a0 + e.sweep
+    return ((-e.sg * math.sin(e.a0), e.sg * math.cos(e.a0)),
+            (-e.sg * math.sin(a1), e.sg * math.cos(a1)))
+
+
+def pt_edge_dist(p, e):
+    if e.kind == 'line':
+        return math.sqrt(pt_seg_dist2(p, e.P0, e.P1))
+    dx, dy = p[0] - e.C[0], p[1] - e.C[1]
+    d = math.hypot(dx, dy)
+    if d == 0.0:
+        return e.R
+    if arc_rel(e.a0, e.sg, math.atan2(dy, dx)) <= abs(e.sweep):
+        return abs(d - e.R)
+    return min(math.dist(p, e.P0), math.dist(p, e.P1))
+
+
+def region_contains(p, edges):
+    """winding number of the true outline around p is non-zero
+    (chord polygon + signed circular segments); boundary points arbitrary"""
+    x, y = p
+    w = 0
+    for e in edges:
+        a, b = e.P0, e.P1
+        o = orient(a, b, p)
+        if a[1] <= y:
+            if b[1] > y and o > 0:
+                w += 1
+        else:
+            if b[1] <= y and o < 0:
+                w -= 1
+        if e.kind == 'arc':
+            if math.hypot(x - e.C[0], y - e.C[1]) < e.R and o * e.sg < 0:
+                w += e.sg
+    return w != 0
+
+
+def region_dist(p, edges):
+    if region_contains(p, edges):
+        return 0.0
+    return min(pt_edge_dist(p, e) for e in edges)
+
+
+def edge_bbox(e):
+    xs = [e.P0[0], e.P1[0]]
+    ys = [e.P0[1], e.P1[1]]
+    if e.kind == 'arc':
+        for k in range(4):
+            ang = k * math.pi / 2
+            if arc_rel(e.a0, e.sg, ang) <= abs(e.sweep):
+                xs.append(e.C[0] + e.R * math.cos(ang))
+                ys.append(e.C[1] + e.R * math.sin(ang))
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def region_bbox(edges):
+    bbs = [edge_bbox(e) for e in edges]
+    return (min(b[0] for b in bbs), min(b[1] for b in bbs),
+            max(b[2] for b in bbs), max(b[3] for b in bbs))
+
+
+def true_area_props(edges):
+    """area, centroid, radius of gyration of the true region (chord polygon plus
+    signed circular segments = sector minus triangle (C, P0, P1))"""
+    A = Sx = Sy = J = 0.0
+
+    def tri_terms(x1, y1, x2, y2):
+        k = x1 * y2 - x2 * y1
+        return (k / 2, (x1 + x2) * k / 6, (y1 + y2) * k / 6,
+                (x1 * x1 + x1 * x2 + x2 * x2 + y1 * y1 + y1 * y2 + y2 * y2) * k / 12)
+
+    def add(t, sgn=1.0):
+        nonlocal A, Sx, Sy, J
+        A += sgn * t[0]
+        Sx += sgn * t[1]
+        Sy += sgn * t[2]
+        J += sgn * t[3]
+
+    for e in edges:
+        add(tri_terms(e.P0[0], e.P0[1], e.P1[0], e.P1[1]))
+        if e.kind == 'arc':
+            th, R, (cx, cy) = e.sweep, e.R, e.C
+            a0, a1 = e.a0, e.a0 + e.sweep
+            ds = math.sin(a1) - math.sin(a0)
+            dc = math.cos(a0) - math.cos(a1)
+            sec = (R * R * th / 2,
+                   cx * R * R * th / 2 + R ** 3 / 3 * ds,
+                   cy * R * R * th / 2 + R ** 3 / 3 * dc,
+                   (cx * cx + cy * cy) * R * R * th / 2 + 2 * R ** 3 / 3 * (cx * ds + cy * dc)
+                   + R ** 4 * th / 4)
+            add(sec)
+            # minus triangle C -> P0 -> P1
+            pts = (e.C, e.P0, e.P1)
+            for i in range(3):
+                p, q = pts[i], pts[(i + 1) % 3]
+                add(tri_terms(p[0], p[1], q[0], q[1]), -1.0)
+    cx, cy = Sx / A, Sy / A
+    Jc = J - A * (cx * cx + cy * cy)
+    return A, (cx, cy), math.sqrt(Jc / A)
+
+
+def true_signed_area(edges):
+    A = 0.0
+    for e in edges:
+        A += 0.5 * (e.P0[0] * e.P1[1] - e.P1[0] * e.P0[1])
+        if e.kind == 'arc':
+            A += 0.5 * e.R * e.R * (e.sweep - math.sin(e.sweep))
+    return A
+
+
+# -- intersections of curves (lines given as segments, arcs as Edge)
+def line_circle_params(P, u, Q, rad):
+    """t with |P + t u - Q| = rad (u not necessarily unit); [] / [t] / [t1, t2]"""
+    dx, dy = P[0] - Q[0], P[1] - Q[1]
+    a = u[0] * u[0] + u[1] * u[1]
+    b = u[0] * dx + u[1] * dy
+    c = dx * dx + dy * dy - rad * rad
+    disc = b * b - a * c
+    if disc < 0:
+        return []
+    if disc == 0:
+        return [-b / a]
+    sq = math.sqrt(disc)
+    return [(-b - sq) / a, (-b + sq) / a]
+
+
+def circle_circle_points(C1, R1, C2, R2):
+    dx, dy = C2[0] - C1[0], C2[1] - C1[1]
+    d = math.hypot(dx, dy)
+    if d == 0.0 or d > R1 + R2 or d < abs(R1 - R2):
+        return []
+    a = (R1 * R1 - R2 * R2 + d * d) / (2 * d)
+    h2 = R1 * R1 - a * a
+    h = math.sqrt(h2) if h2 > 0 else 0.0
+    mx, my = C1[0] + a * dx / d, C1[1] + a * dy / d
+    if h == 0.0:
+        return [(mx, my)]
+    return [(mx - h * dy / d, my + h * dx / d), (mx + h * dy / d, my - h * dx / d)]
+
+
+def in_span(e, p, tol=0.0):
+    rel = arc_rel(e.a0, e.sg, math.atan2(p[1] - e.C[1], p[0] - e.C[0]))
+    return rel <= abs(e.sweep) + tol or rel >= TWO_PI - tol
+
+
+def edge_edge_points(e, f, tol):
+    """intersection points of two edges (with tolerance tol, lattice/catalogue
+    units); 'overlap' if they share a piece of curve"""
+    if e.kind == 'line' and f.kind == 'line':
+        if segs_intersect(e.P0, e.P1, f.P0, f.P1):
+            a, b, c, d = e.P0, e.P1, f.P0, f.P1
+            den = crs(sub(b, a), sub(d, c))
+            if den != 0:
+                tt = crs(sub(c, a), sub(d, c)) / den
+                return [(a[0] + tt * (b[0] - a[0]), a[1] + tt * (b[1] - a[1]))]
+            # collinear overlap
+            return 'overlap'
+        return []
+    if e.kind == 'arc' and f.kind == 'line':
+        e, f = f, e
+    if e.kind == 'line':
+        u = sub(e.P1, e.P0)
+        out = []
+        L = math.hypot(u[0], u[1])
+        # tolerate near-tangency: widen the radius by tol
+        ts = line_circle_params(e.P0, u, f.C, f.R)
+        if not ts:
+            ts2 = line_circle_params(e.P0, u, f.C, f.R + tol)
+            if ts2:
+                ts = [sum(ts2) / len(ts2)]
+        for t in ts:
+            if -tol / L <= t <= 1 + tol / L:
+                p = (e.P0[0] + t * u[0], e.P0[1] + t * u[1])
+                if in_span(f, p, tol / f.R):
+                    out.append(p)
+        return out
+    # arc-arc
+    if math.dist(e.C, f.C) <= tol and abs(e.R - f.R) <= tol:
+        # same circle: overlap unless the spans meet at most at end points
+        for g, h in ((e, f), (f, e)):
+            for frac in (0.25, 0.5, 0.75):
+                ang = g.a0 + g.sweep * frac
+                p = (g.C[0] + g.R * math.cos(ang), g.C[1] + g.R * math.sin(ang))
+                if in_span(h, p, 0.0):
+                    return 'overlap'
+        return [p for p in (e.P0, e.P1) if in_span(f, p, tol / f.R)]
+    pts = circle_circle_points(e.C, e.R, f.C, f.R)
+    if not pts:
+        d = math.dist(e.C, f.C)
+        if abs(d - (e.R + f.R)) <= tol or abs(d - abs(e.R - f.R)) <= tol:
+            pts = circle_circle_points(e.C, e.R + tol if d > e.R + f.R - tol else e.R, f.C, f.R) \
+                or circle_circle_points(e.C, e.R, f.C, f.R + tol)
+            if pts:
+                pts = [((pts[0][0] + pts[-1][0]) / 2, (pts[0][1] + pts[-1][1]) / 2)]
+    return [p for p in pts if in_span(e, p, tol / e.R) and in_span(f, p, tol / f.R)]
+
+
+def validate_outline(verts, name):
+    """SPEC 8.1: validation on the true curves. verts: [(x, y, b)] (any orientation).
+    returns the edge list (not yet normalised)."""
+    n = len(verts)
+    if n < 2:
+        raise Invalid("%s: fewer than 2 vertices" % name)
+    seen = {}
+    for i, p in enumerate(verts):
+        k = (p[0], p[1])
+        if k in seen:
+            raise Invalid("%s: vertex %d repeats vertex %d at (%g, %g)" % (name, i, seen[k], k[0], k[1]))
+        seen[k] = i
+    edges = [make_edge((verts[i][0], verts[i][1]), (verts[(i + 1) % n][0], verts[(i + 1) % n][1]),
+                       verts[i][2]) for i in range(n)]
+    scale = max(1.0, max(max(abs(v[0]), abs(v[1])) for v in verts))
+    tol = 1e-9 * scale        # crossing tolerance
+    vtol = 1e-7 * scale       # an adjacent pair may meet near its shared vertex
+    for i in range(n):
+        for j in range(i + 1, n):
+            e, f = edges[i], edges[j]
+            shared = []
+            if j == i + 1:
+                shared.append(e.P1)
+            if i == 0 and j == n - 1:
+                shared.append(e.P0)
+            if shared and e.kind == 'line' and f.kind == 'line':
+                # adjacent lines: must not fold back
+                sv = shared[0]
+                o1 = e.P0 if sv is e.P1 else e.P1
+                o2 = f.P1 if sv is f.P0 else f.P0
+                if orient(o1, sv, o2) == 0 and dot(sub(o1, sv), sub(o2, sv)) > 0:
+                    raise Invalid("%s: edge %d overlaps edge %d at (%g, %g)" % (name, i, j, sv[0], sv[1]))
+                continue
+            pts = edge_edge_points(e, f, tol)
+            if pts == 'overlap':
+                raise Invalid("%s: edge %d overlaps edge %d" % (name, i, j))
+            for p in pts:
+                if any(math.dist(p, s) <= vtol for s in shared):
+                    continue
+                raise Invalid("%s: edge %d crosses edge %d at (%g, %g)" % (name, i, j, p[0], p[1]))
+    if true_signed_area(edges) == 0.0:
+        raise Invalid("%s: zero area" % name)
+    return edges
+
+
+# -- grown features and segments of an outline with arcs
+class Feature:
+    """grown edge: line (P0, u, n, length) or arc (C, rho, a0, sg, length)"""
+    __slots__ = ('kind', 'edge', 'P0', 'u', 'n', 'C', 'rho', 'a0', 'sg', 'convex', 'length')
+
+    def point(self, s):
+        if self.kind == 'line':
+            return (self.P0[0] + s * self.u[0], self.P0[1] + s * self.u[1])
+        ang = self.a0 + self.sg * s / self.rho
+        return (self.C[0] + self.rho * math.cos(ang), self.C[1] + self.rho * math.sin(ang))
+
+    def param(self, p):
+        """s of a point on (or near) the feature"""
+        if self.kind == 'line':
+            return (p[0] - self.P0[0]) * self.u[0] + (p[1] - self.P0[1]) * self.u[1]
+        rel = arc_rel(self.a0, self.sg, math.atan2(p[1] - self.C[1], p[0] - self.C[0]))
+        return self.rho * rel
+
+    def cut_line(self, nv, h):
+        """s values where nv . p = h (nv unit)"""
+        if self.kind == 'line':
+            den = nv[0] * self.u[0] + nv[1] * self.u[1]
+            if abs(den) < 1e-15:
+                return []
+            return [(h - nv[0] * self.P0[0] - nv[1] * self.P0[1]) / den]
+        x = (h - nv[0] * self.C[0] - nv[1] * self.C[1]) / self.rho
+        if x < -1.0 or x > 1.0:
+            return []
+        psi = math.atan2(nv[1], nv[0])
+        al = math.acos(x)
+        return [self.rho * arc_rel(self.a0, self.sg, psi + al),
+                self.rho * arc_rel(self.a0, self.sg, psi - al)]
+
+    def cut_circle(self, Q, rad):
+        if rad <= 0:
+            return []
+        if self.kind == 'line':
+            return line_circle_params(self.P0, self.u, Q, rad)
+        out = []
+        for p in circle_circle_points(self.C, self.rho, Q, rad):
+            out.append(self.param(p))
+        return out
+
+
+def grow_feature(e, i, r):
+    f = Feature()
+    f.edge = i
+    if e.kind == 'line':
+        f.kind = 'line'
+        f.u = e.u
+        f.n = (e.u[1], -e.u[0])
+        f.P0 = (e.P0[0] + r * f.n[0], e.P0[1] + r * f.n[1])
+        f.length = e.L
+        return f
+    f.kind = 'arc'
+    f.convex = e.sg > 0
+    f.rho = e.R + r if f.convex else e.R - r
+    if f.rho <= EPS:
+        return None
+    f.C, f.a0, f.sg = e.C, e.a0, e.sg
+    f.length = f.rho * abs(e.sweep)
+    return f
+
+
+def breakpoints_edge(f, e, Rr):
+    """s values where the distance from the feature to edge e may cross Rr"""
+    out = []
+    if e.kind == 'line':
+        nv = (e.u[1], -e.u[0])
+        h = nv[0] * e.P0[0] + nv[1] * e.P0[1]
+        out += f.cut_line(nv, h + Rr)
+        out += f.cut_line(nv, h - Rr)
+        # slab ends (not needed for the level set, harmless)
+        out += f.cut_circle(e.P0, Rr)
+        out += f.cut_circle(e.P1, Rr)
+    else:
+        out += f.cut_circle(e.C, e.R + Rr)
+        out += f.cut_circle(e.C, abs(e.R - Rr))
+        out += f.cut_circle(e.P0, Rr)
+        out += f.cut_circle(e.P1, Rr)
+    return out
+
+
+def build_segments_arcs(edges, access, r, trim):
+    """SPEC 2 + 8.2 for an outline with arcs (edges CCW, lattice units)."""
+    n = len(edges)
+    acc_edges = []
+    for poly in access:
+        m = len(poly)
+        acc_edges.append([make_edge(poly[j], poly[(j + 1) % m], 0.0) for j in range(m)])
+    # smooth joints: vertex i joins edge i-1 (in) and edge i (out)
+    smooth = []
+    for i in range(n):
+        ein, eout = edges[i - 1], edges[i]
+        t_in = edge_tangents(ein)[1]
+        t_out = edge_tangents(eout)[0]
+        smooth.append(abs(crs(t_in, t_out)) <= 1e-6 and dot(t_in, t_out) > 0
+                      and (ein.kind == 'arc' or eout.kind == 'arc'))
+    segs = []
+    Rr = r - EPS
+    for i, e in enumerate(edges):
+        f = grow_feature(e, i, r)
+        if f is None:
+            continue
+        L = f.length
+        cuts = []
+        for j, g in enumerate(edges):
+            if j != i:
+                cuts += breakpoints_edge(f, g, Rr)
+        for ae in acc_edges:
+            for g in ae:
+                cuts += breakpoints_edge(f, g, r)
+        cuts = sorted(set(s for s in cuts if 0.0 < s < L))
+        ts = [0.0] + cuts + [L]
+        kept = []
+        for x, y in zip(ts, ts[1:]):
+            if y - x <= 0:
+                continue
+            p = f.point((x + y) / 2)
+            removed = region_dist(p, edges) < Rr
+            if not removed:
+                for poly in access:
+                    if point_in_poly(p, poly) or pt_poly_bdist(p, poly) < r:
+                        removed = True
+                        break
+            if removed:
+                continue
+            if kept and kept[-1][1] == x:
+                kept[-1] = (kept[-1][0], y)
+            else:
+                kept.append((x, y))
+        for x, y in kept:
+            a = x if (x == 0.0 and smooth[i]) else x + trim
+            b = y if (y == L and smooth[(i + 1) % n]) else y - trim
+            if b - a > EPS:
+                s = Seg()
+                s.edge = i
+                s.kind = f.kind
+                s.s0, s.s1 = a, b
+                s.feat = f
+                if f.kind == 'line':
+                    s.P0, s.u, s.n = f.P0, f.u, f.n
+                    s.c = dot(f.n, f.P0)
+                else:
+                    s.C, s.rho, s.sg, s.a0, s.convex = f.C, f.rho, f.sg, f.a0, f.convex
+                s.E0 = f.point(a)
+                s.E1 = f.point(b)
+                segs.append(s)
+    for k, s in enumerate(segs):
+        s.idx = k
+    return segs, smooth
+
+
+def seg_samples(sg, m=32):
+    f = sg.feat
+    return [f.point(sg.s0 + (sg.s1 - sg.s0) * i / m) for i in range(m + 1)], (sg.s1 - sg.s0) / m
+
+
+def seg_dist_bounds(si, sj, same):
+    """sound bounds [lo, hi] on |p - q| for p on si, q on sj (arcs sampled; every
+    point is within half a sample step, in arc length, of a sample)"""
+    A, ha = seg_samples(si)
+    B, hb = seg_samples(sj)
+    lo, hi = math.inf, 0.0
+    for p in A:
+        for q in B:
+            d = math.hypot(p[0] - q[0], p[1] - q[1])
+            if d < lo:
+                lo = d
+            if d > hi:
+                hi = d
+    sl = (ha + hb) / 2 + 1e-9
+    if same:
+        return 0.0, hi + sl
+    return max(0.0, lo - sl), hi + sl
+
+
+# -- poses of setups with arcs (SPEC 8.4)
+NDFT = 16
+DFT_TH = [TWO_PI * m / NDFT for m in range(NDFT)]
+DFT_CS = [(math.cos(t), math.sin(t)) for t in DFT_TH]
+DFT_K = 7
+DFT_TAB = [[(math.cos(k * t), math.sin(k * t)) for t in DFT_TH] for k in range(DFT_K + 1)]
+TANG = 1e-6       # |det J| (unit rows) <= this: tangential
+RESID = 1e-9      # a reported pose has every locator within this of its feature
+
+
+def trig_eval(a, b, th):
+    """G, G', G'' of G = a0 + sum a_k cos k th + b_k sin k th"""
+    c1, s1 = math.cos(th), math.sin(th)
+    ck, sk = 1.0, 0.0
+    g, g1, g2 = a[0], 0.0, 0.0
+    for k in range(1, len(a)):
+        ck, sk = ck * c1 - sk * s1, sk * c1 + ck * s1
+        t = a[k] * ck + b[k] * sk
+        g += t
+        g1 += k * (b[k] * ck - a[k] * sk)
+        g2 -= k * k * t
+    return g, g1, g2
+
+
+def trig_roots(a, b, gscale):
+    """all roots of the trigonometric polynomial on [0, 2 pi): list of (theta,
+    'simple' | 'crit').  'crit' = a local extremum of G with |G| small and no
+    sign change (a double root, or a near miss; the caller decides by residuals).
+    Exclusion by derivative bounds (sound up to rounding)."""
+    K = len(a) - 1
+    mags = [math.hypot(a[k], b[k]) for k in range(K + 1)]
+    tail = sum(mags[1:])
+    slack = 1e-12 * gscale
+    if a[0] - tail > slack or a[0] + tail < -slack:
+        return []
+    M1 = sum(k * mags[k] for k in range(1, K + 1))
+    M2 = sum(k * k * mags[k] for k in range(1, K + 1))
+    M3 = sum(k ** 3 * mags[k] for k in range(1, K + 1))
+    crit_tol = 1e-6 * gscale
+    out = []
+
+    def G(t):
+        return trig_eval(a, b, t)
+
+    def bisect_root(lo, hi, glo, which):
+        # which = 0: root of G; 1: root of G'
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if mid <= lo or mid >= hi:
+                break
+            gm = G(mid)[which]
+            if gm == 0.0:
+                return mid
+            if (gm < 0) == (glo < 0):
+                lo, glo = mid, gm
+            else:
+                hi = mid
+        return 0.5 * (lo + hi)
+
+    def monotone(lo, hi, vlo, vhi):
+        if vlo[0] == 0.0:
+            out.append((lo, 'simple'))
+        elif vhi[0] != 0.0 and (vlo[0] < 0) != (vhi[0] < 0):
+            out.append((bisect_root(lo, hi, vlo[0], 0), 'simple'))
+
+    N0 = 32
+    grid = [TWO_PI * i / N0 for i in range(N0 + 1)]
+    vals = [G(t) for t in grid]
+    stack = [(grid[i], grid[i + 1], vals[i], vals[i + 1]) for i in range(N0)]
+    while stack:
+        lo, hi, vlo, vhi = stack.pop()
+        h = hi - lo
+        if abs(vlo[0]) + abs(vhi[0]) > M1 * h + slack:
+            continue
+        if abs(vlo[1]) + abs(vhi[1]) > M2 * h + slack:
+            monotone(lo, hi, vlo, vhi)
+            continue
+        if abs(vlo[2]) + abs(vhi[2]) > M3 * h + slack:
+            # G' monotone: at most one critical point
+            if vlo[1] != 0.0 and vhi[1] != 0.0 and (vlo[1] < 0) == (vhi[1] < 0):
+                monotone(lo, hi, vlo, vhi)
+                continue
+            if vlo[1] == 0.0:
+                c = lo
+            elif vhi[1] == 0.0:
+                c = hi
+            else:
+                c = bisect_root(lo, hi, vlo[1], 1)
+            vc = G(c)
+            if c > lo:
+                monotone(lo, c, vlo, vc)
+            if c < hi:
+                monotone(c, hi, vc, vhi)
+            elif vc[0] == 0.0:
+                out.append((c, 'simple'))
+            if abs(vc[0]) <= crit_tol:
+                out.append((c, 'crit'))
+            continue
+        if h < 1e-12:
+            mid = 0.5 * (lo + hi)
+            if abs(G(mid)[0]) <= crit_tol:
+                out.append((mid, 'crit'))
+            continue
+        mid = 0.5 * (lo + hi)
+        vm = G(mid)
+        stack.append((lo, mid, vlo, vm))
+        stack.append((mid, hi, vm, vhi))
+    return out
+
+
+class ArcCombo:
+    """pose solver for one segment combination (a, b, c) with at least one arc"""
+
+    def __init__(self, S):
+        self.S = S
+        self.kinds = [s.kind for s in S]
+        self.lines = [k for k in range(3) if S[k].kind == 'line']
+        self.arcs = [k for k in range(3) if S[k].kind == 'arc']
+        self.parallel = False
+        if len(self.lines) == 2:
+            n1, n2 = S[self.lines[0]].n, S[self.lines[1]].n
+            if abs(crs(n1, n2)) <= EPS:
+                self.parallel = True
+        self.q = self.arcs[0]
+        self.others = [k for k in range(3) if k != self.q]
+        self.degenerate = 0     # eliminations that were singular for every theta
+        self.continua = 0
+
+    # residuals (distances) and Jacobian rows of the three equations
+    def resid_jac(self, Ls, th, w):
+        ct, st = math.cos(th), math.sin(th)
+        res, rows = [], []
+        for k in range(3):
+            Lx, Ly = Ls[k]
+            p = (ct * Lx + st * Ly - w[0], -st * Lx + ct * Ly - w[1])
+            dp = (-st * Lx + ct * Ly, -ct * Lx - st * Ly)
+            sg = self.S[k]
+            if sg.kind == 'line':
+                res.append(sg.n[0] * p[0] + sg.n[1] * p[1] - sg.c)
+                rows.append((sg.n[0] * dp[0] + sg.n[1] * dp[1], -sg.n[0], -sg.n[1]))
+            else:
+                vx, vy = p[0] - sg.C[0], p[1] - sg.C[1]
+                d = math.hypot(vx, vy)
+                res.append(d - sg.rho)
+                if d == 0:
+                    rows.append((0.0, 0.0, 0.0))
+                else:
+                    rows.append(((vx * dp[0] + vy * dp[1]) / d, -vx / d, -vy / d))
+        return res, rows
+
+    @staticmethod
+    def unit_det(rows):
+        M = []
+        for r in rows:
+            nr = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+            if nr == 0:
+                return 0.0
+            M.append((r[0] / nr, r[1] / nr, r[2] / nr))
+        return det3(M)
+
+    def polish(self, Ls, th, w):
+        res, rows = self.resid_jac(Ls, th, w)
+        best = (max(abs(x) for x in res), th, w, rows)
+        for _ in range(4):
+            d = det3(rows)
+            if abs(self.unit_det(rows)) <= TANG or d == 0:
+                break
+            Mi = inv3(rows, d)
+            dx = matvec(Mi, res)
+            th2 = th - dx[0]
+            w2 = (w[0] - dx[1], w[1] - dx[2])
+            res2, rows2 = self.resid_jac(Ls, th2, w2)
+            m2 = max(abs(x) for x in res2)
+            if not m2 < best[0]:
+                break
+            th, w, res, rows = th2, w2, res2, rows2
+            best = (m2, th, w, rows)
+        return best
+
+    def linsys(self, Ls, ct, st):
+        """rows, rhs of the two linear equations, cc_q and rho_q, at theta"""
+        S = self.S
+        cc = {}
+        for k in self.arcs:
+            Lx, Ly = Ls[k]
+            cc[k] = (ct * Lx + st * Ly - S[k].C[0], -st * Lx + ct * Ly - S[k].C[1])
+        q = self.q
+        cq = cc[q]
+        rq = S[q].rho
+        R, B = [], []
+        for k in self.others:
+            if S[k].kind == 'line':
+                Lx, Ly = Ls[k]
+                n = S[k].n
+                R.append(n)
+                B.append(n[0] * (ct * Lx + st * Ly) + n[1] * (-st * Lx + ct * Ly) - S[k].c)
+            else:
+                ck = cc[k]
+                R.append((2 * (cq[0] - ck[0]), 2 * (cq[1] - ck[1])))
+                B.append(cq[0] * cq[0] + cq[1] * cq[1] - ck[0] * ck[0] - ck[1] * ck[1]
+                         - rq * rq + S[k].rho * S[k].rho)
+        return R, B, cq, rq
+
+    def solve(self, Ls):
+        """list of poses (theta, w, tangential, |det J|)"""
+        if self.parallel:
+            cands = self.solve_parallel(Ls)
+        else:
+            cands = self.solve_general(Ls)
+        poses = []
+        for th, w, kind in cands:
+            m, th, w, rows = self.polish(Ls, th, w)
+            if not m <= RESID:
+                continue
+            jd = abs(self.unit_det(rows))
+            th = norm_angle(th)
+            poses.append([th, w, jd <= TANG, jd])
+        # one pose per solution (SPEC 8.4)
+        poses.sort(key=lambda p: p[0])
+        out = []
+        for p in poses:
+            dup = False
+            for o in out:
+                dth = abs(p[0] - o[0])
+                dth = min(dth, TWO_PI - dth)
+                dw = math.hypot(p[1][0] - o[1][0], p[1][1] - o[1][1])
+                if (dth <= 1e-9 and dw <= 1e-6) or (p[2] and o[2] and dth <= 1e-6 and dw <= 1e-6):
+                    dup = True
+                    break
+            if not dup:
+                out.append(p)
+        return out
+
+    def solve_parallel(self, Ls):
+        S = self.S
+        j, k = self.lines
+        n = S[j].n
+        sig = 1.0 if dot(n, S[k].n) > 0 else -1.0
+        v = (Ls[j][0] - Ls[k][0], Ls[j][1] - Ls[k][1])
+        A = dot(n, v)
+        B = crs(n, v)
+        Cc = S[j].c - sig * S[k].c
+        rh = math.hypot(A, B)
+        dlt = rh - abs(Cc)
+        if dlt < -EPS:
+            return []
+        phi = math.atan2(B, A)
+        if dlt <= EPS:
+            ths = [phi if Cc >= 0 else phi + math.pi]
+        else:
+            al = math.acos(max(-1.0, min(1.0, Cc / rh)))
+            ths = [phi - al, phi + al]
+        q = self.q
+        out = []
+        nperp = (-n[1], n[0])
+        for th in ths:
+            ct, st = math.cos(th), math.sin(th)
+            Lx, Ly = Ls[j]
+            beta = n[0] * (ct * Lx + st * Ly) + n[1] * (-st * Lx + ct * Ly) - S[j].c
+            Lx, Ly = Ls[q]
+            cq = (ct * Lx + st * Ly - S[q].C[0], -st * Lx + ct * Ly - S[q].C[1])
+            dl = dot(cq, n) - beta
+            rho = S[q].rho
+            disc = rho * rho - dl * dl
+            tau0 = dot(cq, nperp)
+            if disc < 0:
+                if abs(dl) - rho <= RESID:
+                    taus = [tau0]
+                else:
+                    continue
+            else:
+                sq = math.sqrt(disc)
+                taus = [tau0 - sq, tau0 + sq] if sq > 0 else [tau0]
+            for tau in taus:
+                out.append((th, (beta * n[0] + tau * nperp[0], beta * n[1] + tau * nperp[1]), 'simple'))
+        return out
+
+    def G_at(self, Ls, ct, st):
+        R, B, cq, rq = self.linsys(Ls, ct, st)
+        (r1x, r1y), (r2x, r2y) = R
+        b1, b2 = B
+        det = r1x * r2y - r1y * r2x
+        ax = r2y * b1 - r1y * b2
+        ay = -r2x * b1 + r1x * b2
+        wx, wy = det * cq[0] - ax, det * cq[1] - ay
+        t1 = wx * wx + wy * wy
+        t2 = rq * rq * det * det
+        return t1 - t2, t1 + t2, det, math.hypot(r1x, r1y) * math.hypot(r2x, r2y)
+
+    def solve_general(self, Ls):
+        gs, sc, dets, dsc = [], 0.0, 0.0, 0.0
+        for ct, st in DFT_CS:
+            g, s_, d, ds = self.G_at(Ls, ct, st)
+            gs.append(g)
+            sc = max(sc, s_)
+            dets = max(dets, abs(d))
+            dsc = max(dsc, ds)
+        if dets <= 1e-12 * max(dsc, 1e-300):
+            self.degenerate += 1
+            return []
+        if max(abs(g) for g in gs) <= 1e-12 * sc:
+            self.continua += 1
+            return []
+        a = [0.0] * (DFT_K + 1)
+        b = [0.0] * (DFT_K + 1)
+        a[0] = sum(gs) / NDFT
+        for k in range(1, DFT_K + 1):
+            tab = DFT_TAB[k]
+            a[k] = 2.0 / NDFT * sum(g * t[0] for g, t in zip(gs, tab))
+            b[k] = 2.0 / NDFT * sum(g * t[1] for g, t in zip(gs, tab))
+        # G has degree <= 4 (see C24); the rest is rounding
+        tail = max(abs(x) for x in a[5:] + b[5:])
+        assert tail <= 1e-9 * sc, ('degree', tail, sc)
+        a, b = a[:5], b[:5]
+        roots = trig_roots(a, b, sc)
+        out = []
+        for th, kind in roots:
+            ct, st = math.cos(th), math.sin(th)
+            R, B, cq, rq = self.linsys(Ls, ct, st)
+            (r1x, r1y), (r2x, r2y) = R
+            b1, b2 = B
+            det = r1x * r2y - r1y * r2x
+            ws = []
+            if abs(det) > 1e-7 * math.hypot(r1x, r1y) * math.hypot(r2x, r2y):
+                ws.append(((r2y * b1 - r1y * b2) / det, (-r2x * b1 + r1x * b2) / det))
+            else:
+                # rank-deficient linear part: one linear equation and the circle
+                i = 0 if math.hypot(*R[0]) >= math.hypot(*R[1]) else 1
+                rv, bv = R[i], B[i]
+                nr = math.hypot(*rv)
+                if nr == 0:
+                    continue
+                nv = (rv[0] / nr, rv[1] / nr)
+                beta = bv / nr
+                pv = (-nv[1], nv[0])
+                dl = dot(cq, nv) - beta
+                disc = rq * rq - dl * dl
+                tau0 = dot(cq, pv)
+                taus = [tau0] if disc <= 0 else [tau0 - math.sqrt(disc), tau0 + math.sqrt(disc)]
+                for tau in taus:
+                    ws.append((beta * nv[0] + tau * pv[0], beta * nv[1] + tau * pv[1]))
+            for w in ws:
+                out.append((th, w, kind))
+        return out
+
+
+# -- clearance against the true posed region
+def pose_edges(edges, ct, st, t):
+    out = []
+    th = math.atan2(st, ct)
+    for e in edges:
+        f = Edge()
+        f.kind = e.kind
+        f.P0 = (ct * e.P0[0] - st * e.P0[1] + t[0], st * e.P0[0] + ct * e.P0[1] + t[1])
+        f.P1 = (ct * e.P1[0] - st * e.P1[1] + t[0], st * e.P1[0] + ct * e.P1[1] + t[1])
+        if e.kind == 'line':
+            f.L = e.L
+            f.u = (ct * e.u[0] - st * e.u[1], st * e.u[0] + ct * e.u[1])
+        else:
+            f.C = (ct * e.C[0] - st * e.C[1] + t[0], st * e.C[0] + ct * e.C[1] + t[1])
+            f.R, f.sweep, f.sg, f.L = e.R, e.sweep, e.sg, e.L
+            f.a0 = e.a0 + th
+        out.append(f)
+    return out
+
+
+def seg_edge_dist(A, B, e):
+    """distance between the closed segment [A, B] and edge e"""
+    if e.kind == 'line':
+        return seg_seg_dist(A, B, e.P0, e.P1)
+    u = sub(B, A)
+    for t in line_circle_params(A, u, e.C, e.R):
+        if 0.0 <= t <= 1.0:
+            p = (A[0] + t * u[0], A[1] + t * u[1])
+            if in_span(e, p):
+                return 0.0
+    best = min(pt_edge_dist(A, e), pt_edge_dist(B, e),
+               math.sqrt(pt_seg_dist2(e.P0, A, B)), math.sqrt(pt_seg_dist2(e.P1, A, B)))
+    L2 = u[0] * u[0] + u[1] * u[1]
+    if L2 > 0:
+        t = ((e.C[0] - A[0]) * u[0] + (e.C[1] - A[1]) * u[1]) / L2
+        if 0.0 < t < 1.0:
+            F = (A[0] + t * u[0], A[1] + t * u[1])
+            if (F[0], F[1]) != e.C and in_span(e, F):
+                best = min(best, abs(math.dist(F, e.C) - e.R))
+    return best
+
+
+def region_strictly_contains(p, edges):
+    return region_contains(p, edges) and min(pt_edge_dist(p, e) for e in edges) > EPS
+
+
+def poly_region_overlap(A, edges):
+    """interiors intersect (best effort, for min_clearance == 0)"""
+    na = len(A)
+    for i in range(na):
+        a0, a1 = A[i], A[(i + 1) % na]
+        u = sub(a1, a0)
+        for e in edges:
+            if e.kind == 'line':
+                d1 = orient(e.P0, e.P1, a0)
+                d2 = orient(e.P0, e.P1, a1)
+                d3 = orient(a0, a1, e.P0)
+                d4 = orient(a0, a1, e.P1)
+                if ((d1 > EPS and d2 < -EPS) or (d1 < -EPS and d2 > EPS)) and \
+                   ((d3 > EPS and d4 < -EPS) or (d3 < -EPS and d4 > EPS)):
+                    return True
+            else:
+                ts = line_circle_params(a0, u, e.C, e.R)
+                if len(ts) == 2 and ts[1] - ts[0] > EPS:
+                    for t in ts:
+                        if EPS < t < 1 - EPS:
+                            p = (a0[0] + t * u[0], a0[1] + t * u[1])
+                            if in_span(e, p) and math.dist(p, e.P0) > EPS and math.dist(p, e.P1) > EPS:
+                                return True
+    for i in range(na):
+        if region_strictly_contains(A[i], edges):
+            return True
+        m = ((A[i][0] + A[(i + 1) % na][0]) / 2, (A[i][1] + A[(i + 1) % na][1]) / 2)
+        if region_strictly_contains(m, edges):
+            return True
+    for e in edges:
+        pts = [e.P0]
+        if e.kind == 'arc':
+            ang = e.a0 + e.sweep / 2
+            pts.append((e.C[0] + e.R * math.cos(ang), e.C[1] + e.R * math.sin(ang)))
+        else:
+            pts.append(((e.P0[0] + e.P1[0]) / 2, (e.P0[1] + e.P1[1]) / 2))
+        for p in pts:
+            if strictly_inside(p, A):
+                return True
+    return False
+
+
+def poly_region_margin(A, Abb, edges, Ebb, mc):
+    """margin (>= 0 ok, < 0 fail) of polygon A against the filled true region"""
+    gap = bbox_gap(Abb, Ebb)
+    if gap >= mc + 1e-3:
+        return gap - mc
+    na = len(A)
+    d = math.inf
+    for i in range(na):
+        a0, a1 = A[i], A[(i + 1) % na]
+        for e in edges:
+            x = seg_edge_dist(a0, a1, e)
+            if x < d:
+                d = x
+    if mc <= EPS:
+        if poly_region_overlap(A, edges):
+            return -1.0
+        return d if d > 0 else 0.0
+    m = d - mc
+    if m < -EPS:
+        return m
+    if region_contains(A[0], edges) or point_in_poly(edges[0].P0, A):
+        return -1.0
+    return m
+
+
+def contact_normal_part(sg, p):
+    """inward normal (part frame) of a contact at part-frame point p on segment sg"""
+    if sg.kind == 'line':
+        return (-sg.n[0], -sg.n[1])
+    dx, dy = sg.C[0] - p[0], sg.C[1] - p[1]
+    if not sg.convex:
+        dx, dy = -dx, -dy
+    return (dx / sg.rho, dy / sg.rho)
+
+
+def process_setup_arcs(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, cols, rows,
+                       EDG, ACC, body, plunger, D, E, counts, fixtures, applied, cen_m, rho_m,
+                       q_scale, l):
+    """process_setup for parts with arcs (SPEC 8.3, 8.5): line clamp segments as in
+    section 4, arc clamp segments by line-circle intersections."""
+    a, b, c, Ls, th, ct, st, t, ss, pp, smargin = setup
+
+    def rot(v):
+        return (ct * v[0] - st * v[1], st * v[0] + ct * v[1])
+
+    def unrot(v):
+        return (ct * v[0] + st * v[1], -st * v[0] + ct * v[1])
+
+    S = (segs[a], segs[b], segs[c])
+    cols3 = []
+    nparts = []
+    for k in range(3):
+        fp = contact_normal_part(S[k], pp[k])
+        nparts.append(fp)
+        f = rot(fp)
+        q = Ls[k]
+        cols3.append((f[0], f[1], q[0] * f[1] - q[1] * f[0]))
+    M = columns_matrix(cols3)
+    dW = det3(M)
+    if abs(dW) <= EPS:
+        return
+    Mi = inv3(M, dW)
+    base_margin = min(smargin, abs(dW) - EPS)
+    cache = {}
+
+    def posed():
+        if not cache:
+            pe = pose_edges(EDG, ct, st, t)
+            cache['part'] = (pe, region_bbox(pe))
+            pa = [[(ct * x - st * y + t[0], st * x + ct * y + t[1]) for x, y in A] for A in ACC]
+            cache['acc'] = (pa, [bbox(A) for A in pa])
+        return cache
+
+    def finish(sg, k, d, e, j, q, s, margin, f_part, p_part):
+        # tip vs locators (independent of mount)
+        tipm = min(math.hypot(q[0] - L[0], q[1] - L[1]) - 2 * r for L in Ls)
+        if tipm < -EPS:
+            return
+        margin = min(margin, abs(tipm))
+        pc_ = posed()
+        (posed_part, part_bb), (posed_acc, acc_bb) = pc_['part'], pc_['acc']
+        qd = q[0] * d[0] + q[1] * d[1]
+        a_hi = math.floor(qd - tmin + EPS)
+        a_lo = math.ceil(qd - tmax - EPS)
+        found = None
+        fail_margin = 1.0
+        for av in range(a_hi, a_lo - 1, -1):
+            text = qd - av
+            m = (av * d[0] + j * e[0], av * d[1] + j * e[1])
+            mm_ = min(text - tmin, tmax - text)
+            holes = []
+            okh = True
+            for hx, hy, kind in mholes:
+                H = (m[0] + hx * d[0] + hy * e[0], m[1] + hx * d[1] + hy * e[1])
+                if H in Ls:
+                    okh = False
+                    break
+                if alt and kind is not None:
+                    dow = (H[0] + H[1]) % 2 == 0
+                    if (kind == 'dowel') != dow:
+                        okh = False
+                        break
+                holes.append(H)
+            if not okh:
+                continue
+            fit = plate_fit(list(Ls) + holes, alt, cols, rows)
+            if fit is None:
+                continue
+
+            def place(poly, ext):
+                return [(m[0] + (x + ext) * d[0] + y * e[0], m[1] + (x + ext) * d[1] + y * e[1])
+                        for x, y in poly]
+            cm = 1.0
+            bad = False
+            for poly in (place(body, 0.0), place(plunger, text)):
+                bb = bbox(poly)
+                x_ = poly_region_margin(poly, bb, posed_part, part_bb, mc)
+                cm = min(cm, x_)
+                if x_ < -EPS:
+                    bad = True
+                    break
+                for A, Abb in zip(posed_acc, acc_bb):
+                    x_ = poly_poly_margin(poly, bb, A, Abb, mc)
+                    cm = min(cm, x_)
+                    if x_ < -EPS:
+                        bad = True
+                        break
+                if bad:
+                    break
+                for L in Ls:
+                    if mc <= EPS:
+                        x_ = 1.0 if not point_in_poly(L, poly) else -1.0
+                        if x_ > 0:
+                            x_ = pt_poly_bdist(L, poly) - r
+                            if x_ < -EPS:
+                                x_ = -1.0
+                    else:
+                        x_ = poly_disk_margin(poly, bb, L, r, mc)
+                    cm = min(cm, x_)
+                    if x_ < -EPS:
+                        bad = True
+                        break
+                if bad:
+                    break
+            if bad:
+                fail_margin = min(fail_margin, abs(cm))
+                continue
+            found = (m, text, fit, min(abs(cm), abs(mm_)))
+            break
+        if found is None:
+            return
+        m, text, fit, mmarg = found
+        margin = min(margin, mmarg, fail_margin)
+        pts = [(x * q_scale, y * q_scale) for x, y in pp]
+        pts.append((p_part[0] * q_scale, p_part[1] * q_scale))
+        nfs = nparts + [f_part]
+        score = score_contacts(pts, nfs, applied, cen_m, rho_m)
+        L2, L3 = Ls[1], Ls[2]
+        key = (score, a, b, c, tuple(L2), tuple(L3), th, sg.idx, k, tuple(m))
+        fixtures.append({
+            '_key': key,
+            'score': score,
+            'segments': [a, b, c],
+            'locators': [list(x) for x in Ls],
+            'theta_deg': math.degrees(th),
+            'pose': {'x': t[0] * l, 'y': t[1] * l, 'theta_deg': math.degrees(th)},
+            'clamp': {'segment': sg.idx, 'rotation_deg': 90 * k, 'mount': list(m),
+                      'extension': text * l, 'contact': [q[0] * l, q[1] * l]},
+            'contacts_s': [x * l for x in ss] + [s * l],
+            'plate': {'rotation_deg': 90 * fit[0], 'translation': [fit[1], fit[2]]},
+            'borderline': margin < BORDER,
+            'min_margin': margin,
+        })
+
+    for sg in segs:
+        if sg.kind == 'line':
+            rn = rot(sg.n)
+            f = (-rn[0], -rn[1])
+            U = rot(sg.u)
+            RP = rot(sg.P0)
+            Q0 = (RP[0] + t[0], RP[1] + t[1])
+            w0 = (f[0], f[1], Q0[0] * f[1] - Q0[1] * f[0])
+            w1z = U[0] * f[1] - U[1] * f[0]
+            al0 = matvec(Mi, w0)
+            alpha = (-al0[0], -al0[1], -al0[2])
+            beta = (-w1z * Mi[0][2], -w1z * Mi[1][2], -w1z * Mi[2][2])
+            lo, hi = sg.s0 + EPS, sg.s1 - EPS
+            empty = False
+            for i in range(3):
+                if beta[i] > 0:
+                    lo = max(lo, (EPS - alpha[i]) / beta[i])
+                elif beta[i] < 0:
+                    hi = min(hi, (EPS - alpha[i]) / beta[i])
+                elif alpha[i] <= EPS:
+                    empty = True
+            if empty or lo >= hi:
+                continue
+            for k in range(4):
+                d = D[k]
+                e = E[k]
+                cosang = d[0] * f[0] + d[1] * f[1]
+                if cosang <= EPS or cosang < cosmax - EPS:
+                    continue
+                ue = U[0] * e[0] + U[1] * e[1]
+                qe0 = Q0[0] * e[0] + Q0[1] * e[1]
+                v1, v2 = qe0 + lo * ue, qe0 + hi * ue
+                jlo = math.floor(min(v1, v2) - y0) - 1
+                jhi = math.ceil(max(v1, v2) - y0) + 1
+                for j in range(jlo, jhi + 1):
+                    s = (j + y0 - qe0) / ue
+                    if not (lo < s < hi):
+                        continue
+                    counts['candidates'] += 1
+                    q = (Q0[0] + s * U[0], Q0[1] + s * U[1])
+                    lam_q = [alpha[i] + beta[i] * s for i in range(3)]
+                    margin = min(base_margin, min(x - EPS for x in lam_q),
+                                 s - sg.s0 - EPS, sg.s1 - EPS - s, cosang - EPS)
+                    if cosmax > EPS:
+                        margin = min(margin, cosang - cosmax)
+                    p_part = (sg.P0[0] + s * sg.u[0], sg.P0[1] + s * sg.u[1])
+                    finish(sg, k, d, e, j, q, s, margin, (-sg.n[0], -sg.n[1]), p_part)
+            continue
+        # arc clamp segment (SPEC 8.5)
+        RC = rot(sg.C)
+        Cp = (RC[0] + t[0], RC[1] + t[1])
+        rho = sg.rho
+        for k in range(4):
+            d = D[k]
+            e = E[k]
+            ce = Cp[0] * e[0] + Cp[1] * e[1]
+            jlo = math.floor(ce - rho - y0) - 1
+            jhi = math.ceil(ce + rho - y0) + 1
+            for j in range(jlo, jhi + 1):
+                off = j + y0 - ce
+                disc = rho * rho - off * off
+                if disc < 0:
+                    continue
+                sq = math.sqrt(disc)
+                tmarg = rho - abs(off)
+                base = (Cp[0] + off * e[0], Cp[1] + off * e[1])
+                pts = [(base[0] + sq * d[0], base[1] + sq * d[1])]
+                if sq > 0:
+                    pts.append((base[0] - sq * d[0], base[1] - sq * d[1]))
+                for q in pts:
+                    if sg.convex:
+                        f = ((Cp[0] - q[0]) / rho, (Cp[1] - q[1]) / rho)
+                    else:
+                        f = ((q[0] - Cp[0]) / rho, (q[1] - Cp[1]) / rho)
+                    cosang = d[0] * f[0] + d[1] * f[1]
+                    if cosang <= EPS or cosang < cosmax - EPS:
+                        continue
+                    p_part = unrot((q[0] - t[0], q[1] - t[1]))
+                    s = sg.feat.param(p_part)
+                    if not (sg.s0 + EPS < s < sg.s1 - EPS):
+                        continue
+                    wq = (f[0], f[1], q[0] * f[1] - q[1] * f[0])
+                    lv = matvec(Mi, wq)
+                    lam_q = (-lv[0], -lv[1], -lv[2])
+                    if not min(lam_q) > EPS:
+                        continue
+                    counts['candidates'] += 1
+                    margin = min(base_margin, min(x - EPS for x in lam_q),
+                                 s - sg.s0 - EPS, sg.s1 - EPS - s, cosang - EPS, tmarg)
+                    if cosmax > EPS:
+                        margin = min(margin, cosang - cosmax)
+                    finish(sg, k, d, e, j, q, s, margin, unrot(f), p_part)
+
+
 # ---------------------------------------------------------------- main solver
-def solve(case, max_seconds=None):
+def parse_vertices(raw, name):
+    out = []
+    for i, p in enumerate(raw):
+        if not isinstance(p, (list, tuple)) or len(p) not in (2, 3) or \
+           not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in p):
+            raise Invalid("%s: vertex %d is not a finite point" % (name, i))
+        out.append((float(p[0]), float(p[1]), float(p[2]) if len(p) == 3 else 0.0))
+    return out
+
+
+def solve(case, max_seconds=None, generic=False):
     t_start = time.time()
     units = case.get('units', 'mm')
     part = case['part']
     access = case.get('access') or []
     kit = case['kit']
     params = case.get('params') or {}
-    validate_polygon(part, 'part')
+    verts = parse_vertices(part, 'part')
+    has_arcs = any(v[2] != 0.0 for v in verts)
+    arc_path = has_arcs or generic
+    if has_arcs:
+        edges_phys = validate_outline(verts, 'part')
+    else:
+        part = [[v[0], v[1]] for v in verts]
+        validate_polygon(part, 'part')
     for ai, a in enumerate(access):
         validate_polygon(a, 'access constraint %d' % ai)
     l = float(kit['spacing'])
@@ -574,10 +1769,19 @@ def solve(case, max_seconds=None):
     gstep = int(params.get('grid_step') or 1)
     wrenches = params.get('wrenches')
 
-    # normalise to CCW
-    part = [(float(x), float(y)) for x, y in part]
-    if signed_area(part) < 0:
-        part = [part[0]] + part[:0:-1]
+    # normalise to CCW (SPEC 8.1: the orientation is the sign of the true area;
+    # reversing moves each bulge with its edge and flips its sign)
+    if has_arcs:
+        if true_signed_area(edges_phys) < 0:
+            nv = len(verts)
+            verts = [(verts[0][0], verts[0][1], -verts[nv - 1][2])] + \
+                [(verts[nv - k][0], verts[nv - k][1], -verts[nv - k - 1][2]) for k in range(1, nv)]
+        part = [(x, y) for x, y, _ in verts]
+    else:
+        part = [(float(x), float(y)) for x, y in part]
+        if signed_area(part) < 0:
+            part = [part[0]] + part[:0:-1]
+        verts = [(x, y, 0.0) for x, y in part]
     part_phys = part
     P = [(x / l, y / l) for x, y in part]
     ACC = [[(float(x) / l, float(y) / l) for x, y in a] for a in access]
@@ -594,12 +1798,23 @@ def solve(case, max_seconds=None):
         mholes.append((int(h[0]), int(h[1]), kind))
     cosmax = math.cos(math.radians(max_angle))
 
-    segs = build_segments(P, ACC, r, trim)
+    EDG = None
+    if arc_path:
+        nv = len(verts)
+        EDG = [make_edge((verts[i][0] / l, verts[i][1] / l),
+                         (verts[(i + 1) % nv][0] / l, verts[(i + 1) % nv][1] / l), verts[i][2])
+               for i in range(nv)]
+        segs, _smooth = build_segments_arcs(EDG, ACC, r, trim)
+    else:
+        segs = build_segments(P, ACC, r, trim)
     nseg = len(segs)
     counts = {'segments': nseg, 'combinations': 0, 'setups': 0, 'candidates': 0, 'admissible': 0}
 
     # quality metric setup
-    _, cen, rho = area_props(P)
+    if arc_path:
+        _, cen, rho = true_area_props(EDG)
+    else:
+        _, cen, rho = area_props(P)
     if wrenches is None:
         applied = fib_dirs(256)
         q_scale = 1.0
@@ -615,7 +1830,9 @@ def solve(case, max_seconds=None):
     for i in range(nseg):
         for j in range(nseg):
             A0, A1, B0, B1 = segs[i].E0, segs[i].E1, segs[j].E0, segs[j].E1
-            if i == j:
+            if segs[i].kind == 'arc' or segs[j].kind == 'arc':
+                dlo[i][j], dhi[i][j] = seg_dist_bounds(segs[i], segs[j], i == j)
+            elif i == j:
                 dlo[i][j] = 0.0
                 dhi[i][j] = math.dist(A0, A1)
             else:
@@ -650,6 +1867,7 @@ def solve(case, max_seconds=None):
     E = [(0, 1), (-1, 0), (0, -1), (1, 0)]
     body_bb_local = bbox(body)
     fixtures = []
+    diag = {'continua': 0, 'degenerate': 0, 'tangential': 0}
     timed_out = False
 
     for a in range(nseg):
@@ -662,6 +1880,14 @@ def solve(case, max_seconds=None):
                     timed_out = True
                     continue
                 S = (segs[a], segs[b], segs[c])
+                if S[0].kind == 'arc' or S[1].kind == 'arc' or S[2].kind == 'arc':
+                    enumerate_arc_combo(a, b, c, S, rng, pts_q, n2_q, pts_all, n2_all, dlo, dhi, SL,
+                                        counts, diag,
+                                        lambda setup: process_setup_arcs(
+                                            setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt,
+                                            cols, rows, EDG, ACC, body, plunger, D, E, counts,
+                                            fixtures, applied, cen_m, rho_m, q_scale, l))
+                    continue
                 n1, n2, n3 = S[0].n, S[1].n, S[2].n
                 lam = (n2[0] * n3[1] - n3[0] * n2[1],
                        n3[0] * n1[1] - n1[0] * n3[1],
@@ -739,9 +1965,14 @@ def solve(case, max_seconds=None):
                             tx = ct * wx - st * wy
                             ty = st * wx + ct * wy
                             setup = (a, b, c, Ls, th, ct, st, (tx, ty), ss, pp, margin)
-                            process_setup(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt,
-                                          cols, rows, P, ACC, body, plunger, D, E, counts, fixtures,
-                                          applied, cen_m, rho_m, q_scale, l)
+                            if arc_path:
+                                process_setup_arcs(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes,
+                                                   alt, cols, rows, EDG, ACC, body, plunger, D, E,
+                                                   counts, fixtures, applied, cen_m, rho_m, q_scale, l)
+                            else:
+                                process_setup(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt,
+                                              cols, rows, P, ACC, body, plunger, D, E, counts, fixtures,
+                                              applied, cen_m, rho_m, q_scale, l)
     fixtures.sort(key=lambda f: f['_key'])
     out = []
     for rank, f in enumerate(fixtures, 1):
@@ -752,8 +1983,59 @@ def solve(case, max_seconds=None):
     status = 'ok' if out else 'no_fixture'
     if timed_out:
         status = 'timeout'
-    return {'status': status, 'counts': counts, 'fixtures': out,
-            'seconds': round(time.time() - t_start, 3)}
+    res = {'status': status, 'counts': counts, 'fixtures': out,
+           'seconds': round(time.time() - t_start, 3)}
+    if arc_path:
+        res['segment_kinds'] = [s.kind for s in segs]
+        res['arc_diagnostics'] = diag
+    return res
+
+
+def enumerate_arc_combo(a, b, c, S, rng, pts_q, n2_q, pts_all, n2_all, dlo, dhi, SL, counts, diag,
+                        process):
+    """setups of a combination with at least one arc (SPEC 8.4)"""
+    solver = ArcCombo(S)
+    for (_, i2, j2) in rng(pts_q, n2_q, dlo[a][b], dhi[a][b]):
+        L2 = (i2, j2)
+        for (_, i3, j3) in rng(pts_all, n2_all, dlo[a][c], dhi[a][c]):
+            if i3 == i2 and j3 == j2:
+                continue
+            dd = math.hypot(i3 - i2, j3 - j2)
+            if dd < dlo[b][c] - SL or dd > dhi[b][c] + SL:
+                continue
+            Ls = ((0, 0), L2, (i3, j3))
+            for th, w, tang, jd in solver.solve(Ls):
+                ct, st = math.cos(th), math.sin(th)
+                ss, pp = [], []
+                ok = True
+                margin = 1.0 if tang is False else 0.0
+                if not tang:
+                    margin = min(margin, jd - TANG)
+                for k in range(3):
+                    Lx, Ly = Ls[k]
+                    p = (ct * Lx + st * Ly - w[0], -st * Lx + ct * Ly - w[1])
+                    sg = S[k]
+                    sv = sg.feat.param(p)
+                    if not (sg.s0 + EPS < sv < sg.s1 - EPS):
+                        ok = False
+                        break
+                    margin = min(margin, sv - sg.s0 - EPS, sg.s1 - EPS - sv)
+                    ss.append(sv)
+                    pp.append(p)
+                if not ok:
+                    continue
+                if a == b and not ss[0] < ss[1]:
+                    continue
+                if b == c and not ss[1] < ss[2]:
+                    continue
+                counts['setups'] += 1
+                if tang:
+                    diag['tangential'] += 1
+                tx = ct * w[0] - st * w[1]
+                ty = st * w[0] + ct * w[1]
+                process((a, b, c, Ls, th, ct, st, (tx, ty), ss, pp, margin))
+    diag['continua'] += solver.continua
+    diag['degenerate'] += solver.degenerate
 
 
 def plate_fit(points, alt, cols, rows):
@@ -966,7 +2248,7 @@ def main(argv):
     with open(path) as fh:
         case = json.load(fh)
     try:
-        res = solve(case, ms)
+        res = solve(case, ms, generic='--generic' in argv)
     except Invalid as ex:
         print(json.dumps({'status': 'invalid', 'error': str(ex)}))
         return 1
