@@ -90,6 +90,87 @@ INTERPRETATION CHOICES (where SPEC is silent or ambiguous)
      may not fold back; the crossing test runs before the zero-area test.
  C19 theta reported in degrees in [0, 360); pose (x, y) and extension and
      contact in catalogue units in the canonical frame.
+
+SECTION 8 (outlines with circular arcs), written from SPEC.md and this file only
+ C22 Arc-free parts (every bulge 0 or absent) take the unchanged polygon code
+     above, so their output is byte-identical to before (no segment_kinds key
+     either; `--generic` forces the arc code on them as a self-check: same
+     counts/fixtures up to rounding and borderline setups).  Reason: req. 1.
+ C23 Bulge b: included angle 4 atan(b), R = c (1 + b^2) / (4 |b|), centre at
+     the chord midpoint + c (1 - b^2) / (4 b) times the chord's left normal
+     (DXF).  Reason: standard DXF geometry; SPEC gives only the angle rule.
+ C24 Validation with arcs: >= 2 vertices, finite x, y, b, no repeated vertex;
+     non-adjacent edges may not touch (tolerance 1e-9 x max(1, |coords|),
+     near-tangency counts as touching); adjacent edges may meet only within
+     1e-7 x scale of their shared vertex (a tangent joint's double
+     intersection is computed only to ~sqrt(rounding)); co-circular
+     overlapping arcs and folded-back lines are invalid; true area 0 is
+     invalid.  Reason: SPEC says "simple" on true curves but gives no tolerance.
+ C25 Grown arcs: convex R + r, concave R - r, no feature (and no segment) when
+     R - r <= eps.  True-boundary / access removal exactly as SPEC 2 with the
+     true region: a point goes when dist(point, true region) < r - eps (0
+     inside, by winding number of chords + signed circular segments) or its
+     distance to a filled access polygon is < r (C3).  Found by cutting the
+     feature at every crossing with the level-set curves (offset lines, end
+     point circles, concentric circles R_j +- (r - eps)) and deciding each
+     piece at its midpoint.  Reason: exact and simple; checked against dense
+     sampling on every arc case.
+ C26 Smooth joint (no edge_trim): the piece end is exactly the grown edge's
+     end (nothing removed there) and the vertex has |t_in x t_out| <= 1e-6,
+     t_in . t_out > 0 with the tangents of the true edges, one edge an arc.
+ C27 Contact parameter on an arc: s = rho_e x (angle from the grown edge's
+     start, in the edge's own turning sense, in [0, 2 pi)); strictly inside =
+     s0 + eps < s < s1 - eps, so a contact at a smooth joint (s = 0 on one
+     side, s = length on the other) is in neither segment.
+ C28 Poses with >= 1 arc.  Two parallel lines (|n1 x n2| <= eps) + arc: theta
+     from the two lines in closed form (rules of C6), w from the line-circle
+     intersection (a miss by <= 1e-9 counts as one tangent point).  Otherwise
+     w is eliminated: the two other equations are made linear (a line, or
+     the difference of two arc equations), w = adj(M) b / det M, and
+     G(theta) = |det c_q - adj(M) b|^2 - rho_q^2 det^2 (c_q = R^T L_q - C_q)
+     is a trigonometric polynomial of degree <= 4 (entries of M, b and c_q
+     have degree <= 1), recovered exactly from 16 samples.  All its roots are
+     isolated by subdivision with the bounds |G^(j)| <= sum k^j |c_k|: an
+     interval is dropped when |G(lo)| + |G(hi)| > max|G'| h, solved by
+     bisection where G is provably monotone, split at the single critical
+     point where G' is provably monotone, else halved.  Critical points with
+     |G| <= 1e-6 x scale are kept as double-root candidates.  Where det M is
+     ~0 at a root (1e-7 relative) w comes from the remaining linear equation
+     and the circle.  Every candidate is Newton-polished on the full 3x3
+     system and kept iff each locator is within 1e-9 (lattice units) of its
+     line/arc.  Reason: provably misses no root (up to rounding); the exact
+     degree bound is asserted at run time.
+ C29 Continuum: G == 0 at all 16 samples (<= 1e-12 x scale) -> no pose for
+     that triple (arc_diagnostics.continua); det M == 0 for every theta ->
+     no pose (arc_diagnostics.degenerate; never met in the cases here).
+     Reason: SPEC 8.4 "a continuum has no pose".
+ C30 Tangential: |det J| <= 1e-6, J the 3x3 Jacobian in (theta, w_x, w_y)
+     of the equations (distance form) in the canonical plate frame (L1 at
+     the origin, lattice units), rows scaled to unit length.  A double-root
+     candidate whose residuals pass (a near miss by <= 1e-9 included) is a
+     tangential pose.  Duplicates merged by the rules of 8.4.  Setup margin
+     (borderline): s margins, 0 if tangential, else |det J| - 1e-6.  Reason:
+     SPEC does not fix the frame of J; borderline either way.
+ C31 Arc contact normals (8.3) use the posed centre and the locator / tip
+     centre; the part-frame normal for the score is the same in the part
+     frame.  If a (nearly singular, tangential) setup makes a clamp lambda
+     > eps in the plate frame round to <= 0 in the part-frame score, the
+     score is reported as 1e300 (not finite; JSON has no infinity).
+ C32 Clamp on an arc: for each axis line (integer j) the 0/1/2 intersections
+     with the posed grown circle (disc < 0: none, disc = 0: one); each point
+     must be strictly inside the segment (C27), pass the angle test (C9)
+     with the arc normal there, and have all lambda > eps; then it counts
+     as a candidate.  Borderline also when rho_e - |offset| < 1e-6 (8.5).
+ C33 Clearance against the true posed region: exact segment-arc distance
+     (crossings, end points, foot of the centre on the segment), containment
+     by winding number (C12 otherwise unchanged; bounding box with arc
+     extremes for the 1e-3 prefilter).  min_clearance 0: best-effort overlap
+     test (transversal crossings, strictly inside vertices/midpoints).
+ C34 Distance annuli (C7) for a pair with an arc: min/max over 33 samples
+     per segment widened by half of both sample steps (arc length >= chord),
+     a sound necessary condition.
+ C35 Output for parts with arcs adds "segment_kinds" (8.6) and
+     "arc_diagnostics" {continua, degenerate, tangential}.
 """
 import sys
 import json
@@ -99,6 +180,10 @@ import bisect
 
 EPS = 1e-9
 BORDER = 1e-6
+# debugging aid: SPEC_REF_SETUPS=FILE lists every arc setup (segments, locators,
+# theta in degrees, tangential, margin), one JSON array a line
+SETUP_LOG = open(__import__('os').environ['SPEC_REF_SETUPS'], 'w') \
+    if __import__('os').environ.get('SPEC_REF_SETUPS') else None
 
 
 class Invalid(Exception):
@@ -1177,7 +1262,7 @@ class ArcCombo:
     def polish(self, Ls, th, w):
         res, rows = self.resid_jac(Ls, th, w)
         best = (max(abs(x) for x in res), th, w, rows)
-        for _ in range(4):
+        for _ in range(8):
             d = det3(rows)
             if abs(self.unit_det(rows)) <= TANG or d == 0:
                 break
@@ -1230,9 +1315,9 @@ class ArcCombo:
                 continue
             jd = abs(self.unit_det(rows))
             th = norm_angle(th)
-            poses.append([th, w, jd <= TANG, jd])
-        # one pose per solution (SPEC 8.4)
-        poses.sort(key=lambda p: p[0])
+            poses.append([th, w, jd <= TANG, jd, m])
+        # one pose per solution (SPEC 8.4); of duplicates keep the most accurate
+        poses.sort(key=lambda p: p[4])
         out = []
         for p in poses:
             dup = False
@@ -1245,7 +1330,8 @@ class ArcCombo:
                     break
             if not dup:
                 out.append(p)
-        return out
+        out.sort(key=lambda p: p[0])
+        return [p[:4] for p in out]
 
     def solve_parallel(self, Ls):
         S = self.S
@@ -2031,6 +2117,8 @@ def enumerate_arc_combo(a, b, c, S, rng, pts_q, n2_q, pts_all, n2_all, dlo, dhi,
                 counts['setups'] += 1
                 if tang:
                     diag['tangential'] += 1
+                if SETUP_LOG is not None:
+                    SETUP_LOG.write(json.dumps([a, b, c, Ls, math.degrees(th), tang, margin]) + '\n')
                 tx = ct * w[0] - st * w[1]
                 ty = st * w[0] + ct * w[1]
                 process((a, b, c, Ls, th, ct, st, (tx, ty), ss, pp, margin))
