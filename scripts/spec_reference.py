@@ -1410,7 +1410,7 @@ class ArcCombo:
             tab = DFT_TAB[k]
             a[k] = 2.0 / NDFT * sum(g * t[0] for g, t in zip(gs, tab))
             b[k] = 2.0 / NDFT * sum(g * t[1] for g, t in zip(gs, tab))
-        # G has degree <= 4 (see C24); the rest is rounding
+        # G has degree <= 4 (see C28); the rest is rounding
         tail = max(abs(x) for x in a[5:] + b[5:])
         assert tail <= 1e-9 * sc, ('degree', tail, sc)
         a, b = a[:5], b[:5]
@@ -2104,6 +2104,9 @@ def enumerate_arc_combo(a, b, c, S, rng, pts_q, n2_q, pts_all, n2_all, dlo, dhi,
                     sv = sg.feat.param(p)
                     if not (sg.s0 + EPS < sv < sg.s1 - EPS):
                         ok = False
+                        if SETUP_LOG is not None and min(abs(sv - sg.s0), abs(sv - sg.s1)) < 1e-5:
+                            SETUP_LOG.write(json.dumps(['rejected', a, b, c, Ls, math.degrees(th), tang,
+                                                        k, sv - sg.s0, sg.s1 - sv]) + '\n')
                         break
                     margin = min(margin, sv - sg.s0 - EPS, sg.s1 - EPS - sv)
                     ss.append(sv)
