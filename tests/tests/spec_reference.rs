@@ -81,6 +81,7 @@ fn the_independent_python_reading_finds_the_same_fixtures() {
         repo().join("scripts/spec_cases/arc-stadium.json"),
         repo().join("scripts/spec_cases/arc-notch-access.json"),
         repo().join("scripts/spec_cases/arc-keyhole.json"),
+        repo().join("examples/cases/bracket-arcs.json"),
     ];
     let mut compared = 0;
     for case in &cases {
