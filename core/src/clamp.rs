@@ -500,7 +500,10 @@ impl PreparedPart {
                 [normals[2].x, normals[2].y],
                 [cand.f.x, cand.f.y],
             ],
-            borderline: margin < BORDERLINE,
+            // No finite score means the metric's solve found the contacts
+            // not in form closure where the clamp test found them in it:
+            // the two disagree only within rounding (W nearly singular).
+            borderline: margin < BORDERLINE || !score.is_finite(),
             placement: mount.placement.clone(),
         }
     }

@@ -94,7 +94,10 @@ fn the_independent_python_reading_finds_the_same_fixtures() {
             .arg(&path));
         let name = case.file_name().unwrap().to_string_lossy();
         if theirs.get("segment_kinds").is_some() {
-            assert_eq!(ours["segment_kinds"], theirs["segment_kinds"], "{name}: segment kinds");
+            assert_eq!(
+                ours["segment_kinds"], theirs["segment_kinds"],
+                "{name}: segment kinds"
+            );
         }
         for k in ["segments", "combinations"] {
             assert_eq!(ours["counts"][k], theirs["counts"][k], "{name}: {k}");
@@ -120,6 +123,10 @@ fn the_independent_python_reading_finds_the_same_fixtures() {
             "{name}: admissible {na} vs {nb}"
         );
         for (k, (sa, ba)) in &a {
+            assert!(
+                sa.is_finite() || *ba,
+                "{name}: no score, not borderline: {k:?}"
+            );
             match b.get(k) {
                 Some((sb, bb)) => {
                     assert!(
