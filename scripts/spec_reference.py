@@ -1559,6 +1559,84 @@ def poly_region_margin(A, Abb, edges, Ebb, mc):
     return m
 
 
+def mount_search(q, d, e, j, Ls, r, tmin, tmax, mholes, alt, cols, rows, body, plunger,
+                 mc, part_margin, posed_acc, acc_bb):
+    """SPEC 4's mount search for a tip at q on axis line j of rotation (d, e):
+    mounts by increasing extension, the first that passes holes, plate fit
+    and clearance.  part_margin(poly, bb) is the clearance margin against
+    the posed part (a polygon, or the true region of an outline with arcs).
+    Returns (found, fail_margin), found = (m, text, fit, margin) or None."""
+    qd = q[0] * d[0] + q[1] * d[1]
+    a_hi = math.floor(qd - tmin + EPS)
+    a_lo = math.ceil(qd - tmax - EPS)
+    found = None
+    fail_margin = 1.0
+    for av in range(a_hi, a_lo - 1, -1):
+        text = qd - av
+        m = (av * d[0] + j * e[0], av * d[1] + j * e[1])
+        mm_ = min(text - tmin, tmax - text)
+        holes = []
+        okh = True
+        for hx, hy, kind in mholes:
+            H = (m[0] + hx * d[0] + hy * e[0], m[1] + hx * d[1] + hy * e[1])
+            if H in Ls:
+                okh = False
+                break
+            if alt and kind is not None:
+                dow = (H[0] + H[1]) % 2 == 0
+                if (kind == 'dowel') != dow:
+                    okh = False
+                    break
+            holes.append(H)
+        if not okh:
+            continue
+        fit = plate_fit(list(Ls) + holes, alt, cols, rows)
+        if fit is None:
+            continue
+        # clearance
+        def place(poly, ext):
+            return [(m[0] + (x + ext) * d[0] + y * e[0], m[1] + (x + ext) * d[1] + y * e[1])
+                    for x, y in poly]
+        cm = 1.0
+        bad = False
+        for poly in (place(body, 0.0), place(plunger, text)):
+            bb = bbox(poly)
+            x_ = part_margin(poly, bb)
+            cm = min(cm, x_)
+            if x_ < -EPS:
+                bad = True
+                break
+            for A, Abb in zip(posed_acc, acc_bb):
+                x_ = poly_poly_margin(poly, bb, A, Abb, mc)
+                cm = min(cm, x_)
+                if x_ < -EPS:
+                    bad = True
+                    break
+            if bad:
+                break
+            for L in Ls:
+                if mc <= EPS:
+                    x_ = 1.0 if not point_in_poly(L, poly) else -1.0
+                    if x_ > 0:
+                        x_ = pt_poly_bdist(L, poly) - r
+                        if x_ < -EPS:
+                            x_ = -1.0
+                else:
+                    x_ = poly_disk_margin(poly, bb, L, r, mc)
+                cm = min(cm, x_)
+                if x_ < -EPS:
+                    bad = True
+                    break
+            if bad:
+                break
+        if bad:
+            fail_margin = min(fail_margin, abs(cm))
+            continue
+        found = (m, text, fit, min(abs(cm), abs(mm_)))
+        break
+    return found, fail_margin
+
+
 def contact_normal_part(sg, p):
     """inward normal (part frame) of a contact at part-frame point p on segment sg"""
     if sg.kind == 'line':
@@ -1615,74 +1693,10 @@ def process_setup_arcs(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, 
         margin = min(margin, abs(tipm))
         pc_ = posed()
         (posed_part, part_bb), (posed_acc, acc_bb) = pc_['part'], pc_['acc']
-        qd = q[0] * d[0] + q[1] * d[1]
-        a_hi = math.floor(qd - tmin + EPS)
-        a_lo = math.ceil(qd - tmax - EPS)
-        found = None
-        fail_margin = 1.0
-        for av in range(a_hi, a_lo - 1, -1):
-            text = qd - av
-            m = (av * d[0] + j * e[0], av * d[1] + j * e[1])
-            mm_ = min(text - tmin, tmax - text)
-            holes = []
-            okh = True
-            for hx, hy, kind in mholes:
-                H = (m[0] + hx * d[0] + hy * e[0], m[1] + hx * d[1] + hy * e[1])
-                if H in Ls:
-                    okh = False
-                    break
-                if alt and kind is not None:
-                    dow = (H[0] + H[1]) % 2 == 0
-                    if (kind == 'dowel') != dow:
-                        okh = False
-                        break
-                holes.append(H)
-            if not okh:
-                continue
-            fit = plate_fit(list(Ls) + holes, alt, cols, rows)
-            if fit is None:
-                continue
-
-            def place(poly, ext):
-                return [(m[0] + (x + ext) * d[0] + y * e[0], m[1] + (x + ext) * d[1] + y * e[1])
-                        for x, y in poly]
-            cm = 1.0
-            bad = False
-            for poly in (place(body, 0.0), place(plunger, text)):
-                bb = bbox(poly)
-                x_ = poly_region_margin(poly, bb, posed_part, part_bb, mc)
-                cm = min(cm, x_)
-                if x_ < -EPS:
-                    bad = True
-                    break
-                for A, Abb in zip(posed_acc, acc_bb):
-                    x_ = poly_poly_margin(poly, bb, A, Abb, mc)
-                    cm = min(cm, x_)
-                    if x_ < -EPS:
-                        bad = True
-                        break
-                if bad:
-                    break
-                for L in Ls:
-                    if mc <= EPS:
-                        x_ = 1.0 if not point_in_poly(L, poly) else -1.0
-                        if x_ > 0:
-                            x_ = pt_poly_bdist(L, poly) - r
-                            if x_ < -EPS:
-                                x_ = -1.0
-                    else:
-                        x_ = poly_disk_margin(poly, bb, L, r, mc)
-                    cm = min(cm, x_)
-                    if x_ < -EPS:
-                        bad = True
-                        break
-                if bad:
-                    break
-            if bad:
-                fail_margin = min(fail_margin, abs(cm))
-                continue
-            found = (m, text, fit, min(abs(cm), abs(mm_)))
-            break
+        found, fail_margin = mount_search(q, d, e, j, Ls, r, tmin, tmax, mholes, alt, cols, rows,
+                                          body, plunger, mc,
+                                          lambda poly, bb: poly_region_margin(poly, bb, posed_part, part_bb, mc),
+                                          posed_acc, acc_bb)
         if found is None:
             return
         m, text, fit, mmarg = found
@@ -2231,74 +2245,10 @@ def process_setup(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, cols,
                     part_bb = bbox(posed_part)
                     posed_acc = [[(ct * x - st * y + t[0], st * x + ct * y + t[1]) for x, y in A] for A in ACC]
                     acc_bb = [bbox(A) for A in posed_acc]
-                qd = q[0] * d[0] + q[1] * d[1]
-                a_hi = math.floor(qd - tmin + EPS)
-                a_lo = math.ceil(qd - tmax - EPS)
-                found = None
-                fail_margin = 1.0
-                for av in range(a_hi, a_lo - 1, -1):
-                    text = qd - av
-                    m = (av * d[0] + j * e[0], av * d[1] + j * e[1])
-                    mm_ = min(text - tmin, tmax - text)
-                    holes = []
-                    okh = True
-                    for hx, hy, kind in mholes:
-                        H = (m[0] + hx * d[0] + hy * e[0], m[1] + hx * d[1] + hy * e[1])
-                        if H in Ls:
-                            okh = False
-                            break
-                        if alt and kind is not None:
-                            dow = (H[0] + H[1]) % 2 == 0
-                            if (kind == 'dowel') != dow:
-                                okh = False
-                                break
-                        holes.append(H)
-                    if not okh:
-                        continue
-                    fit = plate_fit(list(Ls) + holes, alt, cols, rows)
-                    if fit is None:
-                        continue
-                    # clearance
-                    def place(poly, ext):
-                        return [(m[0] + (x + ext) * d[0] + y * e[0], m[1] + (x + ext) * d[1] + y * e[1])
-                                for x, y in poly]
-                    cm = 1.0
-                    bad = False
-                    for poly in (place(body, 0.0), place(plunger, text)):
-                        bb = bbox(poly)
-                        x_ = poly_poly_margin(poly, bb, posed_part, part_bb, mc)
-                        cm = min(cm, x_)
-                        if x_ < -EPS:
-                            bad = True
-                            break
-                        for A, Abb in zip(posed_acc, acc_bb):
-                            x_ = poly_poly_margin(poly, bb, A, Abb, mc)
-                            cm = min(cm, x_)
-                            if x_ < -EPS:
-                                bad = True
-                                break
-                        if bad:
-                            break
-                        for L in Ls:
-                            if mc <= EPS:
-                                x_ = 1.0 if not point_in_poly(L, poly) else -1.0
-                                if x_ > 0:
-                                    x_ = pt_poly_bdist(L, poly) - r
-                                    if x_ < -EPS:
-                                        x_ = -1.0
-                            else:
-                                x_ = poly_disk_margin(poly, bb, L, r, mc)
-                            cm = min(cm, x_)
-                            if x_ < -EPS:
-                                bad = True
-                                break
-                        if bad:
-                            break
-                    if bad:
-                        fail_margin = min(fail_margin, abs(cm))
-                        continue
-                    found = (m, text, fit, min(abs(cm), abs(mm_)))
-                    break
+                found, fail_margin = mount_search(q, d, e, j, Ls, r, tmin, tmax, mholes, alt, cols, rows,
+                                                  body, plunger, mc,
+                                                  lambda poly, bb: poly_poly_margin(poly, bb, posed_part, part_bb, mc),
+                                                  posed_acc, acc_bb)
                 if found is None:
                     continue
                 m, text, fit, mmarg = found
