@@ -1559,6 +1559,56 @@ def poly_region_margin(A, Abb, edges, Ebb, mc):
     return m
 
 
+def line_clamp_candidates(sg, rot, t, Mi, D, E, cosmax, y0, base_margin):
+    """SPEC 4's candidates on line segment sg for a setup posed by (rot, t):
+    the open form-closure interval of s (lambda affine in s), then for each
+    rotation k the plunger axis lines j meeting it, with the angle test.
+    Yields (k, d, e, j, q, s, margin, f): tip centre q (plate frame) at
+    parameter s, inward normal f, decision margin so far."""
+    rn = rot(sg.n)
+    f = (-rn[0], -rn[1])
+    U = rot(sg.u)
+    RP = rot(sg.P0)
+    Q0 = (RP[0] + t[0], RP[1] + t[1])
+    w0 = (f[0], f[1], Q0[0] * f[1] - Q0[1] * f[0])
+    w1z = U[0] * f[1] - U[1] * f[0]
+    al0 = matvec(Mi, w0)
+    alpha = (-al0[0], -al0[1], -al0[2])
+    beta = (-w1z * Mi[0][2], -w1z * Mi[1][2], -w1z * Mi[2][2])
+    lo, hi = sg.s0 + EPS, sg.s1 - EPS
+    for i in range(3):
+        if beta[i] > 0:
+            lo = max(lo, (EPS - alpha[i]) / beta[i])
+        elif beta[i] < 0:
+            hi = min(hi, (EPS - alpha[i]) / beta[i])
+        elif alpha[i] <= EPS:
+            return
+    if lo >= hi:
+        return
+    for k in range(4):
+        d = D[k]
+        e = E[k]
+        cosang = d[0] * f[0] + d[1] * f[1]
+        if cosang <= EPS or cosang < cosmax - EPS:
+            continue
+        ue = U[0] * e[0] + U[1] * e[1]
+        qe0 = Q0[0] * e[0] + Q0[1] * e[1]
+        v1, v2 = qe0 + lo * ue, qe0 + hi * ue
+        jlo = math.floor(min(v1, v2) - y0) - 1
+        jhi = math.ceil(max(v1, v2) - y0) + 1
+        for j in range(jlo, jhi + 1):
+            s = (j + y0 - qe0) / ue
+            if not (lo < s < hi):
+                continue
+            q = (Q0[0] + s * U[0], Q0[1] + s * U[1])
+            lam_q = [alpha[i] + beta[i] * s for i in range(3)]
+            margin = min(base_margin, min(x - EPS for x in lam_q),
+                         s - sg.s0 - EPS, sg.s1 - EPS - s, cosang - EPS)
+            if cosmax > EPS:
+                margin = min(margin, cosang - cosmax)
+            yield k, d, e, j, q, s, margin, f
+
+
 def mount_search(q, d, e, j, Ls, r, tmin, tmax, mholes, alt, cols, rows, body, plunger,
                  mc, part_margin, posed_acc, acc_bb):
     """SPEC 4's mount search for a tip at q on axis line j of rotation (d, e):
@@ -1724,51 +1774,11 @@ def process_setup_arcs(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, 
 
     for sg in segs:
         if sg.kind == 'line':
-            rn = rot(sg.n)
-            f = (-rn[0], -rn[1])
-            U = rot(sg.u)
-            RP = rot(sg.P0)
-            Q0 = (RP[0] + t[0], RP[1] + t[1])
-            w0 = (f[0], f[1], Q0[0] * f[1] - Q0[1] * f[0])
-            w1z = U[0] * f[1] - U[1] * f[0]
-            al0 = matvec(Mi, w0)
-            alpha = (-al0[0], -al0[1], -al0[2])
-            beta = (-w1z * Mi[0][2], -w1z * Mi[1][2], -w1z * Mi[2][2])
-            lo, hi = sg.s0 + EPS, sg.s1 - EPS
-            empty = False
-            for i in range(3):
-                if beta[i] > 0:
-                    lo = max(lo, (EPS - alpha[i]) / beta[i])
-                elif beta[i] < 0:
-                    hi = min(hi, (EPS - alpha[i]) / beta[i])
-                elif alpha[i] <= EPS:
-                    empty = True
-            if empty or lo >= hi:
-                continue
-            for k in range(4):
-                d = D[k]
-                e = E[k]
-                cosang = d[0] * f[0] + d[1] * f[1]
-                if cosang <= EPS or cosang < cosmax - EPS:
-                    continue
-                ue = U[0] * e[0] + U[1] * e[1]
-                qe0 = Q0[0] * e[0] + Q0[1] * e[1]
-                v1, v2 = qe0 + lo * ue, qe0 + hi * ue
-                jlo = math.floor(min(v1, v2) - y0) - 1
-                jhi = math.ceil(max(v1, v2) - y0) + 1
-                for j in range(jlo, jhi + 1):
-                    s = (j + y0 - qe0) / ue
-                    if not (lo < s < hi):
-                        continue
-                    counts['candidates'] += 1
-                    q = (Q0[0] + s * U[0], Q0[1] + s * U[1])
-                    lam_q = [alpha[i] + beta[i] * s for i in range(3)]
-                    margin = min(base_margin, min(x - EPS for x in lam_q),
-                                 s - sg.s0 - EPS, sg.s1 - EPS - s, cosang - EPS)
-                    if cosmax > EPS:
-                        margin = min(margin, cosang - cosmax)
-                    p_part = (sg.P0[0] + s * sg.u[0], sg.P0[1] + s * sg.u[1])
-                    finish(sg, k, d, e, j, q, s, margin, (-sg.n[0], -sg.n[1]), p_part)
+            for k, d, e, j, q, s, margin, _ in line_clamp_candidates(
+                    sg, rot, t, Mi, D, E, cosmax, y0, base_margin):
+                counts['candidates'] += 1
+                p_part = (sg.P0[0] + s * sg.u[0], sg.P0[1] + s * sg.u[1])
+                finish(sg, k, d, e, j, q, s, margin, (-sg.n[0], -sg.n[1]), p_part)
             continue
         # arc clamp segment (SPEC 8.5)
         RC = rot(sg.C)
@@ -2192,90 +2202,50 @@ def process_setup(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, cols,
     part_bb = None
     acc_bb = None
     for sg in segs:
-        rn = rot(sg.n)
-        f = (-rn[0], -rn[1])
-        U = rot(sg.u)
-        RP = rot(sg.P0)
-        Q0 = (RP[0] + t[0], RP[1] + t[1])
-        w0 = (f[0], f[1], Q0[0] * f[1] - Q0[1] * f[0])
-        w1z = U[0] * f[1] - U[1] * f[0]
-        al0 = matvec(Mi, w0)
-        alpha = (-al0[0], -al0[1], -al0[2])
-        beta = (-w1z * Mi[0][2], -w1z * Mi[1][2], -w1z * Mi[2][2])
-        lo, hi = sg.s0 + EPS, sg.s1 - EPS
-        empty = False
-        for i in range(3):
-            if beta[i] > 0:
-                lo = max(lo, (EPS - alpha[i]) / beta[i])
-            elif beta[i] < 0:
-                hi = min(hi, (EPS - alpha[i]) / beta[i])
-            elif alpha[i] <= EPS:
-                empty = True
-        if empty or lo >= hi:
-            continue
-        for k in range(4):
-            d = D[k]
-            e = E[k]
-            cosang = d[0] * f[0] + d[1] * f[1]
-            if cosang <= EPS or cosang < cosmax - EPS:
+        for k, d, e, j, q, s, margin, f in line_clamp_candidates(
+                sg, rot, t, Mi, D, E, cosmax, y0, base_margin):
+            counts['candidates'] += 1
+            # tip vs locators (independent of mount)
+            tipm = min(math.hypot(q[0] - L[0], q[1] - L[1]) - 2 * r for L in Ls)
+            if tipm < -EPS:
                 continue
-            ue = U[0] * e[0] + U[1] * e[1]
-            qe0 = Q0[0] * e[0] + Q0[1] * e[1]
-            v1, v2 = qe0 + lo * ue, qe0 + hi * ue
-            jlo = math.floor(min(v1, v2) - y0) - 1
-            jhi = math.ceil(max(v1, v2) - y0) + 1
-            for j in range(jlo, jhi + 1):
-                s = (j + y0 - qe0) / ue
-                if not (lo < s < hi):
-                    continue
-                counts['candidates'] += 1
-                q = (Q0[0] + s * U[0], Q0[1] + s * U[1])
-                lam_q = [alpha[i] + beta[i] * s for i in range(3)]
-                margin = min(base_margin, min(x - EPS for x in lam_q),
-                             s - sg.s0 - EPS, sg.s1 - EPS - s, cosang - EPS)
-                if cosmax > EPS:
-                    margin = min(margin, cosang - cosmax)
-                # tip vs locators (independent of mount)
-                tipm = min(math.hypot(q[0] - L[0], q[1] - L[1]) - 2 * r for L in Ls)
-                if tipm < -EPS:
-                    continue
-                margin = min(margin, abs(tipm))
-                if posed_part is None:
-                    posed_part = [(ct * x - st * y + t[0], st * x + ct * y + t[1]) for x, y in P]
-                    part_bb = bbox(posed_part)
-                    posed_acc = [[(ct * x - st * y + t[0], st * x + ct * y + t[1]) for x, y in A] for A in ACC]
-                    acc_bb = [bbox(A) for A in posed_acc]
-                found, fail_margin = mount_search(q, d, e, j, Ls, r, tmin, tmax, mholes, alt, cols, rows,
-                                                  body, plunger, mc,
-                                                  lambda poly, bb: poly_poly_margin(poly, bb, posed_part, part_bb, mc),
-                                                  posed_acc, acc_bb)
-                if found is None:
-                    continue
-                m, text, fit, mmarg = found
-                margin = min(margin, mmarg, fail_margin)
-                # score, part frame
-                pts = [(x * q_scale, y * q_scale) for x, y in pp]
-                pc = (sg.P0[0] + s * sg.u[0], sg.P0[1] + s * sg.u[1])
-                pts.append((pc[0] * q_scale, pc[1] * q_scale))
-                nfs = [(-S[0].n[0], -S[0].n[1]), (-S[1].n[0], -S[1].n[1]),
-                       (-S[2].n[0], -S[2].n[1]), (-sg.n[0], -sg.n[1])]
-                score = score_contacts(pts, nfs, applied, cen_m, rho_m)
-                L2, L3 = Ls[1], Ls[2]
-                key = (score, a, b, c, tuple(L2), tuple(L3), th, sg.idx, k, tuple(m))
-                fixtures.append({
-                    '_key': key,
-                    'score': score,
-                    'segments': [a, b, c],
-                    'locators': [list(x) for x in Ls],
-                    'theta_deg': math.degrees(th),
-                    'pose': {'x': t[0] * l, 'y': t[1] * l, 'theta_deg': math.degrees(th)},
-                    'clamp': {'segment': sg.idx, 'rotation_deg': 90 * k, 'mount': list(m),
-                              'extension': text * l, 'contact': [q[0] * l, q[1] * l]},
-                    'contacts_s': [x * l for x in ss] + [s * l],
-                    'plate': {'rotation_deg': 90 * fit[0], 'translation': [fit[1], fit[2]]},
-                    'borderline': margin < BORDER,
-                    'min_margin': margin,
-                })
+            margin = min(margin, abs(tipm))
+            if posed_part is None:
+                posed_part = [(ct * x - st * y + t[0], st * x + ct * y + t[1]) for x, y in P]
+                part_bb = bbox(posed_part)
+                posed_acc = [[(ct * x - st * y + t[0], st * x + ct * y + t[1]) for x, y in A] for A in ACC]
+                acc_bb = [bbox(A) for A in posed_acc]
+            found, fail_margin = mount_search(q, d, e, j, Ls, r, tmin, tmax, mholes, alt, cols, rows,
+                                              body, plunger, mc,
+                                              lambda poly, bb: poly_poly_margin(poly, bb, posed_part, part_bb, mc),
+                                              posed_acc, acc_bb)
+            if found is None:
+                continue
+            m, text, fit, mmarg = found
+            margin = min(margin, mmarg, fail_margin)
+            # score, part frame
+            pts = [(x * q_scale, y * q_scale) for x, y in pp]
+            pc = (sg.P0[0] + s * sg.u[0], sg.P0[1] + s * sg.u[1])
+            pts.append((pc[0] * q_scale, pc[1] * q_scale))
+            nfs = [(-S[0].n[0], -S[0].n[1]), (-S[1].n[0], -S[1].n[1]),
+                   (-S[2].n[0], -S[2].n[1]), (-sg.n[0], -sg.n[1])]
+            score = score_contacts(pts, nfs, applied, cen_m, rho_m)
+            L2, L3 = Ls[1], Ls[2]
+            key = (score, a, b, c, tuple(L2), tuple(L3), th, sg.idx, k, tuple(m))
+            fixtures.append({
+                '_key': key,
+                'score': score,
+                'segments': [a, b, c],
+                'locators': [list(x) for x in Ls],
+                'theta_deg': math.degrees(th),
+                'pose': {'x': t[0] * l, 'y': t[1] * l, 'theta_deg': math.degrees(th)},
+                'clamp': {'segment': sg.idx, 'rotation_deg': 90 * k, 'mount': list(m),
+                          'extension': text * l, 'contact': [q[0] * l, q[1] * l]},
+                'contacts_s': [x * l for x in ss] + [s * l],
+                'plate': {'rotation_deg': 90 * fit[0], 'translation': [fit[1], fit[2]]},
+                'borderline': margin < BORDER,
+                'min_margin': margin,
+            })
 
 
 def main(argv):
