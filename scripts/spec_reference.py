@@ -1559,6 +1559,27 @@ def poly_region_margin(A, Abb, edges, Ebb, mc):
     return m
 
 
+def add_fixture(fixtures, setup, score, sg, k, m, text, q, s, fit, margin, l):
+    """Appends a fixture record (catalogue units) with its ranking key (C16)."""
+    a, b, c, Ls, th, ct, st, t, ss, pp, smargin = setup
+    L2, L3 = Ls[1], Ls[2]
+    key = (score, a, b, c, tuple(L2), tuple(L3), th, sg.idx, k, tuple(m))
+    fixtures.append({
+        '_key': key,
+        'score': score,
+        'segments': [a, b, c],
+        'locators': [list(x) for x in Ls],
+        'theta_deg': math.degrees(th),
+        'pose': {'x': t[0] * l, 'y': t[1] * l, 'theta_deg': math.degrees(th)},
+        'clamp': {'segment': sg.idx, 'rotation_deg': 90 * k, 'mount': list(m),
+                  'extension': text * l, 'contact': [q[0] * l, q[1] * l]},
+        'contacts_s': [x * l for x in ss] + [s * l],
+        'plate': {'rotation_deg': 90 * fit[0], 'translation': [fit[1], fit[2]]},
+        'borderline': margin < BORDER,
+        'min_margin': margin,
+    })
+
+
 def line_clamp_candidates(sg, rot, t, Mi, D, E, cosmax, y0, base_margin):
     """SPEC 4's candidates on line segment sg for a setup posed by (rot, t):
     the open form-closure interval of s (lambda affine in s), then for each
@@ -1755,22 +1776,7 @@ def process_setup_arcs(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, 
         pts.append((p_part[0] * q_scale, p_part[1] * q_scale))
         nfs = nparts + [f_part]
         score = score_contacts(pts, nfs, applied, cen_m, rho_m)
-        L2, L3 = Ls[1], Ls[2]
-        key = (score, a, b, c, tuple(L2), tuple(L3), th, sg.idx, k, tuple(m))
-        fixtures.append({
-            '_key': key,
-            'score': score,
-            'segments': [a, b, c],
-            'locators': [list(x) for x in Ls],
-            'theta_deg': math.degrees(th),
-            'pose': {'x': t[0] * l, 'y': t[1] * l, 'theta_deg': math.degrees(th)},
-            'clamp': {'segment': sg.idx, 'rotation_deg': 90 * k, 'mount': list(m),
-                      'extension': text * l, 'contact': [q[0] * l, q[1] * l]},
-            'contacts_s': [x * l for x in ss] + [s * l],
-            'plate': {'rotation_deg': 90 * fit[0], 'translation': [fit[1], fit[2]]},
-            'borderline': margin < BORDER,
-            'min_margin': margin,
-        })
+        add_fixture(fixtures, setup, score, sg, k, m, text, q, s, fit, margin, l)
 
     for sg in segs:
         if sg.kind == 'line':
@@ -2230,22 +2236,7 @@ def process_setup(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, cols,
             nfs = [(-S[0].n[0], -S[0].n[1]), (-S[1].n[0], -S[1].n[1]),
                    (-S[2].n[0], -S[2].n[1]), (-sg.n[0], -sg.n[1])]
             score = score_contacts(pts, nfs, applied, cen_m, rho_m)
-            L2, L3 = Ls[1], Ls[2]
-            key = (score, a, b, c, tuple(L2), tuple(L3), th, sg.idx, k, tuple(m))
-            fixtures.append({
-                '_key': key,
-                'score': score,
-                'segments': [a, b, c],
-                'locators': [list(x) for x in Ls],
-                'theta_deg': math.degrees(th),
-                'pose': {'x': t[0] * l, 'y': t[1] * l, 'theta_deg': math.degrees(th)},
-                'clamp': {'segment': sg.idx, 'rotation_deg': 90 * k, 'mount': list(m),
-                          'extension': text * l, 'contact': [q[0] * l, q[1] * l]},
-                'contacts_s': [x * l for x in ss] + [s * l],
-                'plate': {'rotation_deg': 90 * fit[0], 'translation': [fit[1], fit[2]]},
-                'borderline': margin < BORDER,
-                'min_margin': margin,
-            })
+            add_fixture(fixtures, setup, score, sg, k, m, text, q, s, fit, margin, l)
 
 
 def main(argv):
