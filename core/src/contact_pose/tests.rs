@@ -171,3 +171,46 @@ fn continuum_threshold_separates() {
     assert!(worst_continuum < CONTINUUM_REL / 100.0);
     assert!(least_genuine > CONTINUUM_REL * 100.0);
 }
+
+/// Why tangential poses are singular setups (README, "Choices"): row `k`
+/// of the pose Jacobian is contact `k`'s wrench `(f, L_k x f)` with its
+/// force part turned into the part frame, so with rows scaled to unit
+/// length `|det J| = |det W| / prod |w_k|` at every pose.
+#[test]
+fn tangency_measure_is_the_scaled_wrench_determinant() {
+    let mut state = 0x0bad_5eed_1234_5678u64;
+    for case in 0..5000 {
+        let circles = case % 4;
+        let (mut contacts, _) = random_contacts(&mut state, circles);
+        let theta = TAU * rnd(&mut state);
+        let w = v2(4.0 * rnd(&mut state) - 2.0, 4.0 * rnd(&mut state) - 2.0);
+        let (s, c) = theta.sin_cos();
+        let mut locs = [V2::zeros(); 3];
+        let mut wrenches = [Vector3::zeros(); 3];
+        for k in 0..3 {
+            let p = v2(6.0 * rnd(&mut state) - 3.0, 6.0 * rnd(&mut state) - 3.0);
+            // The feature's unit normal at the contact, part frame.
+            let u = match &mut contacts[k] {
+                Contact::Line(l) => {
+                    l.c = l.n.dot(&p);
+                    l.n
+                }
+                Contact::Circle(ci) => {
+                    let a = TAU * rnd(&mut state);
+                    ci.centre = p - v2(a.cos(), a.sin()) * ci.radius;
+                    v2(a.cos(), a.sin())
+                }
+            };
+            locs[k] = rot(c, s, p + w);
+            wrenches[k] = crate::form_closure::wrench(locs[k], -rot(c, s, u));
+        }
+        let det_w = Matrix3::from_columns(&wrenches).determinant();
+        let scale: f64 = wrenches.iter().map(|x| x.norm()).product();
+        let det_j = scaled_jacobian_det(&contacts, &locs, c, s, w);
+        assert!(
+            (det_j.abs() - det_w.abs() / scale).abs() <= 1e-12,
+            "{case}: det J {det_j} vs det W / prod |w| {}",
+            det_w / scale
+        );
+    }
+}
