@@ -26,8 +26,8 @@ use zenoh::Wait;
 pub enum Fault {
     /// Halve the score of the best fixture of every result.
     CorruptScore,
-    /// Finish whole parts with a made-up timing: honest results, finished
-    /// parts that are not what they make.
+    /// Finish parts (whole or cut) with a made-up timing: honest results,
+    /// finished parts that are not what they make.
     ForgeFinished,
     /// Take this much longer over every shard (a slow machine: the run
     /// lasts as long whatever the size of its assignments, which tests
@@ -171,6 +171,15 @@ struct Agent {
     summary: WorkerSummary,
 }
 
+/// What becomes of one assignment ([`shard_outcome`] or
+/// [`cut_part_outcome`]), with the worker's fault and finisher.
+type OutcomeOf = fn(
+    Option<Fault>,
+    Option<&dyn Finisher>,
+    Assign,
+    &Result<(PartInput, PreparedPart), WireInputError>,
+) -> Outcome;
+
 /// One shard of an assignment, enumerated (on the calling rayon pool),
 /// and finished when it is a whole part the coordinator asked to have
 /// finished.
@@ -227,6 +236,48 @@ fn shard_outcome(
             crate::panic_text(p)
         )),
     }
+}
+
+/// A cut part finished from its merged result: the finished bytes and an
+/// empty result (the coordinator holds the merged one), or no bytes if
+/// this worker has no finisher or could not finish it (the coordinator
+/// then does).
+fn cut_part_outcome(
+    fault: Option<Fault>,
+    finisher: Option<&dyn Finisher>,
+    a: Assign,
+    prepared: &Result<(PartInput, PreparedPart), WireInputError>,
+) -> Outcome {
+    let (input, prep) = match prepared {
+        Ok((input, prep)) => (input, prep),
+        Err(e) => {
+            return Outcome::Failed(ShardFailed {
+                shard_id: a.shard_id,
+                message: e.to_string(),
+            })
+        }
+    };
+    let t0 = Instant::now();
+    let finished = match (finisher, &a.finish, &a.finish_from) {
+        (Some(f), Some(context), Some(from)) => {
+            // The forger finishes with another timing than it was sent.
+            let forged = from.micros + u64::from(fault == Some(Fault::ForgeFinished)) * 1_000_000;
+            finished(f, input, prep, &from.result, forged, context)
+        }
+        _ => None,
+    };
+    Outcome::Done(Box::new(ShardDone {
+        shard_id: a.shard_id,
+        digest: a.digest,
+        micros: t0.elapsed().as_micros() as u64,
+        result: PartialResult {
+            range: 0..0,
+            counts: Default::default(),
+            fixtures: Vec::new(),
+        },
+        hit: None,
+        finished,
+    }))
 }
 
 /// A whole part finished by `f`, or `None` (logged) if it could not be:
@@ -308,10 +359,49 @@ impl Agent {
     /// batch of small parts keeps every thread busy), each inside its own
     /// `catch_unwind` so one panicking part fails alone.
     fn work_on(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
-        if let Some(replay) = self.opts.replay.clone() {
-            return self.replayed(&replay, batch);
+        // Finishing a cut part enumerates nothing, so it is never replayed.
+        let (to_finish, shards): (Vec<Assign>, Vec<Assign>) =
+            batch.into_iter().partition(|a| a.finish_from.is_some());
+        match self.opts.replay.clone() {
+            Some(replay) => {
+                let mut out = self.replayed_finishing(&replay, to_finish);
+                out.extend(self.replayed(&replay, shards));
+                out
+            }
+            None => {
+                let mut out = self.finished_cut(to_finish);
+                out.extend(self.enumerated(shards));
+                out
+            }
         }
-        self.enumerated(batch)
+    }
+
+    /// [`Agent::finished_cut`] with a replay cache: the finishings it
+    /// knows at once, the others done and recorded.
+    fn replayed_finishing(&mut self, replay: &Replay, batch: Vec<Assign>) -> Vec<Outcome> {
+        let mut out = Vec::new();
+        let mut todo = Vec::new();
+        for mut a in batch {
+            match replay.get(&a) {
+                Some(o) => out.push(o),
+                None => {
+                    // Replayed shards left the part unprepared here.
+                    a.input = a.input.take().or_else(|| replay.input_for(&a));
+                    todo.push(a);
+                }
+            }
+        }
+        let asked = todo.clone();
+        for (a, o) in asked.iter().zip(self.finished_cut(todo)) {
+            out.push(replay.put(a, o));
+        }
+        out
+    }
+
+    /// Cut parts finished from their merged results
+    /// ([`Assign::finish_from`]), side by side on the pool.
+    fn finished_cut(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
+        self.on_pool(batch, cut_part_outcome)
     }
 
     /// [`Agent::work_on`] with a replay cache: the shards it knows at
@@ -323,8 +413,7 @@ impl Agent {
             if out[i].is_none() {
                 a.input = a.input.take().or_else(|| replay.input_for(&a));
                 if let Some(o) = self.refinished(replay, &a) {
-                    replay.put(&a, &o);
-                    out[i] = Some(o);
+                    out[i] = Some(replay.put(&a, o));
                     continue;
                 }
                 todo.push(a);
@@ -334,8 +423,7 @@ impl Agent {
         if !todo.is_empty() {
             let asked = todo.clone();
             for ((a, o), i) in asked.iter().zip(self.enumerated(todo)).zip(at) {
-                replay.put(a, &o);
-                out[i] = Some(o);
+                out[i] = Some(replay.put(a, o));
             }
         }
         out.into_iter().flatten().collect()
@@ -363,6 +451,15 @@ impl Agent {
 
     /// Enumerates the shards of `batch` side by side on the pool.
     fn enumerated(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
+        self.on_pool(batch, shard_outcome)
+    }
+
+    /// The `outcome` of each assignment of `batch` with its part prepared,
+    /// side by side on the pool.
+    fn on_pool(&mut self, batch: Vec<Assign>, outcome: OutcomeOf) -> Vec<Outcome> {
+        if batch.is_empty() {
+            return Vec::new();
+        }
         let jobs: Vec<_> = batch
             .into_iter()
             .map(|a| {
@@ -374,7 +471,7 @@ impl Agent {
         let finisher = self.opts.finisher.as_deref();
         self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| shard_outcome(fault, finisher, a, &prep))
+                .map(|(a, prep)| outcome(fault, finisher, a, &prep))
                 .collect::<Vec<_>>()
         })
     }

@@ -15,7 +15,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 5;
+pub const PROTOCOL_VERSION: u16 = 6;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -135,6 +135,22 @@ pub struct Assign {
     /// input and result (its place and name in the catalogue), opaque to
     /// the worker. Workers without a finisher ignore it.
     pub finish: Option<Bytes>,
+    /// A part cut into shards, all of them merged (protocol 6): the worker
+    /// finishes the part from this result with its `finish` context
+    /// instead of enumerating anything (`range` is empty), and answers
+    /// with [`ShardDone::finished`] and an empty result. Finishing a part
+    /// costs the coordinator more than all else it does for it, so cut
+    /// parts are finished by workers too, like whole ones.
+    pub finish_from: Option<Box<FinishFrom>>,
+}
+
+/// What a worker finishes a cut part from ([`Assign::finish_from`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FinishFrom {
+    /// The part's shard results merged, as the coordinator merged them.
+    pub result: PartialResult,
+    /// The workers' time enumerating its shards, for the part's timing.
+    pub micros: u64,
 }
 
 /// A finished shard (of the worker named in the [`Msg::Report`]).
@@ -397,8 +413,34 @@ mod tests {
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
     }
 
-    /// `Assign`'s shared byte fields are on the wire exactly as the
-    /// `serde_bytes` vectors of protocol 5 were (so the version stays).
+    /// A finishing task carries its merged result bit for bit.
+    #[test]
+    fn finishing_tasks_round_trip() {
+        let a = Assign {
+            shard_id: 12,
+            digest: [5; 32],
+            range: 0..0,
+            input: None,
+            good_enough: None,
+            finish: Some(Bytes::from_static(b"ctx")),
+            finish_from: Some(Box::new(FinishFrom {
+                result: PartialResult {
+                    range: 0..40,
+                    counts: Counts::default(),
+                    fixtures: vec![],
+                },
+                micros: 1234,
+            })),
+        };
+        let m = Msg::Reply {
+            notes: vec![],
+            next: Next::Work(vec![a]),
+        };
+        assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
+    }
+
+    /// `Assign`'s shared byte fields are on the wire exactly as
+    /// `serde_bytes` vectors are.
     #[test]
     fn shared_bytes_keep_the_wire_form() {
         #[derive(Serialize)]
@@ -411,6 +453,7 @@ mod tests {
             good_enough: Option<f64>,
             #[serde(with = "serde_bytes")]
             finish: Option<Vec<u8>>,
+            finish_from: Option<Box<FinishFrom>>,
         }
         for (input, finish) in [
             (Some(vec![1u8, 2, 250]), None),
@@ -423,6 +466,7 @@ mod tests {
                 input: input.clone().map(Bytes::from),
                 good_enough: Some(1.5),
                 finish: finish.clone().map(Bytes::from),
+                finish_from: None,
             };
             let v = AsVectors {
                 shard_id: 7,
@@ -431,6 +475,7 @@ mod tests {
                 input,
                 good_enough: Some(1.5),
                 finish,
+                finish_from: None,
             };
             let wire = postcard::to_allocvec(&a).unwrap();
             assert_eq!(wire, postcard::to_allocvec(&v).unwrap());

@@ -12,9 +12,12 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 /// What names a shard's result: the part, the range, `good_enough` (bits),
-/// and what finishing it needs (a part listed twice is finished under each
-/// of its places).
-type Key = (Digest, u64, u64, Option<u64>, Option<Bytes>);
+/// what finishing it needs (a part listed twice is finished under each
+/// of its places), and for the finishing of a cut part the time its
+/// shards took (it is in the part's message, and a shard enumerated twice
+/// in the warm-up may be replayed with the other time; the merged
+/// fixtures are the same in every run of one catalogue).
+type Key = (Digest, u64, u64, Option<u64>, Option<Bytes>, Option<u64>);
 
 fn key(a: &Assign) -> Key {
     (
@@ -23,7 +26,16 @@ fn key(a: &Assign) -> Key {
         a.range.end,
         a.good_enough.map(f64::to_bits),
         a.finish.clone(),
+        a.finish_from.as_ref().map(|f| f.micros),
     )
+}
+
+/// `o` as the outcome of shard `id`.
+fn renamed(o: &mut Outcome, id: u64) {
+    match o {
+        Outcome::Done(d) => d.shard_id = id,
+        Outcome::Failed(f) => f.shard_id = id,
+    }
 }
 
 /// Shard results computed once, replayed after.
@@ -65,10 +77,7 @@ impl Replay {
         };
         let mut o = o.clone();
         drop(results);
-        match &mut o {
-            Outcome::Done(d) => d.shard_id = a.shard_id,
-            Outcome::Failed(f) => f.shard_id = a.shard_id,
-        }
+        renamed(&mut o, a.shard_id);
         self.hits.fetch_add(1, Ordering::Relaxed);
         Some(o)
     }
@@ -83,17 +92,26 @@ impl Replay {
     }
 
     /// Records the outcome of `a`'s shard (a failure too: the same input
-    /// fails the same way), unless it was sent without its input.
-    pub fn put(&self, a: &Assign, o: &Outcome) {
-        if a.input.is_some() || matches!(o, Outcome::Done(_)) {
-            let mut results = self.results.lock().unwrap_or_else(|e| e.into_inner());
-            results.insert(key(a), o.clone());
-            drop(results);
-            let mut shard = key(a);
-            shard.4 = None;
-            let mut shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
-            shards.entry(shard).or_insert_with(|| o.clone());
+    /// fails the same way), unless it was sent without its input, and
+    /// returns the outcome to send: the one recorded first under its key.
+    /// Two copies of a part may be enumerated at once in the warm-up; both
+    /// then report the first one's timing, as the measured run will, so a
+    /// cut part's merged timing (in its finishing's key) is the same in
+    /// both runs.
+    pub fn put(&self, a: &Assign, o: Outcome) -> Outcome {
+        if a.input.is_none() && !matches!(o, Outcome::Done(_)) {
+            return o;
         }
+        let mut shard = key(a);
+        shard.4 = None;
+        let mut shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
+        shards.entry(shard).or_insert_with(|| o.clone());
+        drop(shards);
+        let mut results = self.results.lock().unwrap_or_else(|e| e.into_inner());
+        let mut first = results.entry(key(a)).or_insert(o).clone();
+        drop(results);
+        renamed(&mut first, a.shard_id);
+        first
     }
 
     /// The enumeration of `a`'s shard recorded under another finish
@@ -104,10 +122,7 @@ impl Replay {
         let shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
         let mut o = shards.get(&shard)?.clone();
         drop(shards);
-        match &mut o {
-            Outcome::Done(d) => d.shard_id = a.shard_id,
-            Outcome::Failed(f) => f.shard_id = a.shard_id,
-        }
+        renamed(&mut o, a.shard_id);
         Some(o)
     }
 

@@ -16,7 +16,7 @@ use fixplan_worker::protocol::{DataPath, TransportChoice};
 use fixplan_worker::zenoh_link::ZenohOptions;
 use rayon::prelude::*;
 use std::collections::VecDeque;
-use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
 use tracing::info;
@@ -44,7 +44,8 @@ pub enum Returned {
 
 impl MergedPart {
     /// Takes the coordinator's prepared part if it has one, else prepares
-    /// it here (parts sent whole are prepared only when asked for).
+    /// it here (parts go out unprepared and are prepared only when asked
+    /// for).
     fn prepared(m: MergedShards) -> Result<MergedPart, PartError> {
         let prep = match m.prep {
             Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
@@ -102,8 +103,8 @@ impl Distributed {
 
     /// Every part finished by now (at least one: waits for it), prepared
     /// here in parallel if the run did not need to and its worker did not
-    /// finish it: preparing a part sent whole is most of the coordinator's
-    /// own work on it, so on a host with several cores the coordinator
+    /// finish it: preparing a part is most of the coordinator's own work
+    /// on it, so on a host with several cores the coordinator
     /// keeps up with more workers. `None` once all parts are out (the run
     /// is ended then).
     pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<Returned, PartError>)>> {
@@ -176,11 +177,12 @@ pub fn run_distributed(
     run_distributed_finishing(parts.into_iter().map(|p| (p, None)).collect(), opts, None)
 }
 
-/// [`run_distributed`] where the parts that go out whole come with what
-/// their worker needs to finish them ([`fixplan_worker::finish`]; `None`:
-/// the coordinator finishes the part); such parts come back as
-/// [`Returned::Finished`] from [`Distributed::next_parts`], unless their
-/// worker could not finish them. `finisher` is the workers' own: a
+/// [`run_distributed`] where the parts come with what a worker needs to
+/// finish them ([`fixplan_worker::finish`]; `None`: the coordinator
+/// finishes the part): a whole part's worker finishes it, a cut part is
+/// finished by a worker from its merged result. Such parts come back as
+/// [`Returned::Finished`] from [`Distributed::next_parts`], unless no
+/// worker could finish them. `finisher` is the workers' own: a
 /// finished part whose result is re-derived is finished again with it and
 /// compared (without one, such a part comes back merged).
 pub fn run_distributed_finishing(
@@ -199,7 +201,7 @@ pub fn run_distributed_finishing(
     } else {
         fixplan_worker::host::cores()
     });
-    let (planned, batch_cost) = plan(parts, &opts, slots, &tx)?;
+    let (planned, batch_cost) = plan(parts, &opts, slots)?;
     let mut dist = Distributed {
         rx,
         ready: VecDeque::new(),
@@ -222,55 +224,39 @@ pub fn run_distributed_finishing(
 }
 
 /// Cuts the parts into shards for `slots` worker threads, and the cost of
-/// one assignment at most. Plans from estimates: a part that would be one
-/// shard anyway goes out whole and unprepared (preparing every part here
-/// cost the coordinator more than all else it does); only parts to be cut
-/// are prepared, for their exact combination count. Parts that need no
-/// worker (unpreparable, or without combinations) go to `tx` at once.
+/// one assignment at most. Plans from estimates, without preparing any
+/// part here (preparing the parts to cut, for their exact combination
+/// counts, was 6-15% of the coordinator's CPU with a thousand worker
+/// threads): a part that would be one shard anyway goes out whole,
+/// a bigger one is cut over its estimated combinations, its last shard
+/// left open so that it takes whatever the estimate missed (access
+/// regions can split segments). A shard past the part's real count
+/// enumerates nothing.
 fn plan(
     parts: Vec<(PartInput, Option<Vec<u8>>)>,
     opts: &ClusterOptions,
     slots: usize,
-    tx: &Sender<Vec<Delivery>>,
 ) -> Result<(Vec<PlannedPart>, u64), ClusterError> {
     let est: Vec<(u64, usize)> = parts.iter().map(|p| shards::estimate(&p.0)).collect();
     let target = shards::target_cost(&est, slots);
-    let whole: Vec<bool> = est
-        .iter()
-        .map(|&(c, n)| opts.shard_size.is_none() && shards::cost(c, n) <= target)
-        .collect();
-    let encoded: Vec<_> = parts
-        .par_iter()
-        .zip(whole.par_iter())
-        .map(|((p, _), &whole)| ((!whole).then(|| p.prepare()), p.encode()))
-        .collect();
-    let mut planned = Vec::new();
-    for (i, ((source, finish), (prep, input))) in parts.into_iter().zip(encoded).enumerate() {
+    let encoded: Vec<_> = parts.par_iter().map(|(p, _)| p.encode()).collect();
+    let mut planned = Vec::with_capacity(parts.len());
+    for (i, ((source, finish), input)) in parts.into_iter().zip(encoded).enumerate() {
         let input = input.map_err(|e| ClusterError::Input(i, e))?;
-        let source = Arc::new(source);
-        let (prep, ranges, segments, finish) = match prep {
-            None => (None, vec![WHOLE], est[i].1, finish),
-            Some(Err(e)) => {
-                let _ = tx.send(vec![(i, Err(e.into()))]);
-                continue;
-            }
-            Some(Ok(prep)) => {
-                let (count, n) = (prep.combination_count(), prep.segments().len());
-                if count == 0 {
-                    let _ = tx.send(vec![(i, Ok(without_combinations(prep, source)))]);
-                    continue;
-                }
-                let size = opts
-                    .shard_size
-                    .unwrap_or_else(|| shards::shard_size(target, count, n))
-                    .max(1);
-                (Some(Arc::new(prep)), shards::ranges(count, size), n, None)
-            }
+        let (count, segments) = est[i];
+        let whole = opts.shard_size.is_none() && shards::cost(count, segments) <= target;
+        let ranges = if whole {
+            vec![WHOLE]
+        } else {
+            let size = opts
+                .shard_size
+                .unwrap_or_else(|| shards::shard_size(target, count, segments));
+            shards::open_ranges(count, size)
         };
         planned.push(PlannedPart {
             index: i,
-            prep,
-            source,
+            prep: None,
+            source: Arc::new(source),
             input,
             ranges,
             segments,
@@ -278,20 +264,6 @@ fn plan(
         });
     }
     Ok((planned, shards::batch_cost(&est, slots)))
-}
-
-/// A part without combinations needs no worker: its result, as the
-/// embedded run makes it.
-fn without_combinations(prep: PreparedPart, source: Arc<PartInput>) -> MergedShards {
-    let r = fixplan_worker::run_shard(&prep, 0..0);
-    let merged = fixplan_core::merge(prep.top_k(), vec![r]);
-    MergedShards {
-        prep: Some(Arc::new(prep)),
-        input: source,
-        merged,
-        stopped_at: None,
-        finished: None,
-    }
 }
 
 /// How the scheduler serves this run's workers.

@@ -84,9 +84,29 @@ pub fn ranges(count: u64, size: u64) -> Vec<Range<u64>> {
         .collect()
 }
 
+/// The shards of a part estimated at `count` combinations: `size` each,
+/// the last one open (to `u64::MAX`) so that it takes whatever the
+/// estimate missed; one open shard (a whole part) if the estimate fits in
+/// one. A worker's enumeration stops at the part's real count.
+pub fn open_ranges(count: u64, size: u64) -> Vec<Range<u64>> {
+    let mut r = ranges(count, size);
+    match r.last_mut() {
+        Some(last) => last.end = u64::MAX,
+        None => r.push(0..u64::MAX),
+    }
+    r
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn open_ranges_end_open() {
+        assert_eq!(open_ranges(10, 3), [0..3, 3..6, 6..9, 9..u64::MAX]);
+        assert_eq!(open_ranges(3, 3), [0..u64::MAX]);
+        assert_eq!(open_ranges(0, 3), [0..u64::MAX]);
+    }
 
     #[test]
     fn sizes_balance_cost() {

@@ -210,8 +210,9 @@ impl ClusterJobs {
         let s = self.dist.finish();
         tracing::info!(
             role = "coordinator",
-            "run over: {} shards, {} results ({} duplicate, {} rejected), {} re-queued, {} workers joined, {} lost, {} fixtures re-derived",
+            "run over: {} shards, {} cut parts sent to workers to finish, {} results ({} duplicate, {} rejected), {} re-queued, {} workers joined, {} lost, {} fixtures re-derived",
             s.shards,
+            s.finishings,
             s.results,
             s.duplicates,
             s.rejected,

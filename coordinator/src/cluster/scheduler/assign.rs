@@ -88,7 +88,14 @@ fn lease_batch(st: &mut State, s: &Settings, worker: &str, limit: u64) -> Option
             range: sh.range.clone(),
             input,
             good_enough: s.good_enough,
-            finish: part.finish.as_ref().filter(|_| sh.range == WHOLE).cloned(),
+            // A worker finishes a whole part, or a cut one from its merged
+            // result, never a shard.
+            finish: part
+                .finish
+                .as_ref()
+                .filter(|_| sh.range == WHOLE || sh.finish_from.is_some())
+                .cloned(),
+            finish_from: sh.finish_from.clone(),
         });
     }
     Some(batch)

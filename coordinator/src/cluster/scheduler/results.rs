@@ -4,12 +4,12 @@
 
 use super::errors::{NotTaken, PartError};
 use super::state::{
-    MergedShards, PartSlot, Settings, ShardResult, ShardStatus, State, ROLE, WHOLE,
+    queue_finishing, MergedShards, PartSlot, Settings, ShardResult, ShardStatus, State, ROLE, WHOLE,
 };
 use super::workers;
 use crate::cluster::verify::{self, CheckError};
-use fixplan_core::merge;
-use fixplan_worker::protocol::{ShardDone, ShardFailed};
+use fixplan_core::{merge, PartialResult};
+use fixplan_worker::protocol::{FinishFrom, ShardDone, ShardFailed};
 use std::ops::Range;
 use tracing::warn;
 
@@ -23,6 +23,9 @@ pub(super) fn take_result(
 ) -> Result<(), NotTaken> {
     st.stats.results += 1;
     let (p, shard_range) = shard_of(st, &r, worker)?;
+    if st.shards[r.shard_id as usize].finish_from.is_some() {
+        return take_finishing(st, s, r, worker, p);
+    }
     // A shard stopped by `--good-enough` answers for its prefix.
     let range = match r.hit {
         Some(h) if shard_range.contains(&h) => shard_range.start..h + 1,
@@ -50,7 +53,73 @@ pub(super) fn take_result(
         // the caller finishes the part from the result.
         r.finished = None;
     }
-    hold(st, p, r, &shard_range);
+    hold(st, s, p, r, &shard_range);
+    Ok(())
+}
+
+/// Takes a worker's finishing of cut part `p` (checked, for the
+/// verification sample, by finishing the part here too), and delivers
+/// the part with it.
+fn take_finishing(
+    st: &mut State,
+    s: &Settings,
+    r: ShardDone,
+    worker: &str,
+    p: usize,
+) -> Result<(), NotTaken> {
+    let id = r.shard_id;
+    let deep = s
+        .verify
+        .deep(id, st.workers.get(worker).map_or(0, |w| w.rederived));
+    let from = st.shards[id as usize].finish_from.take();
+    let check = check_finishing(&mut st.parts[p], s, &r, from.as_deref(), deep);
+    st.shards[id as usize].finish_from = from;
+    if let Some(w) = st.workers.get_mut(worker) {
+        w.leased.remove(&id);
+    }
+    if let Err(e) = check {
+        reject(st, &r, p, &(0..0), worker, &e);
+        return Err(NotTaken::Rejected(e));
+    }
+    accept(st, &r, worker, 0, deep);
+    if let Some(from) = st.shards[id as usize].finish_from.take() {
+        deliver(st, p, from.result, None, r.finished);
+    }
+    Ok(())
+}
+
+/// The checks of a worker's finishing of a cut part: its part, and with
+/// `deep` the finished bytes against the coordinator's own finishing.
+fn check_finishing(
+    part: &mut PartSlot,
+    s: &Settings,
+    r: &ShardDone,
+    from: Option<&FinishFrom>,
+    deep: bool,
+) -> Result<(), CheckError> {
+    if r.digest != part.digest {
+        return Err(CheckError::OtherPart {
+            got: r.digest,
+            want: part.digest,
+        });
+    }
+    if !deep || r.finished.is_none() {
+        return Ok(());
+    }
+    let prep = part.prepared().map_err(CheckError::CannotPrepare)?;
+    if let (Some(theirs), Some(f), Some(context), Some(from)) =
+        (&r.finished, &s.finisher, &part.finish, from)
+    {
+        verify::check_finished(
+            f.as_ref(),
+            &part.source,
+            &prep,
+            &from.result,
+            from.micros,
+            context,
+            theirs,
+        )?;
+    }
     Ok(())
 }
 
@@ -148,7 +217,7 @@ fn accept(st: &mut State, r: &ShardDone, worker: &str, checked: usize, deep: boo
 
 /// Holds a result taken for part `p`, and closes the part once no shard up
 /// to its stop is left.
-fn hold(st: &mut State, p: usize, r: ShardDone, shard_range: &Range<u64>) {
+fn hold(st: &mut State, s: &Settings, p: usize, r: ShardDone, shard_range: &Range<u64>) {
     let part = &mut st.parts[p];
     let mut result = r.result;
     if *shard_range == WHOLE && r.hit.is_none() {
@@ -168,11 +237,12 @@ fn hold(st: &mut State, p: usize, r: ShardDone, shard_range: &Range<u64>) {
     part.partials.push(ShardResult {
         shard: r.shard_id,
         hit: r.hit,
+        micros: r.micros,
         result,
         finished: r.finished,
     });
     if !open && !part.closed {
-        close(st, p);
+        close(st, s, p);
     }
 }
 
@@ -188,34 +258,69 @@ fn still_open(st: &State, p: usize) -> bool {
         .any(|id| counts(id) && st.shards[id as usize].status != ShardStatus::Done)
 }
 
-/// Merges the results of part `p` and hands the part to the consumer.
-fn close(st: &mut State, p: usize) {
+/// Merges the results of part `p` and hands the part to the consumer, or
+/// for a cut part that workers finish, queues its finishing.
+fn close(st: &mut State, s: &Settings, p: usize) {
     let part = &mut st.parts[p];
-    part.closed = true;
     let stop = part.stop;
     // Shards past the stop: results that came in are left out, the others
     // are never handed out (or are duplicates later).
     let mut partials = std::mem::take(&mut part.partials);
+    let whole = part.shard_ids.end - part.shard_ids.start == 1;
     // Finished by its worker: a whole part's one shard, not stopped (moved
     // out: a chunk is kilobytes, copied once already off the wire).
     let finished = match partials.as_mut_slice() {
-        [one] if stop.is_none() && part.shard_ids.end - part.shard_ids.start == 1 => {
-            one.finished.take()
-        }
+        [one] if stop.is_none() && whole => one.finished.take(),
         _ => None,
     };
+    let micros = partials.iter().map(|h| h.micros).sum();
     let kept = partials
         .into_iter()
         .map(|h| h.result)
         .filter(|r| stop.is_none_or(|s| r.range.start <= s))
         .collect();
+    let mut merged = merge(part.top_k(), kept);
+    if merged.range.end == u64::MAX {
+        // A part cut from an estimate ends with an open shard: numbered
+        // as the embedded run numbers it, `0..count`.
+        merged.range.end = merged
+            .range
+            .start
+            .saturating_add(merged.counts.combinations);
+    }
+    if !whole && stop.is_none() && s.finisher.is_some() && part.finish.is_some() {
+        queue_finishing(
+            st,
+            p,
+            FinishFrom {
+                result: merged,
+                micros,
+            },
+        );
+        return;
+    }
+    deliver(st, p, merged, stop, finished);
+}
+
+/// Hands part `p` to the consumer: its merged result, the combination
+/// where it stopped, and its finished bytes if a worker finished it.
+fn deliver(
+    st: &mut State,
+    p: usize,
+    merged: PartialResult,
+    stopped_at: Option<u64>,
+    finished: Option<Vec<u8>>,
+) {
+    let part = &mut st.parts[p];
+    part.closed = true;
+    part.finishing = None;
     let done = MergedShards {
         // The part is closed: its slot needs the prepared part no more, and
         // handing over the only reference spares a copy of it.
         prep: part.prep.take(),
         input: part.source.clone(),
-        merged: merge(part.top_k(), kept),
-        stopped_at: stop,
+        merged,
+        stopped_at,
         finished,
     };
     st.open_parts -= 1;
@@ -239,6 +344,16 @@ pub(super) fn take_failure(st: &mut State, f: ShardFailed, worker: &str) -> Resu
     let p = sh.part;
     if let Some(w) = st.workers.get_mut(worker) {
         w.leased.remove(&f.shard_id);
+    }
+    if let Some(from) = st.shards[f.shard_id as usize].finish_from.take() {
+        // A worker that cannot finish a cut part: the caller finishes it.
+        warn!(
+            role = ROLE,
+            "worker {worker} could not finish a cut part: {}", f.message
+        );
+        st.shards[f.shard_id as usize].status = ShardStatus::Done;
+        deliver(st, p, from.result, None, None);
+        return Ok(());
     }
     let idx = st.part_index.get(p).copied().unwrap_or(p);
     // A part sent whole was not prepared here: if it cannot be, that is

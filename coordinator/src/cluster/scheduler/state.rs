@@ -8,7 +8,7 @@ use bytes::Bytes;
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
 use fixplan_worker::finish::Finisher;
 use fixplan_worker::part_input::{digest, PartInput};
-use fixplan_worker::protocol::{DataPath, Digest, TransportChoice};
+use fixplan_worker::protocol::{DataPath, Digest, FinishFrom, TransportChoice};
 use std::collections::{HashMap, HashSet, VecDeque};
 use std::ops::Range;
 use std::sync::Arc;
@@ -26,8 +26,9 @@ pub const WHOLE: Range<u64> = 0..u64::MAX;
 pub(crate) struct PlannedPart {
     /// Its index in the caller's list: the part is delivered under it.
     pub index: usize,
-    /// `None` for a part that goes out whole: it is prepared here only if
-    /// a result of it is re-derived.
+    /// The part prepared by the caller, if it was. A run plans from
+    /// estimates and prepares nothing: a part is prepared here only if a
+    /// result of it is re-derived or its worker cannot finish it.
     pub prep: Option<Arc<PreparedPart>>,
     /// The part, kit and parameters, to prepare it from.
     pub source: Arc<PartInput>,
@@ -43,9 +44,8 @@ pub(crate) struct PlannedPart {
 }
 
 /// A part's shard results merged, as the scheduler hands it over. The
-/// part is prepared only if the coordinator had to (to cut it into
-/// shards or to re-derive its fixtures): preparing it is the consumer's
-/// call.
+/// part is prepared only if the coordinator had to (to re-derive its
+/// fixtures): preparing it is the consumer's call.
 #[derive(Debug)]
 pub(crate) struct MergedShards {
     /// The part prepared here, if it was.
@@ -67,7 +67,7 @@ pub(crate) type Delivery = (usize, Result<MergedShards, PartError>);
 
 /// A part being worked on.
 pub(super) struct PartSlot {
-    /// `None` until needed: small parts go out whole and are prepared here
+    /// `None` until needed: parts go out unprepared and are prepared here
     /// only when a result of theirs is re-derived.
     pub(super) prep: Option<Arc<PreparedPart>>,
     pub(super) source: Arc<PartInput>,
@@ -87,6 +87,10 @@ pub(super) struct PartSlot {
     pub(super) closed: bool,
     /// [`PlannedPart::finish`].
     pub(super) finish: Option<Bytes>,
+    /// A cut part whose shards are all merged, waiting for a worker to
+    /// finish it: the finishing task's id (the merged result is in that
+    /// task's [`ShardSlot::finish_from`]).
+    pub(super) finishing: Option<u64>,
 }
 
 impl PartSlot {
@@ -125,12 +129,18 @@ pub(super) struct ShardSlot {
     pub(super) status: ShardStatus,
     /// The worker whose result was taken.
     pub(super) by: Option<Arc<str>>,
+    /// Not a shard but the finishing of a cut part from its merged result
+    /// ([`fixplan_worker::protocol::Assign::finish_from`]); `range` is
+    /// empty.
+    pub(super) finish_from: Option<Box<FinishFrom>>,
 }
 
 /// A shard result taken, held until its part is complete.
 pub(super) struct ShardResult {
     pub(super) shard: u64,
     pub(super) hit: Option<u64>,
+    /// The worker's time on the shard.
+    pub(super) micros: u64,
     pub(super) result: PartialResult,
     /// [`MergedShards::finished`], of a whole part's one shard.
     pub(super) finished: Option<Vec<u8>>,
@@ -158,6 +168,9 @@ pub(super) struct WorkerSlot {
 pub struct Stats {
     /// Shards the parts were cut into.
     pub shards: u64,
+    /// Cut parts handed to a worker to finish from their merged results
+    /// (a part merged again after a ban is counted again).
+    pub finishings: u64,
     /// Shard results received, taken or not.
     pub results: u64,
     /// Results for shards already done (a lease ran out, both answered).
@@ -268,12 +281,11 @@ impl State {
     fn add(&mut self, part: PlannedPart) {
         let p = self.parts.len();
         let first = self.shards.len() as u64;
+        // The last shard of a part may be open ([`WHOLE`], or cut from an
+        // estimate): it costs the estimate's rest.
+        let estimate = fixplan_core::combinations::combination_count(part.segments);
         for r in part.ranges.iter().cloned() {
-            let combinations = if r == WHOLE {
-                fixplan_core::combinations::combination_count(part.segments)
-            } else {
-                r.end - r.start
-            };
+            let combinations = r.end.min(estimate).saturating_sub(r.start);
             let cost = crate::job::shards::cost(combinations, part.segments);
             self.queue.push_back(self.shards.len() as u64);
             self.queued_cost += cost;
@@ -283,6 +295,7 @@ impl State {
                 cost,
                 status: ShardStatus::Queued,
                 by: None,
+                finish_from: None,
             });
         }
         self.parts.push(PartSlot {
@@ -296,10 +309,30 @@ impl State {
             top: Vec::new(),
             closed: false,
             finish: part.finish.map(Bytes::from),
+            finishing: None,
         });
         self.part_index.push(part.index);
         self.open_parts += 1;
     }
+}
+
+/// Queues the finishing of cut part `p` from its merged result, first in
+/// line (the results file waits for the part, in catalogue order).
+pub(super) fn queue_finishing(st: &mut State, p: usize, from: FinishFrom) {
+    let id = st.shards.len() as u64;
+    let cost = st.parts[p].source.part.outline.len().max(1) as u64;
+    st.shards.push(ShardSlot {
+        part: p,
+        range: 0..0,
+        cost,
+        status: ShardStatus::Queued,
+        by: None,
+        finish_from: Some(Box::new(from)),
+    });
+    st.queued_cost += cost;
+    st.queue.push_front(id);
+    st.parts[p].finishing = Some(id);
+    st.stats.finishings += 1;
 }
 
 /// Puts one shard back at the front of the queue, whatever became of it.

@@ -9,7 +9,7 @@ use fixplan_worker::part_input::PartInput;
 use fixplan_worker::protocol::{Assign, TransportChoice};
 use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// A run's settings for a test: zenoh, one worker needed.
 fn settings(verify: VerifyPolicy, batch_cost: u64) -> Settings {
@@ -69,17 +69,20 @@ fn honest(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
     let prep = c.lock().parts[0].prep.clone().expect("prepared");
     batch
         .iter()
-        .map(|a| {
-            Outcome::Done(Box::new(ShardDone {
-                shard_id: a.shard_id,
-                digest: a.digest,
-                micros: 1,
-                result: prep.enumerate_range(a.range.clone()),
-                hit: None,
-                finished: None,
-            }))
-        })
+        .map(|a| done(a, prep.enumerate_range(a.range.clone()), None))
         .collect()
+}
+
+/// `a`'s shard done in 1 us, with `result` and `finished` bytes.
+fn done(a: &Assign, result: fixplan_core::PartialResult, finished: Option<Vec<u8>>) -> Outcome {
+    Outcome::Done(Box::new(ShardDone {
+        shard_id: a.shard_id,
+        digest: a.digest,
+        micros: 1,
+        result,
+        hit: None,
+        finished,
+    }))
 }
 
 fn report(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>) -> Frame {
@@ -312,14 +315,7 @@ fn finished_outcomes(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
             let ctx = a.finish.clone().expect("a finish context");
             let p = c.lock().shards[a.shard_id as usize].part;
             assert_eq!(ctx, vec![b'c', p as u8], "the part's own context");
-            Outcome::Done(Box::new(ShardDone {
-                shard_id: a.shard_id,
-                digest: a.digest,
-                micros: 1,
-                result,
-                hit: None,
-                finished: Some(vec![b'f', p as u8]),
-            }))
+            done(a, result, Some(vec![b'f', p as u8]))
         })
         .collect()
 }
@@ -367,13 +363,23 @@ impl fixplan_worker::finish::Finisher for Tag {
 
 /// Runs every shard with [`finished_outcomes`] as worker `w`.
 fn finish_all(c: &Scheduler) {
-    let mut outcomes = Vec::new();
+    work_until_done(c, "w", Vec::new(), finished_outcomes);
+}
+
+/// Worker `w` reports `outcomes`, then answers every assignment with
+/// `answer` until the run is over.
+fn work_until_done(
+    c: &Scheduler,
+    w: &str,
+    mut outcomes: Vec<Outcome>,
+    answer: fn(&Scheduler, &[Assign]) -> Vec<Outcome>,
+) {
     loop {
-        match report(c, "w", outcomes) {
+        match report(c, w, outcomes) {
             Frame::Msg(Msg::Reply {
                 next: Next::Work(b),
                 ..
-            }) => outcomes = finished_outcomes(c, &b),
+            }) => outcomes = answer(c, &b),
             Frame::Msg(Msg::Reply {
                 next: Next::Done, ..
             }) => break,
@@ -437,4 +443,246 @@ fn re_derived_parts_keep_their_finished_bytes_only_if_they_match() {
     assert!(finished_of(&rx)
         .iter()
         .all(|(_, f)| f.as_deref() != Some(b"forged")));
+}
+
+/// `n` rectangles cut in shards of 3 from an estimate of `estimate`
+/// combinations (open last shard), unprepared, each with a finish
+/// context, finished by workers with [`Tag`].
+fn cut_parts_from(
+    n: usize,
+    verify: VerifyPolicy,
+    estimate: u64,
+) -> (Scheduler, Receiver<Vec<Delivery>>) {
+    let (c, rx) = whole_parts(n, verify);
+    let st = c.lock();
+    let planned: Vec<PlannedPart> = st
+        .parts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| PlannedPart {
+            index: i,
+            ranges: crate::job::shards::open_ranges(estimate, 3),
+            segments: 4,
+            prep: None,
+            input: p.input.to_vec(),
+            source: p.source.clone(),
+            finish: p.finish.as_ref().map(|f| f.to_vec()),
+        })
+        .collect();
+    drop(st);
+    let mut settings = settings(verify, u64::MAX);
+    settings.finisher = Some(Arc::new(Tag));
+    let (tx, rx2) = channel();
+    drop(rx);
+    (Scheduler::new(settings, planned, tx), rx2)
+}
+
+/// Honest outcomes of `batch`: shards enumerated, cut parts finished as
+/// [`Tag`] finishes them (checking what the task carries on the way).
+/// [`cut_parts_from`] the right estimate.
+fn cut_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
+    cut_parts_from(n, verify, fixplan_core::combinations::combination_count(4))
+}
+
+fn honest_cut(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+    batch
+        .iter()
+        .map(|a| {
+            let p = c.lock().shards[a.shard_id as usize].part;
+            let prep = c.lock().parts[p].source.prepare().expect("prepare");
+            let (result, finished) = match &a.finish_from {
+                Some(from) => {
+                    assert_eq!(a.range, 0..0, "a finishing task enumerates nothing");
+                    assert_eq!(a.finish.as_deref(), Some(&[b'c', p as u8][..]));
+                    let mut whole = prep.enumerate_all();
+                    whole.range = 0..whole.counts.combinations;
+                    assert_eq!(from.result, whole, "merged as the embedded run");
+                    let empty = fixplan_core::PartialResult {
+                        range: 0..0,
+                        counts: Default::default(),
+                        fixtures: Vec::new(),
+                    };
+                    (empty, Some(vec![b'f', p as u8]))
+                }
+                None => {
+                    assert!(a.finish.is_none(), "a shard is not finished");
+                    (prep.enumerate_range(a.range.clone()), None)
+                }
+            };
+            done(a, result, finished)
+        })
+        .collect()
+}
+
+#[test]
+fn cut_parts_are_finished_by_a_worker_from_their_merged_result() {
+    for verify in [VerifyPolicy::All, VerifyPolicy::Sample { one_in: u64::MAX }] {
+        let (c, rx) = cut_parts(3, verify);
+        assert!(c
+            .lock()
+            .parts
+            .iter()
+            .all(|p| p.shard_ids.end - p.shard_ids.start > 2));
+        join(&c, "w");
+        work_until_done(&c, "w", Vec::new(), honest_cut);
+        let parts: Vec<_> = rx.try_iter().flatten().collect();
+        assert_eq!(parts.len(), 3);
+        for (i, r) in parts {
+            let m = r.expect("merged");
+            let mut whole = m.input.prepare().expect("prepare").enumerate_all();
+            whole.range = 0..whole.counts.combinations;
+            assert_eq!(m.merged, whole, "part {i}");
+            assert_eq!(m.finished, Some(vec![b'f', i as u8]), "part {i}");
+        }
+        // One finishing task per part, handed out once.
+        let st = c.lock();
+        let tasks = st.shards.iter().filter(|s| s.range == (0..0)).count();
+        assert_eq!(tasks, 3);
+        assert_eq!(st.stats.finishings, 3);
+        assert_eq!(st.stats.requeued, 0);
+    }
+}
+
+/// An estimate too high leaves shards past the part's combinations, one
+/// too low an open last shard with the rest: the merged part is the
+/// embedded run's either way.
+#[test]
+fn cut_parts_merge_the_same_whatever_their_estimate() {
+    let count = fixplan_core::combinations::combination_count(4);
+    for estimate in [4, count / 2, count * 3] {
+        let (c, rx) = cut_parts_from(2, VerifyPolicy::All, estimate);
+        join(&c, "w");
+        work_until_done(&c, "w", Vec::new(), honest_cut);
+        let parts: Vec<_> = rx.try_iter().flatten().collect();
+        assert_eq!(parts.len(), 2, "estimate {estimate}");
+        for (i, r) in parts {
+            let m = r.expect("merged");
+            let mut whole = m.input.prepare().expect("prepare").enumerate_all();
+            whole.range = 0..whole.counts.combinations;
+            assert_eq!(m.merged, whole, "part {i}, estimate {estimate}");
+        }
+    }
+}
+
+#[test]
+fn forged_finishing_of_a_cut_part_is_refused() {
+    let (c, rx) = cut_parts(1, VerifyPolicy::All);
+    join(&c, "liar");
+    let mut outcomes = Vec::new();
+    let task = loop {
+        let Frame::Msg(Msg::Reply {
+            next: Next::Work(b),
+            ..
+        }) = report(&c, "liar", outcomes)
+        else {
+            panic!("no work")
+        };
+        if let Some(t) = b.iter().find(|a| a.finish_from.is_some()) {
+            break t.clone();
+        }
+        outcomes = honest_cut(&c, &b);
+    };
+    let mut forged = honest_cut(&c, std::slice::from_ref(&task));
+    if let Some(Outcome::Done(d)) = forged.first_mut() {
+        d.finished = Some(b"forged".to_vec());
+    }
+    assert!(matches!(report(&c, "liar", forged), Frame::Refused(_)));
+    assert_eq!(c.stats().rejected, 1);
+    // Its shards are done again, by an honest worker, and finished by it.
+    join(&c, "w");
+    work_until_done(&c, "w", Vec::new(), honest_cut);
+    let parts: Vec<_> = rx.try_iter().flatten().collect();
+    assert_eq!(parts.len(), 1);
+    let m = parts[0].1.as_ref().expect("merged");
+    assert_eq!(m.finished, Some(vec![b'f', 0]));
+}
+
+#[test]
+fn a_cut_part_waiting_to_be_finished_is_merged_again_if_a_worker_of_it_is_banned() {
+    let (c, rx) = cut_parts(2, VerifyPolicy::Sample { one_in: u64::MAX });
+    join(&c, "a");
+    join(&c, "b");
+    // Trusted: `a`'s results are taken unchecked.
+    if let Some(w) = c.lock().workers.get_mut("a") {
+        w.rederived = crate::cluster::verify::FULL_CHECKS;
+    }
+    let part0: Vec<u64> = c.lock().parts[0].shard_ids.clone().collect();
+    // `a` does every shard of part 0 (honest), so part 0 waits to be
+    // finished, and `b` takes the finishing task.
+    let batch: Vec<Assign> = {
+        let mut st = c.lock();
+        st.queue.retain(|id| !part0.contains(id));
+        drop(st);
+        let mut b = Vec::new();
+        for &id in &part0 {
+            let mut st = c.lock();
+            let sh = &mut st.shards[id as usize];
+            sh.status = ShardStatus::Leased {
+                worker: "a".into(),
+                until: Instant::now() + Duration::from_secs(60),
+            };
+            let range = sh.range.clone();
+            let digest = st.parts[0].digest;
+            st.workers.get_mut("a").expect("a").leased.insert(id);
+            b.push(Assign {
+                shard_id: id,
+                digest,
+                range,
+                input: None,
+                good_enough: None,
+                finish: None,
+                finish_from: None,
+            });
+        }
+        b
+    };
+    for o in honest_cut(&c, &batch) {
+        let Outcome::Done(d) = o else {
+            panic!("failed")
+        };
+        c.result(*d, "a").expect("taken");
+    }
+    let task = c.lock().parts[0]
+        .finishing
+        .expect("part 0 waits to be finished");
+    let Next::Work(for_b) = c.next_work("b") else {
+        panic!("no work for b")
+    };
+    assert_eq!(for_b[0].shard_id, task, "finishing goes first");
+    // `a` then sends a result for another part than it was given.
+    let Next::Work(for_a) = c.next_work("a") else {
+        panic!("no work for a")
+    };
+    let mut bad = honest_cut(&c, &for_a);
+    if let Some(Outcome::Done(d)) = bad.first_mut() {
+        d.digest = [9; 32];
+    }
+    assert!(matches!(report(&c, "a", bad), Frame::Refused(_)));
+    // Part 0 held `a`'s results: its finishing is called off, and `b`'s
+    // finishing of it comes too late.
+    assert_eq!(c.lock().parts[0].finishing, None);
+    let late = honest_cut(&c, &for_b[..1]);
+    let Frame::Msg(Msg::Reply { notes, next }) = report(&c, "b", late) else {
+        panic!("refused")
+    };
+    assert!(notes.iter().any(|n| n.contains("not taken")), "{notes:?}");
+    assert!(rx.try_iter().flatten().all(|(i, _)| i != 0));
+    let outcomes = match next {
+        Next::Work(b) => honest_cut(&c, &b),
+        _ => Vec::new(),
+    };
+    work_until_done(&c, "b", outcomes, honest_cut);
+    let parts: Vec<_> = rx.try_iter().flatten().collect();
+    assert_eq!(parts.len(), 2, "each part once");
+    for (i, r) in parts {
+        let m = r.expect("merged");
+        assert_eq!(m.finished, Some(vec![b'f', i as u8]));
+        for &id in &part0 {
+            assert_eq!(
+                c.lock().shards[id as usize].by.as_deref(),
+                Some("b"),
+                "part 0 redone by b"
+            );
+        }
+    }
 }

@@ -145,6 +145,7 @@ fn redo_work_of(st: &mut State, worker: &str) {
         .map(|sh| sh.part)
         .collect();
     for p in parts {
+        cancel_finishing(st, p);
         let part = &mut st.parts[p];
         part.partials
             .retain(|h| st.shards[h.shard as usize].by.as_deref() != Some(worker));
@@ -169,4 +170,19 @@ fn redo_work_of(st: &mut State, worker: &str) {
             }
         }
     }
+}
+
+/// A cut part waiting to be finished is to be merged again: the merged
+/// result its finishing task holds is dropped, and a result of that task
+/// still to come is a duplicate.
+fn cancel_finishing(st: &mut State, p: usize) {
+    let Some(id) = st.parts[p].finishing.take() else {
+        return;
+    };
+    let task = &mut st.shards[id as usize];
+    if task.status == ShardStatus::Queued {
+        st.queued_cost = st.queued_cost.saturating_sub(task.cost);
+    }
+    task.status = ShardStatus::Done;
+    task.finish_from = None;
 }
