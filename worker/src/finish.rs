@@ -1,6 +1,8 @@
-//! Workers that finish whole parts. A part enumerated as one shard can be
-//! turned into what the results file holds right where it was solved, so
-//! the coordinator only checks a sample and copies bytes: building the
+//! Workers that finish parts. A part enumerated as one shard can be
+//! turned into what the results file holds right where it was solved, and
+//! a part cut into shards on the worker handed its merged result
+//! ([`crate::protocol::Assign::finish_from`]), so the coordinator only
+//! checks a sample and copies bytes: building the
 //! report, the messages and compressing them was most of the coordinator's
 //! work per part, and what capped the workers one coordinator serves.
 //!
@@ -13,11 +15,11 @@
 use crate::part_input::PartInput;
 use fixplan_core::{PartialResult, PreparedPart};
 
-/// Turns a whole part's enumeration into the coordinator's bytes.
+/// Turns a part's enumeration into the coordinator's bytes.
 pub trait Finisher: Send + Sync {
-    /// The finished part, from its input, prepared part, the result of
-    /// its one shard (whatever range that shard was labelled with), the
-    /// enumeration's time, and the
+    /// The finished part, from its input, prepared part, its result (of
+    /// its one shard, whatever range that shard was labelled with, or its
+    /// shards merged), the enumeration's time, and the
     /// coordinator's `context` ([`crate::protocol::Assign::finish`]). An
     /// error is logged by the coordinator, which then finishes the part
     /// itself.

@@ -42,7 +42,14 @@ pub(super) fn take_result(
     let checked = match check {
         Ok(n) => n,
         Err(e) => {
-            reject(st, &r, p, &range, worker, &e);
+            reject(
+                st,
+                &r,
+                p,
+                &format_args!("combinations {range:?}"),
+                worker,
+                &e,
+            );
             return Err(NotTaken::Rejected(e));
         }
     };
@@ -78,7 +85,7 @@ fn take_finishing(
         w.leased.remove(&id);
     }
     if let Err(e) = check {
-        reject(st, &r, p, &(0..0), worker, &e);
+        reject(st, &r, p, &"its finishing", worker, &e);
         return Err(NotTaken::Rejected(e));
     }
     accept(st, &r, worker, 0, deep);
@@ -185,14 +192,15 @@ fn reject(
     st: &mut State,
     r: &ShardDone,
     p: usize,
-    range: &Range<u64>,
+    what: &dyn std::fmt::Display,
     worker: &str,
     e: &CheckError,
 ) {
     st.stats.rejected += 1;
     let part_index = &st.part_index;
-    warn!(role = ROLE,
-        "rejected shard {} (part #{}, combinations {range:?}) from worker {}: {e}; it goes back to the queue",
+    warn!(
+        role = ROLE,
+        "rejected shard {} (part #{}, {what}) from worker {}: {e}; it goes back to the queue",
         r.shard_id,
         part_index.get(p).copied().unwrap_or(p),
         worker
