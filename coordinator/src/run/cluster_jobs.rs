@@ -210,7 +210,7 @@ impl ClusterJobs {
         let s = self.dist.finish();
         tracing::info!(
             role = "coordinator",
-            "run over: {} shards, {} cut parts sent to workers to finish, {} results ({} duplicate, {} rejected), {} re-queued, {} workers joined, {} lost, {} fixtures re-derived",
+            "run over: {} shards, {} cut parts sent to workers to finish, {} results ({} duplicate, {} rejected), {} re-queued, {} workers joined, {} lost, {} results checked in full ({} fixtures re-derived)",
             s.shards,
             s.finishings,
             s.results,
@@ -219,6 +219,7 @@ impl ClusterJobs {
             s.requeued,
             s.workers_joined,
             s.workers_lost,
+            s.results_rederived,
             s.fixtures_rederived
         );
     }
