@@ -442,3 +442,63 @@ outline = [[0, 0, 1]]
         "one-arc-vertex: outline: has 1 vertices; an outline with arcs needs at least 2"
     );
 }
+
+#[test]
+fn svg_rounded_rect_corners_are_exact_quarter_arcs() {
+    let quarter = (PI / 8.0).tan();
+    let p = read(
+        &svg(r#"<rect x="0" y="0" width="100" height="60" rx="10"/>"#),
+        Format::Svg,
+        &exact(),
+    );
+    assert_eq!(p.outline.len(), 8);
+    assert_eq!(arcs(&p), 4);
+    for q in p.outline.iter().filter(|q| q.is_arc()) {
+        assert!(close(q.bulge.abs(), quarter, 1e-12), "{q:?}");
+    }
+    assert!(close(true_area(&p), 6000.0 - (4.0 - PI) * 100.0, 1e-9));
+    let b = true_bbox(&p);
+    assert!(close(b[0], 0.0, 1e-9) && close(b[2], 100.0, 1e-9), "{b:?}");
+    // `ry` alone serves for both; a radius over half a side is cut to it,
+    // and the sides it leaves no room for are left out (no doubled vertex).
+    let alone = read(
+        &svg(r#"<rect width="100" height="60" ry="10"/>"#),
+        Format::Svg,
+        &exact(),
+    );
+    assert_eq!(alone.outline, p.outline);
+    let stadium = read(
+        &svg(r#"<rect width="100" height="60" rx="45" ry="30"/>"#),
+        Format::Svg,
+        &exact(),
+    );
+    let round = read(
+        &svg(r#"<rect width="100" height="60" rx="30"/>"#),
+        Format::Svg,
+        &exact(),
+    );
+    assert_eq!(round.outline.len(), 6);
+    assert_eq!(arcs(&round), 4);
+    assert!(close(true_area(&round), 40.0 * 60.0 + 900.0 * PI, 1e-9));
+    // Elliptical corners (and `arcs = "flatten"`) are flattened.
+    assert_eq!(arcs(&stadium), 0);
+    assert!(stadium.outline.len() > 20);
+    let flat_p = read(
+        &svg(r#"<rect width="100" height="60" rx="10"/>"#),
+        Format::Svg,
+        &flat(),
+    );
+    assert_eq!(arcs(&flat_p), 0);
+    // Chords inside the arcs, each at most the chord tolerance (0.05 mm)
+    // away along the four quarter arcs (15.7 mm each).
+    let flat_area = mass_properties(&flat_p.outline).area.abs();
+    let lost = true_area(&p) - flat_area;
+    assert!(lost > 0.0 && lost < 4.0 * 15.8 * 0.05, "{lost}");
+    // No radius: the four corners as before.
+    let sharp = read(
+        &svg(r#"<rect width="100" height="60"/>"#),
+        Format::Svg,
+        &exact(),
+    );
+    assert_eq!(sharp.outline.len(), 4);
+}

@@ -25,8 +25,9 @@
 //! `rect`, `circle` and `ellipse`, with `translate`, `scale`, `rotate`,
 //! `skewX`, `skewY` and `matrix` transforms on elements and groups.
 //!
-//! **Arcs.** An `A` command with equal radii, a `<circle>` and an
-//! `<ellipse>` with `rx = ry` are exact circular arcs (bulge vertices, SPEC
+//! **Arcs.** An `A` command with equal radii, a `<circle>`, an
+//! `<ellipse>` with `rx = ry` and the corners of a `<rect>` with
+//! `rx = ry` are exact circular arcs (bulge vertices, SPEC
 //! 8.1; a circle is two half arcs) when the element's whole transform is a
 //! similarity (uniform scale, rotation, translation, possibly a reflection,
 //! which turns arcs the other way, as does the y flip below). Elliptical
@@ -260,7 +261,7 @@ fn element_subpaths(
         }],
         "path" => parse_path(el.attribute("d").unwrap_or(""), tol, exact)
             .map_err(|e| in_element(el, ElementProblem::Path(e)))?,
-        "rect" => vec![rect(el)?],
+        "rect" => rect(el, tol, exact)?,
         "circle" | "ellipse" => vec![ellipse(el, tol, exact)?],
         "use" => {
             warnings.push(format!(
@@ -281,18 +282,62 @@ fn element_subpaths(
     Ok(Some(subs))
 }
 
-fn rect(el: roxmltree::Node) -> Result<Sub, SvgError> {
+/// A `<rect>`, with rounded corners (`rx`, `ry`) read as the path SVG
+/// defines for them, so that round corners are exact circular arcs like
+/// any `A` command (a rounded rectangle is how drawing programs write a
+/// filleted plate). As in SVG: a radius given alone serves for both, and
+/// each is at most half the side it rounds.
+fn rect(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Vec<Sub>, SvgError> {
     let x = length_attr(el, "x", 0.0)?;
     let y = length_attr(el, "y", 0.0)?;
     let wd = length_attr(el, "width", 0.0)?;
     let ht = length_attr(el, "height", 0.0)?;
-    Ok(Sub {
-        pts: [[x, y], [x + wd, y], [x + wd, y + ht], [x, y + ht]]
-            .into_iter()
-            .map(Vertex::from)
-            .collect(),
-        closed: true,
-    })
+    let given = |name| el.attribute(name).is_some();
+    let (rx, ry) = match (given("rx"), given("ry")) {
+        (false, false) => (0.0, 0.0),
+        (true, false) => {
+            let r = length_attr(el, "rx", 0.0)?;
+            (r, r)
+        }
+        (false, true) => {
+            let r = length_attr(el, "ry", 0.0)?;
+            (r, r)
+        }
+        (true, true) => (length_attr(el, "rx", 0.0)?, length_attr(el, "ry", 0.0)?),
+    };
+    let (rx, ry) = (rx.abs().min(wd.abs() / 2.0), ry.abs().min(ht.abs() / 2.0));
+    if rx <= 0.0 || ry <= 0.0 {
+        return Ok(vec![Sub {
+            pts: [[x, y], [x + wd, y], [x + wd, y + ht], [x, y + ht]]
+                .into_iter()
+                .map(Vertex::from)
+                .collect(),
+            closed: true,
+        }]);
+    }
+    // Sides of zero length (a radius of half the side) are left out, so
+    // that no vertex is doubled.
+    let side = |cmd: char, to: f64, len: f64| {
+        if len > 0.0 {
+            format!("{cmd} {to} ")
+        } else {
+            String::new()
+        }
+    };
+    let corner = |to_x: f64, to_y: f64| format!("A {rx} {ry} 0 0 1 {to_x} {to_y} ");
+    let d = format!(
+        "M {} {y} {}{}{}{}{}{}{}{}Z",
+        x + rx,
+        side('H', x + wd - rx, wd - 2.0 * rx),
+        corner(x + wd, y + ry),
+        side('V', y + ht - ry, ht - 2.0 * ry),
+        corner(x + wd - rx, y + ht),
+        side('H', x + rx, wd - 2.0 * rx),
+        corner(x, y + ht - ry),
+        side('V', y + ry, ht - 2.0 * ry),
+        corner(x + rx, y),
+    );
+    parse_path(&d, tol, exact).map_err(|e| in_element(el, ElementProblem::Path(e)))
 }
 
 /// A `<circle>` or `<ellipse>` as a closed polygon within `tol`, or, when
