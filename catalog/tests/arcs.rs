@@ -501,4 +501,18 @@ fn svg_rounded_rect_corners_are_exact_quarter_arcs() {
         &exact(),
     );
     assert_eq!(sharp.outline.len(), 4);
+    // A negative width is the same rectangle drawn from its other corner.
+    let back = read(
+        &svg(r#"<rect x="100" width="-100" height="60" rx="10"/>"#),
+        Format::Svg,
+        &exact(),
+    );
+    assert!(close(true_area(&back), true_area(&p), 1e-9));
+    assert!(close(true_bbox(&back)[0], 0.0, 1e-9));
+    // `nan` and `inf` parse as floats, but are no lengths.
+    for bad in [r#"rx="nan""#, r#"ry="inf""#] {
+        let text = svg(&format!(r#"<rect width="100" height="60" {bad}/>"#));
+        let e = parse_part(text.as_bytes(), Format::Svg, &exact()).unwrap_err();
+        assert!(e.to_string().contains(bad), "{e}");
+    }
 }

@@ -163,11 +163,15 @@ fn length_attr(node: roxmltree::Node, name: &str, default: f64) -> Result<f64, S
         None => Ok(default),
         Some(s) => {
             let t = s.trim().trim_end_matches("px");
-            t.trim().parse::<f64>().map_err(|_| SvgError::Length {
-                element: node.tag_name().name().to_string(),
-                attribute: name.to_string(),
-                value: s.to_string(),
-            })
+            // `nan` and `inf` parse as floats but are no SVG length.
+            match t.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(SvgError::Length {
+                    element: node.tag_name().name().to_string(),
+                    attribute: name.to_string(),
+                    value: s.to_string(),
+                }),
+            }
         }
     }
 }
@@ -305,7 +309,11 @@ fn rect(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Vec<Sub>, SvgError
         }
         (true, true) => (length_attr(el, "rx", 0.0)?, length_attr(el, "ry", 0.0)?),
     };
-    let (rx, ry) = (rx.abs().min(wd.abs() / 2.0), ry.abs().min(ht.abs() / 2.0));
+    // A negative size (an error in SVG) is taken as the same rectangle
+    // drawn from its other corner, as without rounded corners.
+    let (x, wd) = if wd < 0.0 { (x + wd, -wd) } else { (x, wd) };
+    let (y, ht) = if ht < 0.0 { (y + ht, -ht) } else { (y, ht) };
+    let (rx, ry) = (rx.abs().min(wd / 2.0), ry.abs().min(ht / 2.0));
     if rx <= 0.0 || ry <= 0.0 {
         return Ok(vec![Sub {
             pts: [[x, y], [x + wd, y], [x + wd, y + ht], [x, y + ht]]
