@@ -7,8 +7,9 @@
 //! the run's time and CPU are the coordinator's own work.
 //!
 //! Per count of simulated workers: a warm-up run (the same run, whose
-//! shards are enumerated once and recorded) then the measured run, in
-//! which every shard is replayed. The coordinator's CPU is this process's
+//! shards are enumerated once and recorded, and whose cut parts are
+//! finished and recorded) then the measured run, in which every shard and
+//! every finishing is replayed. The coordinator's CPU is this process's
 //! CPU time over the measured run; with `--in-process` (workers in this
 //! process), minus the simulated workers' threads' (what their zenoh
 //! sessions do on zenoh's shared threads then counts as the
@@ -335,7 +336,7 @@ fn print_table(rows: &[Ceiling]) {
         );
     }
     println!(
-        "(wall: coordinator start to results file renamed; shards: replayed in the run; coord us/pt: \
+        "(wall: coordinator start to results file renamed; shards: shards and finishings replayed in the run; coord us/pt: \
          this process's CPU per part (with --in-process, minus the simulated workers' threads'); \
          coord cpu: that over the wall time, 100% = one core)"
     );

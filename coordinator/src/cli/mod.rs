@@ -157,9 +157,10 @@ enum Cmd {
     ///
     /// Simulated workers (`--simulated-workers 1,8,64`, one thread each
     /// unless `--threads-per-worker`), in a process of their own, answer
-    /// every shard at once with its real result, computed in a warm-up run
-    /// of the same catalogue and replayed in the measured run, over the
-    /// transport of a real run. The coordinator is the `fixplan run
+    /// every shard (and every cut part's finishing) at once with its real
+    /// result, computed in a warm-up run of the same catalogue and replayed
+    /// in the measured run, over the transport of a real run. The
+    /// `shards` column counts both. The coordinator is the `fixplan run
     /// --workers` path, results file included. Prints per count: wall time, parts/s, and the
     /// coordinator's CPU per part (this process's CPU). Profile it with
     /// `perf record -k CLOCK_MONOTONIC fixplan bench-coordinator
