@@ -263,8 +263,12 @@ pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     let load_us = t.elapsed().as_secs_f64() * 1e6 / cat.parts.len().max(1) as f64;
     let spec = load_kit(&a.kit, cat.units)?;
     let catalog = repeated(&cat, a.repeat);
-    let tmp = std::env::temp_dir().join(unique_name("ceiling"));
-    let dir = a.keep.clone().unwrap_or_else(|| tmp.clone());
+    // Removed when dropped, on an error too (a failed run left its files).
+    let tmp = tempfile::Builder::new()
+        .prefix("ceiling-")
+        .tempdir()
+        .context("creating a temporary directory")?;
+    let dir = a.keep.clone().unwrap_or_else(|| tmp.path().to_path_buf());
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     println!(
         "catalogue: {} parts ({} x {}), kit {}, transport {}, {} thread(s) a worker, results files in {}",
@@ -311,9 +315,6 @@ pub fn bench_main(a: &CeilingArgs) -> Result<()> {
     println!(
         "reading the catalogue (once here, once per part in a run): {load_us:.1} us/part wall"
     );
-    if a.keep.is_none() {
-        let _ = std::fs::remove_dir_all(&tmp);
-    }
     Ok(())
 }
 
