@@ -359,13 +359,13 @@ impl Agent {
     /// batch of small parts keeps every thread busy), each inside its own
     /// `catch_unwind` so one panicking part fails alone.
     fn work_on(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
-        // Finishing a cut part enumerates nothing, so it is never replayed.
+        // Finishing a cut part enumerates nothing: it is done apart.
         let (to_finish, shards): (Vec<Assign>, Vec<Assign>) =
             batch.into_iter().partition(|a| a.finish_from.is_some());
         match self.opts.replay.clone() {
             Some(replay) => {
-                let mut out = self.replayed_finishing(&replay, to_finish);
-                out.extend(self.replayed(&replay, shards));
+                let mut out = self.replayed(&replay, to_finish, Self::finished_cut);
+                out.extend(self.replayed(&replay, shards, Self::enumerated));
                 out
             }
             None => {
@@ -376,37 +376,21 @@ impl Agent {
         }
     }
 
-    /// [`Agent::finished_cut`] with a replay cache: the finishings it
-    /// knows at once, the others done and recorded.
-    fn replayed_finishing(&mut self, replay: &Replay, batch: Vec<Assign>) -> Vec<Outcome> {
-        let mut out = Vec::new();
-        let mut todo = Vec::new();
-        for mut a in batch {
-            match replay.get(&a) {
-                Some(o) => out.push(o),
-                None => {
-                    // Replayed shards left the part unprepared here.
-                    a.input = a.input.take().or_else(|| replay.input_for(&a));
-                    todo.push(a);
-                }
-            }
-        }
-        let asked = todo.clone();
-        for (a, o) in asked.iter().zip(self.finished_cut(todo)) {
-            out.push(replay.put(a, o));
-        }
-        out
-    }
-
     /// Cut parts finished from their merged results
     /// ([`Assign::finish_from`]), side by side on the pool.
     fn finished_cut(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
         self.on_pool(batch, cut_part_outcome)
     }
 
-    /// [`Agent::work_on`] with a replay cache: the shards it knows at
-    /// once, the others enumerated and recorded.
-    fn replayed(&mut self, replay: &Replay, batch: Vec<Assign>) -> Vec<Outcome> {
+    /// [`Agent::work_on`] with a replay cache: the assignments it knows at
+    /// once, the others done by `compute` ([`Agent::enumerated`] for
+    /// shards, [`Agent::finished_cut`] for finishings) and recorded.
+    fn replayed(
+        &mut self,
+        replay: &Replay,
+        batch: Vec<Assign>,
+        compute: fn(&mut Self, Vec<Assign>) -> Vec<Outcome>,
+    ) -> Vec<Outcome> {
         let mut out: Vec<Option<Outcome>> = batch.iter().map(|a| replay.get(a)).collect();
         let (mut todo, mut at) = (Vec::new(), Vec::new());
         for (i, mut a) in batch.into_iter().enumerate() {
@@ -422,7 +406,7 @@ impl Agent {
         }
         if !todo.is_empty() {
             let asked = todo.clone();
-            for ((a, o), i) in asked.iter().zip(self.enumerated(todo)).zip(at) {
+            for ((a, o), i) in asked.iter().zip(compute(self, todo)).zip(at) {
                 out[i] = Some(replay.put(a, o));
             }
         }
@@ -432,6 +416,10 @@ impl Agent {
     /// A shard enumerated before under another finish context, finished
     /// for `a` (a part listed many times is enumerated once).
     fn refinished(&mut self, replay: &Replay, a: &Assign) -> Option<Outcome> {
+        if a.finish_from.is_some() {
+            // A finishing enumerates nothing to finish again.
+            return None;
+        }
         let (finisher, context) = (self.opts.finisher.clone()?, a.finish.as_ref()?);
         let Outcome::Done(mut done) = replay.enumerated(a)? else {
             return None;

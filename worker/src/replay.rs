@@ -102,11 +102,13 @@ impl Replay {
         if a.input.is_none() && !matches!(o, Outcome::Done(_)) {
             return o;
         }
-        let mut shard = key(a);
-        shard.4 = None;
-        let mut shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
-        shards.entry(shard).or_insert_with(|| o.clone());
-        drop(shards);
+        if a.finish_from.is_none() {
+            // A finishing has no enumeration to finish again elsewhere.
+            let mut shard = key(a);
+            shard.4 = None;
+            let mut shards = self.shards.lock().unwrap_or_else(|e| e.into_inner());
+            shards.entry(shard).or_insert_with(|| o.clone());
+        }
         let mut results = self.results.lock().unwrap_or_else(|e| e.into_inner());
         let mut first = results.entry(key(a)).or_insert(o).clone();
         drop(results);

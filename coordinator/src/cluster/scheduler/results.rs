@@ -78,9 +78,8 @@ fn take_finishing(
     let deep = s
         .verify
         .deep(id, st.workers.get(worker).map_or(0, |w| w.rederived));
-    let from = st.shards[id as usize].finish_from.take();
-    let check = check_finishing(&mut st.parts[p], s, &r, from.as_deref(), deep);
-    st.shards[id as usize].finish_from = from;
+    let from = st.shards[id as usize].finish_from.as_deref();
+    let check = check_finishing(&mut st.parts[p], s, &r, from, deep);
     if let Some(w) = st.workers.get_mut(worker) {
         w.leased.remove(&id);
     }
