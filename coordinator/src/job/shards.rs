@@ -45,22 +45,33 @@ pub fn estimate(input: &fixplan_worker::part_input::PartInput) -> (u64, usize) {
 }
 
 /// Batches per expected worker thread: assignments group small shards up
-/// to about `total cost / (slots x BATCHES_PER_SLOT)`, so that a catalogue
-/// of small parts needs a few round trips per worker thread, not one per
-/// part. Each round trip costs the coordinator: 32 here cost 64 simulated
-/// worker threads (8 workers of 8) 25-29 us of coordinator CPU a part, 8
-/// cost 22-23 (`fixplan bench-coordinator`, 21,000 parts); the tail stays
-/// balanced by guided self-scheduling, which shrinks batches as the queue
-/// empties.
+/// to about `total cost / (slots x BATCHES_PER_SLOT)` for each of the
+/// worker's threads, so that a catalogue of small parts needs a few round
+/// trips per worker, not one per part. Each round trip costs the
+/// coordinator: 32 here cost 64 simulated worker threads (8 workers of 8)
+/// 25-29 us of coordinator CPU a part, 8 cost 22-23 (`fixplan
+/// bench-coordinator`, 21,000 parts, when batches were sized for one
+/// thread); the tail stays balanced by guided self-scheduling, which
+/// shrinks batches as the queue empties.
 pub const BATCHES_PER_SLOT: u64 = 8;
 
 /// Shards in one assignment at most, whatever their cost: keeps messages
 /// (inputs out, results back) and what a lost worker takes with it
-/// bounded on huge catalogues of small parts.
+/// bounded on huge catalogues of small parts...
 pub const MAX_BATCH_SHARDS: usize = 256;
 
-/// The most cost one assignment carries (it always carries one shard,
-/// however big).
+/// ... unless the worker has so many threads that this many a thread is
+/// more: each of its threads needs a few shards of every batch.
+pub const MAX_BATCH_SHARDS_PER_THREAD: usize = 16;
+
+/// Shards in one assignment at most for a worker of `threads` threads.
+pub fn max_batch_shards(threads: u64) -> usize {
+    let threads = usize::try_from(threads).unwrap_or(usize::MAX);
+    MAX_BATCH_SHARDS.max(MAX_BATCH_SHARDS_PER_THREAD.saturating_mul(threads))
+}
+
+/// The most cost one assignment carries for each of the worker's threads
+/// (it always carries one shard, however big).
 pub fn batch_cost(parts: &[(u64, usize)], slots: usize) -> u64 {
     let total: u64 = parts.iter().map(|&(c, s)| cost(c, s)).sum();
     total

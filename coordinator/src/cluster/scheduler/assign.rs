@@ -31,7 +31,7 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str) -> Next {
             st.shards.len()
         );
     }
-    let limit = batch_limit(st, s);
+    let limit = batch_limit(st, s, worker);
     let Some(batch) = lease_batch(st, s, worker, limit) else {
         return Next::Rejoin;
     };
@@ -44,20 +44,33 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str) -> Next {
     Next::Work(batch)
 }
 
-/// Guided self-scheduling: a batch of about the cost left divided among
-/// twice the threads, at most `batch_cost`, so batches shrink towards the
-/// end and the workers finish together.
-fn batch_limit(st: &State, s: &Settings) -> u64 {
+/// Guided self-scheduling, per worker thread: a worker's batch is about
+/// the cost left divided among twice the threads, times its own threads,
+/// at most `batch_cost` a thread; so batches shrink towards the end and
+/// the workers finish together. One request feeds all of a worker's
+/// threads (its batch runs on its whole pool), so a batch sized for one
+/// thread would leave a 64-thread worker mostly idle, and cost the
+/// coordinator a round trip per thread's worth of work.
+fn batch_limit(st: &State, s: &Settings, worker: &str) -> (u64, usize) {
     let threads: u64 = st.workers.values().map(|w| w.threads).sum();
-    (st.queued_cost / (2 * threads.max(1))).clamp(1, s.batch_cost.max(1))
+    let mine = st.workers.get(worker).map_or(1, |w| w.threads).max(1);
+    let cost = (st.queued_cost.saturating_mul(mine) / (2 * threads.max(1)))
+        .clamp(1, s.batch_cost.max(1).saturating_mul(mine));
+    (cost, crate::job::shards::max_batch_shards(mine))
 }
 
 /// Leases shards from the front of the queue to `worker` until they cost
-/// `limit`, skipping those no longer needed; `None` if it is not known.
-fn lease_batch(st: &mut State, s: &Settings, worker: &str, limit: u64) -> Option<Vec<Assign>> {
+/// `limit.0` or number `limit.1`, skipping those no longer needed; `None`
+/// if it is not known.
+fn lease_batch(
+    st: &mut State,
+    s: &Settings,
+    worker: &str,
+    limit: (u64, usize),
+) -> Option<Vec<Assign>> {
     let mut batch = Vec::new();
     let mut cost = 0;
-    while cost < limit && batch.len() < crate::job::shards::MAX_BATCH_SHARDS {
+    while cost < limit.0 && batch.len() < limit.1 {
         let Some(id) = st.queue.pop_front() else {
             break;
         };

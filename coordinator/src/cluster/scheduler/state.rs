@@ -223,7 +223,8 @@ pub struct Settings {
     /// `--good-enough` threshold of every part.
     pub good_enough: Option<f64>,
     /// Cost of work ([`crate::job::shards::cost`]) handed out in one
-    /// assignment at most: small shards travel together up to it.
+    /// assignment at most, for each thread of the worker it goes to:
+    /// small shards travel together up to it.
     pub batch_cost: u64,
     /// What the workers finish whole parts with: the coordinator checks
     /// the finished parts whose results it re-derives with it. Without

@@ -149,11 +149,15 @@ fn a_banned_worker_s_work_on_open_parts_is_done_again() {
 }
 
 fn join(c: &Scheduler, name: &str) {
+    join_threads(c, name, 1);
+}
+
+fn join_threads(c: &Scheduler, name: &str, threads: u32) {
     let j = Join {
         worker: name.into(),
         host_id: "other".into(),
         pid: 1,
-        threads: 1,
+        threads,
         transport: TransportChoice::Zenoh,
         software: "test".into(),
     };
@@ -272,6 +276,31 @@ fn batches_shrink_as_the_queue_runs_out() {
     assert!(sizes[0] <= total / 4 + max_shard, "{sizes:?}");
     assert!(sizes.last() < sizes.first(), "{sizes:?}");
     assert_eq!(sizes.iter().sum::<u64>(), total);
+}
+
+#[test]
+fn a_worker_s_batch_grows_with_its_threads() {
+    let mut c = core(3, 1, VerifyPolicy::All);
+    let costs: Vec<u64> = c.lock().shards.iter().map(|s| s.cost).collect();
+    let max_shard = *costs.iter().max().unwrap();
+    // The queue is long enough that these batches are cut by the cost a
+    // thread, not by guided self-scheduling.
+    assert!(costs.iter().sum::<u64>() >= 40 * max_shard, "{costs:?}");
+    c.settings.batch_cost = max_shard;
+    join_threads(&c, "one", 1);
+    join_threads(&c, "eight", 8);
+    let cost = |n: &Next| match n {
+        Next::Work(b) => b
+            .iter()
+            .map(|a| c.lock().shards[a.shard_id as usize].cost)
+            .sum::<u64>(),
+        _ => 0,
+    };
+    let one = cost(&c.next_work("one"));
+    let eight = cost(&c.next_work("eight"));
+    assert!(one <= 2 * max_shard, "{one} {max_shard}");
+    assert!(eight >= 8 * max_shard, "{eight} {max_shard}");
+    assert!(eight <= 9 * max_shard, "{eight} {max_shard}");
 }
 
 /// `n` parts planned whole and unprepared, each with a finish context.
