@@ -1,5 +1,9 @@
 //! The `fixplan` binary: the command line of [`fixplan_coordinator::cli`].
 
+/// mimalloc rather than glibc's allocator: see the workspace manifest.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() {
     fixplan_coordinator::cli::main()
 }
