@@ -114,13 +114,25 @@ impl Distributed {
         let batch: Vec<Delivery> = std::iter::once(first)
             .chain(self.ready.drain(..more))
             .collect();
-        Some(map_batch(batch, |(i, r)| {
-            let r = r.and_then(|mut m| match m.finished.take() {
-                Some(bytes) => Ok(Returned::Finished(bytes)),
-                None => MergedPart::prepared(m).map(|m| Returned::Merged(Box::new(m))),
-            });
-            (i, r)
-        }))
+        // Finished parts are handed over as they are; only the others are
+        // worth rayon's threads.
+        let (finished, to_prepare): (Vec<Delivery>, Vec<Delivery>) = batch
+            .into_iter()
+            .partition(|(_, r)| r.as_ref().is_ok_and(|m| m.finished.is_some()));
+        let mut out: Vec<_> = finished
+            .into_iter()
+            .map(|(i, r)| {
+                (
+                    i,
+                    r.map(|m| Returned::Finished(m.finished.unwrap_or_default())),
+                )
+            })
+            .collect();
+        out.extend(map_batch(to_prepare, |(i, r)| {
+            let r = r.and_then(MergedPart::prepared);
+            (i, r.map(|m| Returned::Merged(Box::new(m))))
+        }));
+        Some(out)
     }
 
     /// The next finished part; `None` once all are (the run is ended then).
