@@ -127,6 +127,13 @@ fn late_joiner_gets_work() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(0);
     assert!(done >= 1, "the late worker did no shard:\n{err}");
+    // Its threads' busy share of its assignments' time: a percentage.
+    let busy: Option<u64> = err
+        .lines()
+        .find_map(|l| l.split("its threads busy ").nth(1))
+        .and_then(|s| s.split('%').next())
+        .and_then(|s| s.parse().ok());
+    assert!(busy.is_some_and(|b| (1..=100).contains(&b)), "{err}");
 }
 
 #[test]

@@ -148,6 +148,23 @@ pub struct WorkerSummary {
     pub shards: u64,
     /// Part inputs it prepared (once per part and run, thanks to the cache).
     pub parts_prepared: u64,
+    /// Time its threads spent on assignments, microseconds.
+    pub busy_micros: u64,
+    /// Its threads times the wall time of its assignments, microseconds:
+    /// beside [`WorkerSummary::busy_micros`], how much its threads waited
+    /// for an assignment's last shard (or had none, when an assignment
+    /// holds fewer shards than the worker has threads).
+    pub offered_micros: u64,
+}
+
+impl WorkerSummary {
+    /// Percent of the time its assignments took that its threads were
+    /// busy (100 if it had none).
+    pub fn busy_percent(&self) -> u64 {
+        (self.busy_micros.min(self.offered_micros) * 100)
+            .checked_div(self.offered_micros)
+            .unwrap_or(100)
+    }
 }
 
 /// A part's input and the part prepared, or why there is none, shared by
@@ -309,6 +326,11 @@ fn finished(
     }
 }
 
+/// Microseconds since `t`.
+fn micros_since(t: Instant) -> u64 {
+    u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX)
+}
+
 const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 /// A coordinator silent for this long is presumed gone: join again.
 const SILENCE: Duration = Duration::from_secs(15);
@@ -457,11 +479,20 @@ impl Agent {
             .collect();
         let fault = self.opts.fault;
         let finisher = self.opts.finisher.as_deref();
-        self.pool.install(|| {
+        let t0 = Instant::now();
+        let (out, busy): (Vec<Outcome>, Vec<u64>) = self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| outcome(fault, finisher, a, &prep))
-                .collect::<Vec<_>>()
-        })
+                .map(|(a, prep)| {
+                    let t = Instant::now();
+                    let o = outcome(fault, finisher, a, &prep);
+                    (o, micros_since(t))
+                })
+                .unzip()
+        });
+        let threads = self.pool.current_num_threads() as u64;
+        self.summary.busy_micros += busy.iter().sum::<u64>();
+        self.summary.offered_micros += threads * micros_since(t0);
+        out
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent
@@ -609,7 +640,10 @@ impl Agent {
             if self.serve_run(link)? {
                 info!(
                     role = self.role,
-                    "run {} is over: {} shards done", welcome.run_id, self.summary.shards
+                    "run {} is over: {} shards done, its threads busy {}% of the time its assignments took",
+                    welcome.run_id,
+                    self.summary.shards,
+                    self.summary.busy_percent()
                 );
                 if !self.opts.stay {
                     return Ok(());
@@ -657,4 +691,23 @@ pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
     let r = agent.run();
     let _ = agent.session.close().wait();
     r.map(|_| agent.summary)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::WorkerSummary;
+
+    #[test]
+    fn busy_percent_is_a_share_of_the_offered_time() {
+        let s = |busy, offered| WorkerSummary {
+            busy_micros: busy,
+            offered_micros: offered,
+            ..WorkerSummary::default()
+        };
+        assert_eq!(s(0, 0).busy_percent(), 100);
+        assert_eq!(s(750, 1000).busy_percent(), 75);
+        // Clock skew between threads never reads as more than all.
+        assert_eq!(s(1010, 1000).busy_percent(), 100);
+        assert_eq!(s(0, 1000).busy_percent(), 0);
+    }
 }
