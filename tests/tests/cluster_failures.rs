@@ -169,6 +169,7 @@ fn malformed_messages_and_other_protocol_versions_are_refused() {
     let report = |w: &str| Msg::Report {
         worker: w.into(),
         outcomes: vec![],
+        holding: vec![],
     };
     let mut cut = encode(&report("x")).unwrap();
     cut.truncate(6);

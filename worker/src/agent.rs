@@ -4,6 +4,7 @@
 
 use crate::finish::Finisher;
 use crate::host::{host_id, unique_name};
+use crate::in_flight::InFlight;
 use crate::iox::IoxClient;
 use crate::part_input::{PartInput, WireInputError};
 use crate::protocol::{
@@ -377,25 +378,17 @@ impl Agent {
         p
     }
 
-    /// Enumerates an assignment: its shards side by side on the pool (a
-    /// batch of small parts keeps every thread busy), each inside its own
-    /// `catch_unwind` so one panicking part fails alone.
-    fn work_on(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
+    /// A simulated worker's assignment: what the replay cache knows at
+    /// once, the rest computed side by side on the pool (each shard
+    /// inside its own `catch_unwind`, so one panicking part fails alone)
+    /// and recorded.
+    fn replayed_batch(&mut self, replay: &Replay, batch: Vec<Assign>) -> Vec<Outcome> {
         // Finishing a cut part enumerates nothing: it is done apart.
         let (to_finish, shards): (Vec<Assign>, Vec<Assign>) =
             batch.into_iter().partition(|a| a.finish_from.is_some());
-        match self.opts.replay.clone() {
-            Some(replay) => {
-                let mut out = self.replayed(&replay, to_finish, Self::finished_cut);
-                out.extend(self.replayed(&replay, shards, Self::enumerated));
-                out
-            }
-            None => {
-                let mut out = self.finished_cut(to_finish);
-                out.extend(self.enumerated(shards));
-                out
-            }
-        }
+        let mut out = self.replayed(replay, to_finish, Self::finished_cut);
+        out.extend(self.replayed(replay, shards, Self::enumerated));
+        out
     }
 
     /// Cut parts finished from their merged results
@@ -404,7 +397,7 @@ impl Agent {
         self.on_pool(batch, cut_part_outcome)
     }
 
-    /// [`Agent::work_on`] with a replay cache: the assignments it knows at
+    /// [`Agent::replayed_batch`] of one kind: the assignments it knows at
     /// once, the others done by `compute` ([`Agent::enumerated`] for
     /// shards, [`Agent::finished_cut`] for finishings) and recorded.
     fn replayed(
@@ -496,16 +489,30 @@ impl Agent {
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent
-    /// or asks for a new join (false).
+    /// or asks for a new join (false). Shards run on the pool while the
+    /// worker reports and asks for more ([`InFlight`]).
     fn serve_run(&mut self, link: DataLink) -> Result<bool, WorkerError> {
+        let mut flight = InFlight::new(self.pool.current_num_threads());
+        let out = self.serve_run_with(&link, &mut flight);
+        self.summary.busy_micros += flight.busy_micros;
+        self.summary.offered_micros += flight.offered_micros;
+        out
+    }
+
+    fn serve_run_with(
+        &mut self,
+        link: &DataLink,
+        flight: &mut InFlight,
+    ) -> Result<bool, WorkerError> {
         let mut last_heard = Instant::now();
         // Kept until a reply comes: sent again as it is if none does.
         let mut report = Msg::Report {
             worker: self.name.clone(),
             outcomes: Vec::new(),
+            holding: Vec::new(),
         };
         loop {
-            let reply = self.send(&link, &report);
+            let reply = self.send(link, &report);
             let (notes, next) = match reply {
                 Ok(Frame::Msg(Msg::Reply { notes, next })) => (notes, next),
                 Ok(Frame::Msg(m)) => {
@@ -532,22 +539,54 @@ impl Agent {
             for n in notes {
                 warn!(role = self.role, "{n}");
             }
-            let outcomes = match next {
+            let idle = match next {
                 Next::Work(batch) => {
                     self.summary.shards += batch.len() as u64;
-                    self.work_on(batch)
+                    self.start(batch, flight);
+                    None
                 }
                 Next::Idle { retry_ms } => {
-                    std::thread::sleep(Duration::from_millis(retry_ms.clamp(1, 2000)));
-                    Vec::new()
+                    let wait = Duration::from_millis(retry_ms.clamp(1, 2000));
+                    if flight.is_empty() {
+                        std::thread::sleep(wait);
+                    }
+                    Some(wait)
                 }
+                // What still runs is dropped: the run is over, or the
+                // coordinator no longer counts on this worker.
                 Next::Done => return Ok(true),
                 Next::Rejoin => return Ok(false),
             };
+            // Ask again once every shard held has a thread.
+            let outcomes = flight.take(self.pool.current_num_threads(), idle);
             report = Msg::Report {
                 worker: self.name.clone(),
                 outcomes,
+                holding: flight.holding(),
             };
+        }
+    }
+
+    /// Puts an assignment on the pool, shard by shard (replayed ones are
+    /// known at once).
+    fn start(&mut self, batch: Vec<Assign>, flight: &mut InFlight) {
+        if let Some(replay) = self.opts.replay.clone() {
+            let outcomes = self.replayed_batch(&replay, batch);
+            flight.add_ready(outcomes);
+            return;
+        }
+        for a in batch {
+            let prep = self.prepared(&a);
+            // Finishing a cut part enumerates nothing.
+            let outcome: OutcomeOf = if a.finish_from.is_some() {
+                cut_part_outcome
+            } else {
+                shard_outcome
+            };
+            let (fault, finisher) = (self.opts.fault, self.opts.finisher.clone());
+            flight.spawn(&self.pool, a.shard_id, move || {
+                outcome(fault, finisher.as_deref(), a, &prep)
+            });
         }
     }
 

@@ -11,6 +11,7 @@
 //!   without TLS unless `--insecure`;
 //! - [`iox`]: iceoryx2 request/reply through shared memory on one host;
 //! - [`agent`]: the `fixplan worker` loop;
+//! - [`in_flight`]: the shards a worker runs while it asks for more;
 //! - [`replay`]: shard results replayed by simulated workers
 //!   (`fixplan bench-coordinator`);
 //! - [`host`]: host ids and unique names;
@@ -21,6 +22,7 @@ pub mod agent;
 pub mod exposure;
 pub mod finish;
 pub mod host;
+pub mod in_flight;
 pub mod iox;
 pub mod log;
 pub mod part_input;

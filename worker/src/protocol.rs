@@ -15,7 +15,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 6;
+pub const PROTOCOL_VERSION: u16 = 7;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -223,13 +223,18 @@ pub enum Msg {
     Join(Join),
     /// The coordinator accepts a join.
     Welcome(Welcome),
-    /// The outcomes of the last assignment (none on the first report),
-    /// and a request for more work.
+    /// The outcomes of shards done since the last report (none on the
+    /// first), and a request for more work.
     Report {
         /// The reporting worker's name from its [`Join`].
         worker: String,
-        /// One per shard of the last assignment.
+        /// One per shard done since the last report.
         outcomes: Vec<Outcome>,
+        /// Shards it still works on (protocol 7): a worker asks for more
+        /// while its last shards run, so that its threads do not wait for
+        /// the slowest one. Whatever else it was given and has not
+        /// reported went out in a reply it never got.
+        holding: Vec<u64>,
     },
     /// The answer to a report: why any outcome was not taken (a duplicate,
     /// a rejected result), and what to do next.
@@ -349,6 +354,7 @@ mod tests {
         let m = Msg::Report {
             worker: "w1".into(),
             outcomes: vec![],
+            holding: vec![3, 9],
         };
         let b = encode(&m).unwrap();
         assert_eq!(decode(&b), Ok(Frame::Msg(m.clone())));
@@ -409,6 +415,7 @@ mod tests {
                 hit: Some(4),
                 finished: Some(vec![1, 2, 3]),
             }))],
+            holding: vec![],
         };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
     }

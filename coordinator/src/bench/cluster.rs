@@ -163,6 +163,7 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
             hit: None,
             finished: None,
         }))],
+        holding: vec![],
     })?)
 }
 

@@ -7,13 +7,23 @@ use fixplan_worker::protocol::{Assign, Next};
 use std::time::Instant;
 use tracing::info;
 
-/// What `worker` is to do next: work, wait, rejoin, or stop.
-pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str) -> Next {
+/// What `worker`, still working on `holding`, is to do next: work, wait,
+/// rejoin, or stop.
+pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str, holding: &[u64]) -> Next {
     let Some(w) = st.workers.get_mut(worker) else {
         return Next::Rejoin;
     };
-    // Anything still leased to it went out in a reply it never got.
-    let lost: Vec<u64> = w.leased.drain().collect();
+    // Anything else still leased to it went out in a reply it never got.
+    let holding: std::collections::HashSet<u64> = holding.iter().copied().collect();
+    let lost: Vec<u64> = w
+        .leased
+        .iter()
+        .copied()
+        .filter(|id| !holding.contains(id))
+        .collect();
+    for id in &lost {
+        w.leased.remove(id);
+    }
     if st.open_parts == 0 {
         w.got_done = true;
         return Next::Done;

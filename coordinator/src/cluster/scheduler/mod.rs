@@ -140,7 +140,11 @@ impl Scheduler {
             Msg::Join(j) if banned(&j.worker) => Err(Refusal::Banned(j.worker)),
             Msg::Report { worker, .. } if banned(&worker) => Err(Refusal::Banned(worker)),
             Msg::Join(j) => self.join(j),
-            Msg::Report { worker, outcomes } => self.report(&worker, outcomes),
+            Msg::Report {
+                worker,
+                outcomes,
+                holding,
+            } => self.report(&worker, outcomes, &holding),
             other => {
                 warn!(
                     role = ROLE,
@@ -154,7 +158,12 @@ impl Scheduler {
 
     /// Takes a report's outcomes one by one, then answers with a note for
     /// each outcome not taken and the worker's next work.
-    fn report(&self, worker: &str, outcomes: Vec<Outcome>) -> Result<Msg, Refusal> {
+    fn report(
+        &self,
+        worker: &str,
+        outcomes: Vec<Outcome>,
+        holding: &[u64],
+    ) -> Result<Msg, Refusal> {
         let banned = |w: &str| self.lock().banned.contains(w);
         let mut notes = Vec::new();
         for o in outcomes {
@@ -176,7 +185,7 @@ impl Scheduler {
         }
         Ok(Msg::Reply {
             notes,
-            next: self.next_work(worker),
+            next: self.next_work_holding(worker, holding),
         })
     }
 
@@ -185,10 +194,17 @@ impl Scheduler {
         Ok(workers::join(&mut self.lock(), &self.settings, j, data))
     }
 
-    /// The next assignment of a worker that has just reported (and so
-    /// holds no shard any more).
+    /// The next assignment of a worker that has just reported and holds
+    /// no shard any more.
+    #[cfg(test)]
     fn next_work(&self, worker: &str) -> Next {
-        assign::next_work(&mut self.lock(), &self.settings, worker)
+        self.next_work_holding(worker, &[])
+    }
+
+    /// The next assignment of a worker that has just reported and still
+    /// works on the shards `holding`.
+    fn next_work_holding(&self, worker: &str, holding: &[u64]) -> Next {
+        assign::next_work(&mut self.lock(), &self.settings, worker, holding)
     }
 
     fn result(&self, r: ShardDone, worker: &str) -> Result<(), NotTaken> {

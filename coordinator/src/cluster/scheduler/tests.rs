@@ -86,9 +86,14 @@ fn done(a: &Assign, result: fixplan_core::PartialResult, finished: Option<Vec<u8
 }
 
 fn report(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>) -> Frame {
+    report_holding(c, worker, outcomes, vec![])
+}
+
+fn report_holding(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>, holding: Vec<u64>) -> Frame {
     let msg = Msg::Report {
         worker: worker.into(),
         outcomes,
+        holding,
     };
     decode(&c.handle(&encode(&msg).expect("encode"))).expect("decode")
 }
@@ -186,6 +191,32 @@ fn shards_of_a_lost_reply_go_back_to_the_queue() {
 }
 
 #[test]
+fn shards_a_worker_still_holds_stay_with_it() {
+    let mut c = core(2, 1, VerifyPolicy::All);
+    c.settings.batch_cost = u64::MAX;
+    join(&c, "w");
+    let first = ids(&c.next_work("w"));
+    assert!(first.len() >= 4, "{first:?}");
+    // It reports while it still works on two of them; the others went
+    // out in a reply it lost.
+    let held = first[..2].to_vec();
+    let Frame::Msg(Msg::Reply { next, .. }) = report_holding(&c, "w", vec![], held.clone()) else {
+        panic!("no reply")
+    };
+    let again = ids(&next);
+    assert_eq!(c.stats().requeued, (first.len() - 2) as u64);
+    assert!(held.iter().all(|id| !again.contains(id)), "{again:?}");
+    assert!(first[2..].iter().all(|id| again.contains(id)), "{again:?}");
+    for id in &held {
+        let st = c.lock();
+        assert!(
+            matches!(&st.shards[*id as usize].status, ShardStatus::Leased { worker, .. } if worker == "w")
+        );
+        assert!(st.workers["w"].leased.contains(id));
+    }
+}
+
+#[test]
 fn nothing_else_of_a_report_counts_after_a_bad_result() {
     let mut c = core(1, 4, VerifyPolicy::All);
     c.settings.batch_cost = u64::MAX;
@@ -232,6 +263,7 @@ fn nothing_else_of_a_report_counts_after_a_bad_result() {
     let report = encode(&Msg::Report {
         worker: "liar".into(),
         outcomes: honest,
+        holding: vec![],
     })
     .expect("encode");
     let reply = decode(&c.handle(&report)).expect("decode");
