@@ -332,6 +332,10 @@ fn micros_since(t: Instant) -> u64 {
     u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX)
 }
 
+/// A worker told to wait while shards of its own still run waits this
+/// many times longer for one of them before it asks again.
+const HOLDING_IDLE_FACTOR: u32 = 10;
+
 const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 /// A coordinator silent for this long is presumed gone: join again.
 const SILENCE: Duration = Duration::from_secs(15);
@@ -549,8 +553,13 @@ impl Agent {
                     let wait = Duration::from_millis(retry_ms.clamp(1, 2000));
                     if flight.is_empty() {
                         std::thread::sleep(wait);
+                        Some(wait)
+                    } else {
+                        // Its own shards' results are worth a report
+                        // sooner than more polling at the end of a run
+                        // (each poll costs the coordinator a request).
+                        Some(wait * HOLDING_IDLE_FACTOR)
                     }
-                    Some(wait)
                 }
                 // What still runs is dropped: the run is over, or the
                 // coordinator no longer counts on this worker.
