@@ -172,6 +172,32 @@ impl WorkerSummary {
 /// the shards of the part.
 type Prepared = Arc<Result<(PartInput, PreparedPart), WireInputError>>;
 
+/// A part as its shards find it on a worker: the input its first shard
+/// brought, prepared once, by whichever of its shards runs first, on the
+/// pool (preparing on the agent's thread made it a serial stage before
+/// every shard: about 30-50 us a part, a limit for many threads on small
+/// parts).
+struct PartSlot {
+    digest: Digest,
+    input: Option<bytes::Bytes>,
+    prepared: std::sync::OnceLock<Prepared>,
+}
+
+impl PartSlot {
+    /// The part prepared (the first call prepares it; concurrent ones
+    /// wait for it).
+    fn get(&self) -> Prepared {
+        self.prepared
+            .get_or_init(|| {
+                Arc::new(PartInput::prepare_wire_kept(
+                    &self.digest,
+                    self.input.as_deref(),
+                ))
+            })
+            .clone()
+    }
+}
+
 enum DataLink {
     Zenoh,
     Iox(Box<IoxClient>),
@@ -185,7 +211,7 @@ struct Agent {
     keys: Keys,
     session: zenoh::Session,
     pool: rayon::ThreadPool,
-    cache: HashMap<Digest, Prepared>,
+    cache: HashMap<Digest, Arc<PartSlot>>,
     summary: WorkerSummary,
 }
 
@@ -367,19 +393,30 @@ impl Agent {
         )
     }
 
-    fn prepared(&mut self, a: &Assign) -> Prepared {
+    /// The slot of `a`'s part: the cached one, or a new one holding the
+    /// input `a` brought.
+    fn slot(&mut self, a: &Assign) -> Arc<PartSlot> {
         // A batch may hold several shards of one part: the first carries
         // the input, the cache serves the rest.
         if let Some(p) = self.cache.get(&a.digest) {
             return p.clone();
         }
-        let p = Arc::new(PartInput::prepare_wire_kept(&a.digest, a.input.as_deref()));
+        let slot = Arc::new(PartSlot {
+            digest: a.digest,
+            input: a.input.clone(),
+            prepared: std::sync::OnceLock::new(),
+        });
         self.summary.parts_prepared += 1;
         // Only cache what the coordinator sent: a missing input is retried.
         if a.input.is_some() {
-            self.cache.insert(a.digest, p.clone());
+            self.cache.insert(a.digest, slot.clone());
         }
-        p
+        slot
+    }
+
+    /// `a`'s part prepared, here and now.
+    fn prepared(&mut self, a: &Assign) -> Prepared {
+        self.slot(a).get()
     }
 
     /// A simulated worker's assignment: what the replay cache knows at
@@ -585,7 +622,7 @@ impl Agent {
             return;
         }
         for a in batch {
-            let prep = self.prepared(&a);
+            let slot = self.slot(&a);
             // Finishing a cut part enumerates nothing.
             let outcome: OutcomeOf = if a.finish_from.is_some() {
                 cut_part_outcome
@@ -594,7 +631,7 @@ impl Agent {
             };
             let (fault, finisher) = (self.opts.fault, self.opts.finisher.clone());
             flight.spawn(&self.pool, a.shard_id, move || {
-                outcome(fault, finisher.as_deref(), a, &prep)
+                outcome(fault, finisher.as_deref(), a, &slot.get())
             });
         }
     }
@@ -743,7 +780,40 @@ pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
 
 #[cfg(test)]
 mod tests {
-    use super::WorkerSummary;
+    use super::{PartSlot, WorkerSummary};
+    use crate::part_input::{digest, PartInput};
+    use std::sync::{Arc, OnceLock};
+
+    #[test]
+    fn shards_running_at_once_prepare_their_part_once() {
+        let case: fixplan_core::Case =
+            serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json")).unwrap();
+        let input = PartInput {
+            part: case.part(),
+            kit: case.kit.clone(),
+            params: case.params.clone(),
+            units: case.units,
+        };
+        let bytes = input.encode().unwrap();
+        let slot = Arc::new(PartSlot {
+            digest: digest(&bytes),
+            input: Some(bytes.into()),
+            prepared: OnceLock::new(),
+        });
+        let got: Vec<_> = std::thread::scope(|s| {
+            let handles: Vec<_> = (0..4).map(|_| s.spawn(|| slot.get())).collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert!(got[0].is_ok());
+        assert!(got.iter().all(|p| Arc::ptr_eq(p, &got[0])));
+        // A part whose input never came fails its shards by name.
+        let missing = PartSlot {
+            digest: [0; 32],
+            input: None,
+            prepared: OnceLock::new(),
+        };
+        assert!(missing.get().is_err());
+    }
 
     #[test]
     fn busy_percent_is_a_share_of_the_offered_time() {
