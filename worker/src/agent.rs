@@ -781,20 +781,12 @@ pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
 #[cfg(test)]
 mod tests {
     use super::{PartSlot, WorkerSummary};
-    use crate::part_input::{digest, PartInput};
+    use crate::part_input::{digest, sample_input};
     use std::sync::{Arc, OnceLock};
 
     #[test]
     fn shards_running_at_once_prepare_their_part_once() {
-        let case: fixplan_core::Case =
-            serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json")).unwrap();
-        let input = PartInput {
-            part: case.part(),
-            kit: case.kit.clone(),
-            params: case.params.clone(),
-            units: case.units,
-        };
-        let bytes = input.encode().unwrap();
+        let bytes = sample_input().encode().unwrap();
         let slot = Arc::new(PartSlot {
             digest: digest(&bytes),
             input: Some(bytes.into()),

@@ -222,6 +222,20 @@ pub fn short_hex(d: &Digest) -> String {
     d[..6].iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// The input of the `rectangle-mm` bench case, for tests.
+#[cfg(test)]
+pub(crate) fn sample_input() -> PartInput {
+    let case: fixplan_core::Case =
+        serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json"))
+            .expect("the bench case reads");
+    PartInput {
+        part: case.part(),
+        kit: case.kit.clone(),
+        params: case.params.clone(),
+        units: case.units,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -250,15 +264,7 @@ mod tests {
 
     #[test]
     fn wire_inputs_are_checked_before_they_are_prepared() {
-        let case: fixplan_core::Case =
-            serde_json::from_str(include_str!("../../examples/cases/rectangle-mm.json")).unwrap();
-        let input = PartInput {
-            part: case.part(),
-            kit: case.kit.clone(),
-            params: case.params.clone(),
-            units: case.units,
-        };
-        let b = input.encode().unwrap();
+        let b = sample_input().encode().unwrap();
         let d = digest(&b);
         assert!(PartInput::prepare_wire(&d, Some(&b)).is_ok());
         let text = |r: Result<PreparedPart, WireInputError>| r.err().map(|e| e.to_string());
