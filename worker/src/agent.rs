@@ -149,12 +149,12 @@ pub struct WorkerSummary {
     pub shards: u64,
     /// Part inputs it prepared (once per part and run, thanks to the cache).
     pub parts_prepared: u64,
-    /// Time its threads spent on assignments, microseconds.
+    /// Time its threads spent on shards, microseconds.
     pub busy_micros: u64,
-    /// Its threads times the wall time of its assignments, microseconds:
-    /// beside [`WorkerSummary::busy_micros`], how much its threads waited
-    /// for an assignment's last shard (or had none, when an assignment
-    /// holds fewer shards than the worker has threads).
+    /// Its threads times the time it held shards, microseconds: beside
+    /// [`WorkerSummary::busy_micros`], how long its threads had nothing
+    /// while it held work (a simulated worker, which answers at once,
+    /// counts neither).
     pub offered_micros: u64,
 }
 
@@ -353,11 +353,6 @@ fn finished(
     }
 }
 
-/// Microseconds since `t`.
-fn micros_since(t: Instant) -> u64 {
-    u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX)
-}
-
 /// A worker told to wait while shards of its own still run waits this
 /// many times longer for one of them before it asks again.
 const HOLDING_IDLE_FACTOR: u32 = 10;
@@ -513,20 +508,11 @@ impl Agent {
             .collect();
         let fault = self.opts.fault;
         let finisher = self.opts.finisher.as_deref();
-        let t0 = Instant::now();
-        let (out, busy): (Vec<Outcome>, Vec<u64>) = self.pool.install(|| {
+        self.pool.install(|| {
             jobs.into_par_iter()
-                .map(|(a, prep)| {
-                    let t = Instant::now();
-                    let o = outcome(fault, finisher, a, &prep);
-                    (o, micros_since(t))
-                })
-                .unzip()
-        });
-        let threads = self.pool.current_num_threads() as u64;
-        self.summary.busy_micros += busy.iter().sum::<u64>();
-        self.summary.offered_micros += threads * micros_since(t0);
-        out
+                .map(|(a, prep)| outcome(fault, finisher, a, &prep))
+                .collect::<Vec<_>>()
+        })
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent

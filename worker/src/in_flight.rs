@@ -10,7 +10,7 @@
 
 use crate::protocol::{Outcome, ShardFailed};
 use std::collections::HashSet;
-use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
+use std::sync::mpsc::{channel, Receiver, Sender};
 use std::time::{Duration, Instant};
 
 /// An outcome and the time its thread spent on it, microseconds.
@@ -32,12 +32,9 @@ pub struct InFlight {
     pub offered_micros: u64,
 }
 
-/// The id of the shard an outcome answers.
-fn shard_of(o: &Outcome) -> u64 {
-    match o {
-        Outcome::Done(d) => d.shard_id,
-        Outcome::Failed(f) => f.shard_id,
-    }
+/// Microseconds since `t`.
+fn micros_since(t: Instant) -> u64 {
+    u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX)
 }
 
 impl InFlight {
@@ -76,7 +73,7 @@ impl InFlight {
                         message: format!("internal error: {}", crate::panic_text(p)),
                     })
                 });
-            let micros = u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX);
+            let micros = micros_since(t);
             // A worker that left the run drops what is still running.
             let _ = tx.send((out, micros));
         });
@@ -111,9 +108,8 @@ impl InFlight {
         }
         if let Some(d) = idle {
             if self.ready.is_empty() && !self.running.is_empty() {
-                match self.rx.recv_timeout(d) {
-                    Ok(t) => self.record(t),
-                    Err(RecvTimeoutError::Timeout | RecvTimeoutError::Disconnected) => {}
+                if let Ok(t) = self.rx.recv_timeout(d) {
+                    self.record(t);
                 }
             }
         }
@@ -125,10 +121,9 @@ impl InFlight {
 
     fn record(&mut self, (out, micros): Timed) {
         self.busy_micros += micros;
-        if self.running.remove(&shard_of(&out)) && self.running.is_empty() {
+        if self.running.remove(&out.shard_id()) && self.running.is_empty() {
             if let Some(t) = self.since.take() {
-                let wall = u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX);
-                self.offered_micros += self.threads * wall;
+                self.offered_micros += self.threads * micros_since(t);
             }
         }
         self.ready.push(out);
@@ -170,7 +165,7 @@ mod tests {
             f.spawn(&pool, id, move || failed(id));
         }
         let first = f.take(1, None);
-        let mut ids: Vec<u64> = first.iter().map(shard_of).collect();
+        let mut ids: Vec<u64> = first.iter().map(Outcome::shard_id).collect();
         ids.sort_unstable();
         assert_eq!(ids, [1, 2, 3, 4]);
         assert_eq!(f.holding(), [0]);
@@ -179,7 +174,7 @@ mod tests {
         assert!(f.take(1, Some(Duration::from_millis(20))).is_empty());
         go_tx.send(()).unwrap();
         let last = f.take(0, None);
-        assert_eq!(last.iter().map(shard_of).collect::<Vec<_>>(), [0]);
+        assert_eq!(last.iter().map(Outcome::shard_id).collect::<Vec<_>>(), [0]);
         assert!(f.is_empty());
         assert!(
             f.offered_micros >= f.busy_micros / 2,
@@ -195,7 +190,7 @@ mod tests {
         f.spawn(&pool, 7, || panic!("boom"));
         f.spawn(&pool, 8, || failed(8));
         let mut out = f.take(0, None);
-        out.sort_by_key(shard_of);
+        out.sort_by_key(Outcome::shard_id);
         match &out[..] {
             [Outcome::Failed(a), Outcome::Failed(b)] => {
                 assert_eq!((a.shard_id, b.shard_id), (7, 8));

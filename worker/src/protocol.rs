@@ -195,6 +195,16 @@ pub enum Outcome {
     Failed(ShardFailed),
 }
 
+impl Outcome {
+    /// The shard it answers.
+    pub fn shard_id(&self) -> u64 {
+        match self {
+            Outcome::Done(d) => d.shard_id,
+            Outcome::Failed(f) => f.shard_id,
+        }
+    }
+}
+
 /// What a worker is to do next.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Next {

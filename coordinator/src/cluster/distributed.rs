@@ -116,18 +116,17 @@ impl Distributed {
             .collect();
         // Finished parts are handed over as they are; only the others are
         // worth rayon's threads.
-        let (finished, to_prepare): (Vec<Delivery>, Vec<Delivery>) = batch
-            .into_iter()
-            .partition(|(_, r)| r.as_ref().is_ok_and(|m| m.finished.is_some()));
-        let mut out: Vec<_> = finished
-            .into_iter()
-            .map(|(i, r)| {
-                (
-                    i,
-                    r.map(|m| Returned::Finished(m.finished.unwrap_or_default())),
-                )
-            })
-            .collect();
+        let mut out = Vec::with_capacity(batch.len());
+        let mut to_prepare = Vec::new();
+        for (i, r) in batch {
+            match r {
+                Ok(MergedShards {
+                    finished: Some(bytes),
+                    ..
+                }) => out.push((i, Ok(Returned::Finished(bytes)))),
+                other => to_prepare.push((i, other)),
+            }
+        }
         out.extend(map_batch(to_prepare, |(i, r)| {
             let r = r.and_then(MergedPart::prepared);
             (i, r.map(|m| Returned::Merged(Box::new(m))))

@@ -15,15 +15,7 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str, holding: &[u
     };
     // Anything else still leased to it went out in a reply it never got.
     let holding: std::collections::HashSet<u64> = holding.iter().copied().collect();
-    let lost: Vec<u64> = w
-        .leased
-        .iter()
-        .copied()
-        .filter(|id| !holding.contains(id))
-        .collect();
-    for id in &lost {
-        w.leased.remove(id);
-    }
+    let lost: Vec<u64> = w.leased.extract_if(|id| !holding.contains(id)).collect();
     if st.open_parts == 0 {
         w.got_done = true;
         return Next::Done;

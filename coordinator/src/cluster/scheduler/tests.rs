@@ -252,13 +252,7 @@ fn nothing_else_of_a_report_counts_after_a_bad_result() {
     let bad = outcomes.remove(first_bad);
     let mut honest: Vec<Outcome> = outcomes.into_iter().filter(|o| !o.0).map(|o| o.1).collect();
     assert!(!honest.is_empty(), "need honest shards too");
-    let ids: Vec<u64> = honest
-        .iter()
-        .map(|o| match o {
-            Outcome::Done(d) => d.shard_id,
-            Outcome::Failed(f) => f.shard_id,
-        })
-        .collect();
+    let ids: Vec<u64> = honest.iter().map(Outcome::shard_id).collect();
     honest.insert(0, bad.1);
     let report = encode(&Msg::Report {
         worker: "liar".into(),
