@@ -82,6 +82,16 @@ pub enum PartErrorKind {
         /// The system's reason; shared so that the error stays `Clone`.
         error: Arc<std::io::Error>,
     },
+    /// The path is not a regular file (a directory, a FIFO, a device); it
+    /// is refused before it is opened, since reading a FIFO or a device
+    /// may never end.
+    #[error("cannot read {}: it is {kind}, not a regular file", .path.display())]
+    NotAFile {
+        /// The path, as opened (joined to the manifest's directory).
+        path: PathBuf,
+        /// What it is instead.
+        kind: &'static str,
+    },
     /// The file cannot be read as its format.
     #[error(transparent)]
     Read(#[from] ReadError),

@@ -4,7 +4,8 @@
 
 use crate::error::{part_name, CatalogError, EntryProblem, PartError, PartErrorKind};
 use crate::part::{
-    flatten_vertices, read_raw, validate_part, ArcMode, Format, RawPart, ReadOptions,
+    flatten_vertices, read_parts, validate_part, ArcMode, Format, LayerFilter, LimitExceeded,
+    Limits, RawPart, ReadError, ReadOptions,
 };
 use crate::units::{self, LengthUnit};
 use fixplan_core::outline::Vertex;
@@ -101,6 +102,9 @@ pub struct LoadOptions {
     /// Circular arcs exact or flattened within the chord tolerance.
     /// Overrides the manifest's `arcs`; default exact.
     pub arcs: Option<ArcMode>,
+    /// Every file is a sheet: each outer loop a part of its own (`id#1`,
+    /// `id#2`, ...). Overrides the manifest's `sheet` and its entries'.
+    pub sheet: Option<bool>,
 }
 
 /// The manifest's file name, looked for when a directory is given.
@@ -146,10 +150,13 @@ fn read_options(units: Units, opts: &LoadOptions, manifest: &Header) -> ReadOpti
     if let Some(t) = opts.chord_tolerance.or(manifest.chord_tolerance) {
         r.chord_tolerance = t;
     }
-    if let Some(t) = opts.join_tolerance {
+    if let Some(t) = opts.join_tolerance.or(manifest.join_tolerance) {
         r.join_tolerance = t;
     }
     r.arcs = opts.arcs.or(manifest.arcs).unwrap_or_default();
+    r.sheet = opts.sheet.or(manifest.sheet).unwrap_or(false);
+    r.layers = manifest.layers.clone();
+    r.limits = manifest.limits;
     r
 }
 
@@ -174,7 +181,7 @@ fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
     files.sort();
     let parts = files
         .into_iter()
-        .map(|f| {
+        .flat_map(|f| {
             let id = f
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
@@ -183,7 +190,12 @@ fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
                 .file_name()
                 .map(PathBuf::from)
                 .unwrap_or_else(|| f.clone());
-            CatalogPart::new(id, Some(name), read_file_part(&f, &ropts, &[]))
+            file_parts(
+                id,
+                Some(name),
+                read_file_parts(&f, &ropts, &[]),
+                ropts.sheet,
+            )
         })
         .collect();
     Ok(Catalog {
@@ -194,20 +206,102 @@ fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
     })
 }
 
-/// Reads a part file, adds the entry's own access polygons, validates.
-fn read_file_part(
-    path: &Path,
-    ropts: &ReadOptions,
-    extra_access: &[Vec<[f64; 2]>],
-) -> Result<(Part, Vec<String>), PartErrorKind> {
-    let format = Format::from_path(path).ok_or(PartErrorKind::UnknownFileType)?;
-    let bytes = std::fs::read(path).map_err(|e| PartErrorKind::Unreadable {
+/// What reading one file gave: one part, the parts of a sheet (each read
+/// and validated on its own), or why the file gives none.
+type FileParts = Result<Vec<Result<(Part, Vec<String>), PartErrorKind>>, PartErrorKind>;
+
+/// The catalogue parts of a file: `id` for one part, `id#1`, `id#2`, ...
+/// for a file read as a sheet (even a sheet of one part, so that ids do
+/// not change with the number of parts found).
+fn file_parts(id: String, file: Option<PathBuf>, read: FileParts, sheet: bool) -> Vec<CatalogPart> {
+    match read {
+        Err(kind) => vec![CatalogPart::new(id, file, Err(kind))],
+        Ok(parts) if !sheet => parts
+            .into_iter()
+            .map(|p| CatalogPart::new(id.clone(), file.clone(), p))
+            .collect(),
+        Ok(parts) => parts
+            .into_iter()
+            .enumerate()
+            .map(|(i, p)| CatalogPart::new(format!("{id}#{}", i + 1), file.clone(), p))
+            .collect(),
+    }
+}
+
+/// A file's bytes, refusing anything but a regular file before opening it
+/// (a FIFO would block the reader, a device never end) and anything over
+/// [`Limits::file_bytes`], whose read is bounded even if the file grows.
+fn file_bytes(path: &Path, limits: &Limits) -> Result<Vec<u8>, PartErrorKind> {
+    let unreadable = |e: std::io::Error| PartErrorKind::Unreadable {
         path: path.to_path_buf(),
         error: Arc::new(e),
-    })?;
-    let mut raw = read_raw(&bytes, format, ropts)?;
-    raw.access.extend(extra_access.iter().cloned());
-    validated(raw, ropts.units)
+    };
+    let meta = std::fs::metadata(path).map_err(unreadable)?;
+    if !meta.is_file() {
+        return Err(PartErrorKind::NotAFile {
+            path: path.to_path_buf(),
+            kind: file_kind(&meta),
+        });
+    }
+    let too_big = |len: u64| {
+        PartErrorKind::Read(ReadError::Limit(LimitExceeded {
+            what: format!("the file's {len} bytes"),
+            limit: limits.file_bytes,
+            key: "file_bytes",
+        }))
+    };
+    if meta.len() > limits.file_bytes {
+        return Err(too_big(meta.len()));
+    }
+    let mut bytes = Vec::new();
+    let file = std::fs::File::open(path).map_err(unreadable)?;
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(file, limits.file_bytes.saturating_add(1)),
+        &mut bytes,
+    )
+    .map_err(unreadable)?;
+    let len = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
+    if len > limits.file_bytes {
+        return Err(too_big(len));
+    }
+    Ok(bytes)
+}
+
+/// What a path that is not a regular file is, for the message.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    if t.is_dir() {
+        return "a directory";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+    }
+    "not a regular file"
+}
+
+/// Reads a part file (a sheet: its parts), adds the entry's own access
+/// polygons to each, validates each.
+fn read_file_parts(path: &Path, ropts: &ReadOptions, extra_access: &[Vec<[f64; 2]>]) -> FileParts {
+    let format = Format::from_path(path).ok_or(PartErrorKind::UnknownFileType)?;
+    let bytes = file_bytes(path, &ropts.limits)?;
+    let raws = read_parts(&bytes, format, ropts)?;
+    Ok(raws
+        .into_iter()
+        .map(|mut raw| {
+            raw.access.extend(extra_access.iter().cloned());
+            validated(raw, ropts.units)
+        })
+        .collect())
 }
 
 /// [`validate_part`], keeping what was read in the error.
@@ -244,6 +338,7 @@ fn inline_part(
         outline,
         access: access.iter().map(|a| sc(a)).collect(),
         warnings: Vec::new(),
+        inner: Vec::new(),
     };
     validated(raw, ropts.units)
 }
@@ -268,6 +363,12 @@ struct Entry {
     units: Option<String>,
     #[serde(default)]
     chord_tolerance: Option<f64>,
+    #[serde(default)]
+    sheet: Option<bool>,
+    #[serde(default)]
+    layers: Option<Vec<String>>,
+    #[serde(default)]
+    ignore_layers: Option<Vec<String>>,
 }
 
 /// Where an entry's polygons come from.
@@ -282,7 +383,11 @@ struct Header {
     name: String,
     units: Units,
     chord_tolerance: Option<f64>,
+    join_tolerance: Option<f64>,
     arcs: Option<ArcMode>,
+    sheet: Option<bool>,
+    layers: LayerFilter,
+    limits: Limits,
     entries: Vec<toml::Value>,
 }
 
@@ -300,13 +405,14 @@ fn load_manifest(path: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
         base,
         ropts: read_options(header.units, opts, &header),
         chord_tolerance_given: opts.chord_tolerance.is_some(),
+        sheet_given: opts.sheet.is_some(),
     };
     let mut seen = HashMap::new();
     let parts = header
         .entries
         .into_iter()
         .enumerate()
-        .map(|(i, v)| load_entry(i, v, &ctx, &mut seen))
+        .flat_map(|(i, v)| load_entry(i, v, &ctx, &mut seen))
         .collect();
     Ok(Catalog {
         name: header.name,
@@ -355,6 +461,40 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
             ))
         }
     };
+    let join_tolerance = match table.remove("join_tolerance") {
+        None => None,
+        Some(v) => Some(
+            v.as_float()
+                .or(v.as_integer().map(|i| i as f64))
+                .filter(|t| t.is_finite() && *t >= 0.0)
+                .ok_or_else(|| {
+                    invalid(
+                        path,
+                        format!("join_tolerance {v} must be a non-negative number"),
+                    )
+                })?,
+        ),
+    };
+    let sheet = match table.remove("sheet") {
+        None => None,
+        Some(toml::Value::Boolean(b)) => Some(b),
+        Some(v) => return Err(invalid(path, format!("sheet {v} must be true or false"))),
+    };
+    let layers = LayerFilter {
+        read: string_list(table.remove("layers"), "layers").map_err(|m| invalid(path, m))?,
+        ignore: string_list(table.remove("ignore_layers"), "ignore_layers")
+            .map_err(|m| invalid(path, m))?,
+    };
+    let limits = match table.remove("limits") {
+        None => Limits::default(),
+        Some(toml::Value::Table(t)) => read_limits(t).map_err(|m| invalid(path, m))?,
+        Some(v) => {
+            return Err(invalid(
+                path,
+                format!("limits {v} must be a table ([limits])"),
+            ))
+        }
+    };
     let entries = match table.remove("part") {
         None => Vec::new(),
         Some(toml::Value::Array(a)) => a,
@@ -363,16 +503,55 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
     if let Some(k) = table.keys().next() {
         return Err(invalid(
             path,
-            format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, arcs, part)"),
+            format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, join_tolerance, arcs, sheet, layers, ignore_layers, limits, part)"),
         ));
     }
     Ok(Header {
         name,
         units,
         chord_tolerance,
+        join_tolerance,
         arcs,
+        sheet,
+        layers,
+        limits,
         entries,
     })
+}
+
+/// A list of strings (layer names), or why not.
+fn string_list(v: Option<toml::Value>, key: &str) -> Result<Vec<String>, String> {
+    match v {
+        None => Ok(Vec::new()),
+        Some(toml::Value::Array(a)) => a
+            .into_iter()
+            .map(|x| match x {
+                toml::Value::String(s) => Ok(s),
+                other => Err(format!("{key}: {other} is not a layer name (a string)")),
+            })
+            .collect(),
+        Some(v) => Err(format!("{key} {v} must be a list of layer names")),
+    }
+}
+
+/// The `[limits]` table: each key one of [`Limits::KEYS`], a positive
+/// integer.
+fn read_limits(t: toml::Table) -> Result<Limits, String> {
+    let mut limits = Limits::default();
+    for (k, v) in t {
+        let n = v
+            .as_integer()
+            .and_then(|i| u64::try_from(i).ok())
+            .filter(|&i| i > 0)
+            .ok_or_else(|| format!("limits.{k} = {v} must be a positive integer"))?;
+        if !limits.set(&k, n) {
+            return Err(format!(
+                "unknown limit \"{k}\" (expected one of {})",
+                Limits::KEYS.join(", ")
+            ));
+        }
+    }
+    Ok(limits)
 }
 
 /// A positive finite number, integer or float.
@@ -390,16 +569,18 @@ struct EntryContext<'a> {
     ropts: ReadOptions,
     /// The caller fixed the chord tolerance: entries may not change it.
     chord_tolerance_given: bool,
+    /// The caller fixed `sheet`: entries may not change it.
+    sheet_given: bool,
 }
 
-/// Entry `i` (from 0) of the manifest as a catalogue part; `seen` holds
-/// the ids of the entries before it.
+/// Entry `i` (from 0) of the manifest as catalogue parts (one, or those
+/// of a sheet); `seen` holds the ids of the entries before it.
 fn load_entry(
     i: usize,
     v: toml::Value,
     ctx: &EntryContext,
     seen: &mut HashMap<String, usize>,
-) -> CatalogPart {
+) -> Vec<CatalogPart> {
     let fallback_id = v
         .get("id")
         .and_then(|x| x.as_str())
@@ -412,7 +593,7 @@ fn load_entry(
                 entry: i + 1,
                 message: e.message().to_string(),
             };
-            return CatalogPart::new(fallback_id, None, Err(kind));
+            return vec![CatalogPart::new(fallback_id, None, Err(kind))];
         }
     };
     let checked = check_entry(&entry, seen, i);
@@ -420,23 +601,23 @@ fn load_entry(
         Ok(_) => entry.quantity.unwrap_or(1.0),
         Err(_) => 1.0,
     };
+    let ropts = entry_options(&entry, ctx);
+    let sheet = entry.file.is_some() && ropts.as_ref().is_ok_and(|r| r.sheet);
     let read = checked
         .map_err(PartErrorKind::from)
-        .and_then(|geometry| read_entry(&entry, geometry, ctx));
-    let mut cp = CatalogPart::new(entry.id.clone(), entry.file.clone(), read);
-    cp.quantity = quantity;
-    cp.top_k = entry.top_k;
-    cp.wrenches = entry.wrenches;
-    cp
+        .and_then(|geometry| read_entry(&entry, geometry, ctx, ropts?));
+    let mut parts = file_parts(entry.id.clone(), entry.file.clone(), read, sheet);
+    for cp in &mut parts {
+        cp.quantity = quantity;
+        cp.top_k = entry.top_k;
+        cp.wrenches.clone_from(&entry.wrenches);
+    }
+    parts
 }
 
-/// Reads an entry that passed [`check_entry`].
-fn read_entry(
-    entry: &Entry,
-    geometry: Geometry,
-    ctx: &EntryContext,
-) -> Result<(Part, Vec<String>), PartErrorKind> {
-    let mut ropts = ctx.ropts;
+/// The catalogue's read options with the entry's own choices.
+fn entry_options(entry: &Entry, ctx: &EntryContext) -> Result<ReadOptions, PartErrorKind> {
+    let mut ropts = ctx.ropts.clone();
     if let Some(t) = entry.chord_tolerance.filter(|_| !ctx.chord_tolerance_given) {
         ropts.chord_tolerance = t;
     }
@@ -444,9 +625,28 @@ fn read_entry(
         ropts.fallback =
             LengthUnit::parse(u).ok_or_else(|| EntryProblem::UnknownUnits(u.clone()))?;
     }
+    if let Some(s) = entry.sheet.filter(|_| !ctx.sheet_given) {
+        ropts.sheet = s;
+    }
+    if let Some(l) = &entry.layers {
+        ropts.layers.read.clone_from(l);
+    }
+    if let Some(l) = &entry.ignore_layers {
+        ropts.layers.ignore.clone_from(l);
+    }
+    Ok(ropts)
+}
+
+/// Reads an entry that passed [`check_entry`].
+fn read_entry(
+    entry: &Entry,
+    geometry: Geometry,
+    ctx: &EntryContext,
+    ropts: ReadOptions,
+) -> FileParts {
     match geometry {
-        Geometry::File(f) => read_file_part(&ctx.base.join(f), &ropts, &entry.access),
-        Geometry::Outline(outline) => inline_part(outline, &entry.access, &ropts),
+        Geometry::File(f) => read_file_parts(&ctx.base.join(f), &ropts, &entry.access),
+        Geometry::Outline(outline) => Ok(vec![inline_part(outline, &entry.access, &ropts)]),
     }
 }
 

@@ -176,6 +176,7 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
         outline,
         access,
         warnings: Vec::new(),
+        inner: Vec::new(),
     })
 }
 

@@ -9,13 +9,13 @@ mod raw;
 mod svg;
 mod validate;
 
-pub use dxf::{read_dxf, write_dxf, DxfError};
+pub use dxf::{read_dxf, read_dxf_parts, write_dxf, DxfError, OpenCause};
 pub use json::{read_json, write_json, JsonError};
 pub(crate) use outline::flatten_vertices;
 pub use outline::OutlineError;
 pub use raw::{
-    ArcMode, Format, PolygonRole, RawPart, ReadOptions, DEFAULT_CHORD_TOLERANCE_MM,
-    DEFAULT_JOIN_TOLERANCE_MM,
+    ArcMode, Format, LayerFilter, LimitExceeded, Limits, PolygonRole, RawPart, ReadOptions,
+    DEFAULT_CHORD_TOLERANCE_MM, DEFAULT_JOIN_TOLERANCE_MM,
 };
 pub use svg::{read_svg, write_svg, ElementProblem, PathError, SvgError, TransformError};
 pub use validate::{validate_part, InvalidPolygon, PolygonProblem};
@@ -32,6 +32,9 @@ pub enum ReadError {
     /// [`ReadOptions::join_tolerance`] is negative or not a number.
     #[error("join tolerance {0} must be a non-negative number")]
     JoinTolerance(f64),
+    /// The file is larger than [`Limits::file_bytes`].
+    #[error(transparent)]
+    Limit(#[from] LimitExceeded),
     /// The DXF reader's finding.
     #[error(transparent)]
     Dxf(#[from] DxfError),
@@ -59,17 +62,50 @@ pub enum ParseError {
 /// that add polygons of their own (a manifest entry's `access`) before
 /// [`validate_part`].
 pub fn read_raw(bytes: &[u8], format: Format, opts: &ReadOptions) -> Result<RawPart, ReadError> {
+    check_options(bytes, opts)?;
+    Ok(match format {
+        Format::Dxf => read_dxf(bytes, opts)?,
+        Format::Svg => read_svg(bytes, opts)?,
+        Format::Json => read_json(bytes, opts)?,
+    })
+}
+
+/// Tolerances that make sense, and a file within [`Limits::file_bytes`],
+/// before any reader looks at the bytes.
+fn check_options(bytes: &[u8], opts: &ReadOptions) -> Result<(), ReadError> {
     if !(opts.chord_tolerance.is_finite() && opts.chord_tolerance > 0.0) {
         return Err(ReadError::ChordTolerance(opts.chord_tolerance));
     }
     if !(opts.join_tolerance.is_finite() && opts.join_tolerance >= 0.0) {
         return Err(ReadError::JoinTolerance(opts.join_tolerance));
     }
-    Ok(match format {
-        Format::Dxf => read_dxf(bytes, opts)?,
-        Format::Svg => read_svg(bytes, opts)?,
-        Format::Json => read_json(bytes, opts)?,
-    })
+    let len = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
+    if len > opts.limits.file_bytes {
+        return Err(LimitExceeded {
+            what: format!("the file's {len} bytes"),
+            limit: opts.limits.file_bytes,
+            key: "file_bytes",
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// [`read_raw`] for a file that may be a sheet: with
+/// [`ReadOptions::sheet`], every outer loop of a DXF drawing as a part of
+/// its own, in the order [`read_dxf_parts`] gives; otherwise (and for SVG
+/// and JSON, whose readers give one part) the one part.
+pub fn read_parts(
+    bytes: &[u8],
+    format: Format,
+    opts: &ReadOptions,
+) -> Result<Vec<RawPart>, ReadError> {
+    if opts.sheet && format == Format::Dxf {
+        check_options(bytes, opts)?;
+        Ok(read_dxf_parts(bytes, opts)?)
+    } else {
+        Ok(vec![read_raw(bytes, format, opts)?])
+    }
 }
 
 /// Reads and validates a part file's bytes: the part and the warnings of

@@ -18,7 +18,7 @@ pub const DEFAULT_CHORD_TOLERANCE_MM: f64 = 0.05;
 pub const DEFAULT_JOIN_TOLERANCE_MM: f64 = 0.01;
 
 /// How to read one part file.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ReadOptions {
     /// The catalogue's units: the part comes back in these.
     pub units: Units,
@@ -31,6 +31,119 @@ pub struct ReadOptions {
     pub join_tolerance: f64,
     /// Circular arcs kept exact (bulge vertices) or flattened into chords.
     pub arcs: ArcMode,
+    /// Every outer loop of the file is a part of its own (a sheet of
+    /// nested parts), read with [`read_parts`](super::read_parts);
+    /// otherwise a second outer loop is an error.
+    pub sheet: bool,
+    /// Which layers of a DXF drawing are read.
+    pub layers: LayerFilter,
+    /// How much work and memory one file may cost.
+    pub limits: Limits,
+}
+
+/// Layers of a DXF drawing to read, for drawings whose borders,
+/// dimensions, title blocks and construction lines are on layers of their
+/// own. Names match without regard to case or surrounding spaces.
+/// Access/keepout layers are read unless `ignore` names them.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LayerFilter {
+    /// Only these layers (empty: all).
+    pub read: Vec<String>,
+    /// Never these layers.
+    pub ignore: Vec<String>,
+}
+
+fn same_layer(a: &str, b: &str) -> bool {
+    a.trim().eq_ignore_ascii_case(b.trim())
+}
+
+impl LayerFilter {
+    /// Whether an entity on `layer` is read; `access` says the layer holds
+    /// access constraints, which `read` does not need to name.
+    pub fn reads(&self, layer: &str, access: bool) -> bool {
+        if self.ignore.iter().any(|l| same_layer(l, layer)) {
+            return false;
+        }
+        access || self.read.is_empty() || self.read.iter().any(|l| same_layer(l, layer))
+    }
+
+    /// Whether the filter reads every layer.
+    pub fn is_all(&self) -> bool {
+        self.read.is_empty() && self.ignore.is_empty()
+    }
+}
+
+/// Bounds on what one part file may cost to read, whatever it holds: a
+/// file over any of them is refused with a message naming the limit and
+/// the manifest key that raises it (`[limits]`, the field's name).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest file, bytes (`file_bytes`).
+    pub file_bytes: u64,
+    /// Most entities of a DXF drawing, those of exploded blocks included
+    /// (`entities`).
+    pub entities: usize,
+    /// Most vertices of all loops and pieces together, curves flattened
+    /// (`vertices`).
+    pub vertices: usize,
+    /// Deepest nesting of DXF block references (`block_depth`).
+    pub block_depth: usize,
+    /// Most straight pieces one SPLINE is flattened into (`spline_pieces`).
+    pub spline_pieces: usize,
+}
+
+impl Limits {
+    /// The keys of a manifest's `[limits]` table, as [`Limits::set`] takes
+    /// them.
+    pub const KEYS: [&'static str; 5] = [
+        "file_bytes",
+        "entities",
+        "vertices",
+        "block_depth",
+        "spline_pieces",
+    ];
+
+    /// Sets the limit named `key` (one of [`Limits::KEYS`]); `false` for
+    /// an unknown key.
+    pub fn set(&mut self, key: &str, value: u64) -> bool {
+        let v = usize::try_from(value).unwrap_or(usize::MAX);
+        match key {
+            "file_bytes" => self.file_bytes = value,
+            "entities" => self.entities = v,
+            "vertices" => self.vertices = v,
+            "block_depth" => self.block_depth = v,
+            "spline_pieces" => self.spline_pieces = v,
+            _ => return false,
+        }
+        true
+    }
+}
+
+impl Default for Limits {
+    /// Generous for any real part drawing (the largest sheets seen have a
+    /// few ten thousand entities), small enough that a hostile file costs
+    /// seconds and a few hundred MB at most.
+    fn default() -> Limits {
+        Limits {
+            file_bytes: 64 << 20,
+            entities: 200_000,
+            vertices: 2_000_000,
+            block_depth: 16,
+            spline_pieces: 100_000,
+        }
+    }
+}
+
+/// A limit of [`Limits`] that a file goes over.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{what} is over the limit of {limit}; if the file is what you mean, raise it with `{key} = ...` in the manifest's [limits] table")]
+pub struct LimitExceeded {
+    /// What was counted, e.g. "the file's 70000000 bytes".
+    pub what: String,
+    /// The limit.
+    pub limit: u64,
+    /// Its key in [`Limits::KEYS`].
+    pub key: &'static str,
 }
 
 /// What the readers make of circular arcs (DXF bulges, ARC and CIRCLE
@@ -99,6 +212,9 @@ impl ReadOptions {
             chord_tolerance: DEFAULT_CHORD_TOLERANCE_MM / units.mm_per_unit(),
             join_tolerance: DEFAULT_JOIN_TOLERANCE_MM / units.mm_per_unit(),
             arcs: ArcMode::Exact,
+            sheet: false,
+            layers: LayerFilter::default(),
+            limits: Limits::default(),
         }
     }
 }
@@ -115,6 +231,10 @@ pub struct RawPart {
     pub access: Vec<Vec<[f64; 2]>>,
     /// What the reader ignored or assumed, for the user to check.
     pub warnings: Vec<String>,
+    /// Loops directly inside the outline (holes, pockets), as read: not
+    /// used by the planar method today (a warning says so each), kept for
+    /// the holes of SPEC 9.
+    pub inner: Vec<Vec<Vertex>>,
 }
 
 /// A part file format, known by its extension.
