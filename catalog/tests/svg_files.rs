@@ -374,6 +374,14 @@ fn inkscape_layers_hidden_layers_and_own_elements() {
     assert!(w.iter().any(|m| m.contains("hole")), "{w:?}");
 }
 
+#[test]
+fn a_nested_viewport_is_named() {
+    let (_, w) = load_mm(&mm_doc(
+        r#"<svg x="10" width="50" viewBox="0 0 10 10"><rect width="80" height="40"/></svg>"#,
+    ));
+    assert!(w.iter().any(|m| m.contains("nested viewport")), "{w:?}");
+}
+
 // ---- Limits ----
 
 fn limit_error(text: &str, what: &str) {
@@ -405,6 +413,9 @@ fn deep_nesting_is_bounded_not_a_stack_overflow() {
 #[test]
 fn element_and_attribute_counts_are_bounded() {
     limit_error(&mm_doc(&"<g/>".repeat(500_001)), "elements");
+    // A quote in a comment hides nothing from the count.
+    let hiding = format!("<!-- it's -->{}<!-- ' -->", "<g/>".repeat(500_001));
+    limit_error(&mm_doc(&hiding), "elements");
     let attrs: String = (0..2_000_001).map(|i| format!(" a{i}=\"\"")).collect();
     limit_error(&mm_doc(&format!("<g{attrs}/>")), "attributes");
 }

@@ -146,8 +146,11 @@ pub(super) fn settle_open(
     let Some(first) = open.first() else {
         return Ok(picked?);
     };
-    let Ok(mut raw) = picked else {
-        return Err(first.path.clone());
+    let mut raw = match picked {
+        Ok(raw) => raw,
+        // The open chain is why there is no outline.
+        Err(OutlineError::NoClosedLoop { .. }) => return Err(first.path.clone()),
+        Err(e) => return Err(e.into()),
     };
     // The outline's extent back in user units (y flipped back).
     let user: Vec<Vertex> = raw

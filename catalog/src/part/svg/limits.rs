@@ -104,37 +104,15 @@ pub(super) fn prescan(text: &str) -> Result<(), Refusal> {
     check_entities(text)
 }
 
-/// Start tags and attributes (`=` inside a tag, outside quotes); comments
-/// and declarations count as tags too, which only errs on the safe side.
+/// Upper bounds on start tags (`<` before a name) and attributes (`=`
+/// signs): no quote or comment can hide one from this count, which only
+/// errs on the safe side (an `=` in text counts as an attribute).
 fn count_tags(s: &[u8]) -> (usize, usize) {
-    let (mut elements, mut attributes) = (0usize, 0usize);
-    let mut in_tag = false;
-    let mut quote: Option<u8> = None;
-    for (i, &c) in s.iter().enumerate() {
-        match (in_tag, quote) {
-            (true, Some(q)) => {
-                if c == q {
-                    quote = None;
-                }
-            }
-            (true, None) => match c {
-                b'"' | b'\'' => quote = Some(c),
-                b'=' => attributes += 1,
-                b'>' => in_tag = false,
-                _ => {}
-            },
-            (false, _) => {
-                if c == b'<' {
-                    in_tag = true;
-                    if s.get(i + 1)
-                        .is_some_and(|n| n.is_ascii_alphabetic() || *n == b'_' || *n >= 0x80)
-                    {
-                        elements += 1;
-                    }
-                }
-            }
-        }
-    }
+    let elements = s
+        .windows(2)
+        .filter(|w| w[0] == b'<' && (w[1].is_ascii_alphabetic() || w[1] == b'_' || w[1] >= 0x80))
+        .count();
+    let attributes = s.iter().filter(|&&c| c == b'=').count();
     (elements, attributes)
 }
 

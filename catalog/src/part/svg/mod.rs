@@ -216,6 +216,14 @@ fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut Walk) -> Resul
         };
         let access = access || marked_access(child);
         if is_container(child.tag_name().name()) {
+            let viewport = ["x", "y", "width", "height", "viewBox"];
+            if child.tag_name().name() == "svg" && viewport.iter().any(|a| child.has_attribute(*a))
+            {
+                w.warnings.push(format!(
+                    "{} is a nested viewport; its x, y, width, height and viewBox are not applied (its shapes are read in the outer user units)",
+                    describe(child)
+                ));
+            }
             if stack.len() >= limits::MAX_DEPTH {
                 return Err(SvgError::TooBig {
                     what: "levels of nested groups",
