@@ -187,8 +187,10 @@ fn dxf_circle_is_two_half_arcs() {
     assert!(s.outline.len() > 20);
 }
 
+/// A file in mm (one user unit a millimetre), so that it reads without a
+/// warning about its scale.
 fn svg(body: &str) -> String {
-    format!("<svg xmlns=\"http://www.w3.org/2000/svg\">{body}</svg>")
+    format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000mm\" height=\"1000mm\" viewBox=\"0 0 1000 1000\">{body}</svg>")
 }
 
 #[test]

@@ -12,18 +12,25 @@
 //! so SVG parts usually have negative y coordinates; fixplan does not care
 //! where the part frame's origin is.
 //!
-//! **Units.** If the root `<svg>` has a `width` in `mm`, `cm` or `in` and a
-//! `viewBox`, one user unit is `width / viewBox-width` of that unit (this is
-//! what Inkscape and most CAD exports write). A physical `width` without a
-//! `viewBox` means user units are CSS pixels (1/96 in). Without a physical
-//! width (no `width`, `%`, `px` or a bare number), user units are taken to
-//! be the catalogue's fallback unit, because drawings made for fixplan by
-//! hand or by script rarely mean pixels.
+//! **Units** (`units.rs`). By SVG's length rules for the root's `width`
+//! (or, without one, `height`) and `viewBox`: one user unit is `width /
+//! viewBox-width`, in the width's unit (mm, cm, Q, in, pt, pc: physical,
+//! no warning; a bare number or px: CSS px, 96 to the inch, with a warning
+//! stating the scale). A width without a `viewBox` makes user units CSS
+//! px. Without a width or height in absolute units (none, `%`), the file
+//! has no size at all and user units are the catalogue's fallback unit
+//! (a manifest entry's `units`), with a warning: drawings made for fixplan
+//! by hand or by script rarely mean pixels.
 //!
-//! **What is read.** `polygon`, `polyline`, `path` (M, L, H, V, C, S, Q, T,
-//! A, Z, absolute and relative, curves flattened to the chord tolerance),
-//! `rect`, `circle` and `ellipse`, with `translate`, `scale`, `rotate`,
-//! `skewX`, `skewY` and `matrix` transforms on elements and groups.
+//! **What is read.** `polygon`, `polyline`, `line`, `path` (M, L, H, V, C,
+//! S, Q, T, A, Z, absolute and relative, curves flattened to the chord
+//! tolerance), `rect`, `circle` and `ellipse`, with `translate`, `scale`,
+//! `rotate`, `skewX`, `skewY` and `matrix` transforms on elements and
+//! groups; a DOCTYPE with internal entities (`limits.rs` bounds their
+//! expansion; external ones are never read). Open subpaths, `<line>`s and
+//! open `<polyline>`s are joined end to end within the join tolerance
+//! (`join.rs`). Hidden elements (`display:none`) and elements of other
+//! namespaces are skipped.
 //!
 //! **Arcs.** An `A` command with equal radii, a `<circle>`, an
 //! `<ellipse>` with `rx = ry` and the corners of a `<rect>` with
@@ -44,96 +51,26 @@
 //! smaller ones inside it are ignored with a warning. `<defs>`, `<use>`,
 //! text and styles are not geometry here.
 
+mod error;
+mod join;
 mod lexer;
+mod limits;
 mod path;
 mod transform;
+mod units;
 
+pub use error::{ElementProblem, SvgError};
 pub use path::PathError;
 pub use transform::TransformError;
 
-use super::outline::{arc_pieces, fmt_pt, pick_outline, positions, OutlineError, P};
+use super::outline::{arc_pieces, pick_outline, positions, Piece, P};
 use super::raw::{RawPart, ReadOptions};
-use crate::units::LengthUnit;
 use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
 use lexer::Lexer;
+use limits::Budget;
 use path::{parse_path, Sub};
 use transform::{parse_transform, Affine};
-
-/// Why an SVG file does not give a part.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum SvgError {
-    /// The bytes are not UTF-8.
-    #[error("not a readable SVG file: {0}")]
-    NotUtf8(std::str::Utf8Error),
-    /// Not well-formed XML; the parser's message says where.
-    #[error("not a readable SVG file: {0}")]
-    NotXml(roxmltree::Error),
-    /// XML whose root element (named here) is not `<svg>`.
-    #[error("not an SVG file: the root element is <{0}>")]
-    NotSvg(String),
-    /// A physical `width` with a `viewBox` that gives no scale.
-    #[error("root <svg> has a viewBox that is not four numbers with a positive width")]
-    BadViewBox,
-    /// The root `<svg>`'s own `transform`.
-    #[error(transparent)]
-    RootTransform(TransformError),
-    /// A problem in an element's `transform` or path data, with the
-    /// element (`<path id="...">`, or its tag and line).
-    #[error("{element}: {problem}")]
-    InElement {
-        /// The element, as messages name it.
-        element: String,
-        /// What is wrong in it.
-        problem: ElementProblem,
-    },
-    /// A `points` attribute that is not numbers; the whole attribute.
-    #[error("bad points list \"{0}\"")]
-    BadPoints(String),
-    /// A `points` attribute with an x but no y; the whole attribute.
-    #[error("odd number of coordinates in \"{0}\"")]
-    OddPoints(String),
-    /// A length with a unit or percentage where only user units make sense.
-    #[error("<{element}> {attribute}=\"{value}\": only plain numbers are supported here")]
-    Length {
-        /// The element's tag.
-        element: String,
-        /// The attribute's name.
-        attribute: String,
-        /// What it says.
-        value: String,
-    },
-    /// More than 10 000 groups: a guard against hostile files.
-    #[error("too many nested elements")]
-    TooManyElements,
-    /// A shape that does not close; the ends are in user units because
-    /// that is what the file's author sees.
-    #[error("open loop: {element} (subpath {subpath}) runs from {} to {} in SVG user units and is not closed (add Z)", fmt_pt(*.from), fmt_pt(*.to))]
-    OpenSubpath {
-        /// The element, as messages name it.
-        element: String,
-        /// Which subpath of it, from 0.
-        subpath: usize,
-        /// Its first point, user units.
-        from: [f64; 2],
-        /// Its last point, user units.
-        to: [f64; 2],
-    },
-    /// The shapes found do not make one part.
-    #[error(transparent)]
-    Outline(#[from] OutlineError),
-}
-
-/// What is wrong inside one element.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-pub enum ElementProblem {
-    /// Its `transform` attribute.
-    #[error(transparent)]
-    Transform(TransformError),
-    /// Its path data.
-    #[error(transparent)]
-    Path(PathError),
-}
 
 fn in_element(node: roxmltree::Node, problem: ElementProblem) -> SvgError {
     SvgError::InElement {
@@ -196,8 +133,13 @@ struct Walk {
     exact: bool,
     loops: Vec<(Vec<Vertex>, String)>,
     access: Vec<Vec<P>>,
+    /// Open subpaths, `<line>`s and open `<polyline>`s, to be joined end
+    /// to end.
+    pieces: Vec<Piece>,
+    /// The same, of access constraints.
+    access_pieces: Vec<Piece>,
     warnings: Vec<String>,
-    depth_guard: usize,
+    budget: Budget,
 }
 
 fn describe(node: roxmltree::Node) -> String {
@@ -216,13 +158,54 @@ fn is_container(name: &str) -> bool {
     matches!(name, "g" | "a" | "switch" | "svg")
 }
 
-fn walk(node: roxmltree::Node, ctm: Affine, access: bool, w: &mut Walk) -> Result<(), SvgError> {
-    w.depth_guard += 1;
-    if w.depth_guard > 10_000 {
-        return Err(SvgError::TooManyElements);
-    }
-    for child in node.children().filter(|n| n.is_element()) {
-        if child.attribute("display") == Some("none") {
+const SVG_NS: &str = "http://www.w3.org/2000/svg";
+
+/// Whether an element is hidden: `display="none"`, or `display:none` in
+/// its `style` (how Inkscape hides a layer).
+fn display_none(node: roxmltree::Node) -> bool {
+    node.attribute("display")
+        .is_some_and(|d| d.trim() == "none")
+        || node.attribute("style").is_some_and(|st| {
+            st.split(';').any(|decl| {
+                let mut kv = decl.splitn(2, ':');
+                kv.next().is_some_and(|k| k.trim() == "display")
+                    && kv.next().is_some_and(|v| v.trim() == "none")
+            })
+        })
+}
+
+/// Whether an element is of another namespace than SVG's: Inkscape's and
+/// Sodipodi's own elements are no geometry even when named like SVG's.
+fn foreign(node: roxmltree::Node) -> bool {
+    node.tag_name().namespace().is_some_and(|ns| ns != SVG_NS)
+}
+
+/// Walks the drawing in document order without recursion (an explicit
+/// stack of child iterators), so that nesting costs heap, not stack, and
+/// is bounded by [`limits::MAX_DEPTH`].
+fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut Walk) -> Result<(), SvgError> {
+    let mut stack = vec![(root.children(), ctm, access)];
+    while let Some((children, ctm, access)) = stack.last_mut() {
+        let (ctm, access) = (*ctm, *access);
+        let Some(child) = children.next() else {
+            stack.pop();
+            continue;
+        };
+        if !child.is_element() || foreign(child) {
+            continue;
+        }
+        if display_none(child) {
+            let name = child.tag_name().name();
+            let drawn = matches!(
+                name,
+                "path" | "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon"
+            );
+            if drawn || (is_container(name) && child.children().any(|c| c.is_element())) {
+                w.warnings.push(format!(
+                    "{} is hidden (display:none, e.g. a hidden layer); not read",
+                    describe(child)
+                ));
+            }
             continue;
         }
         let ctm = match child.attribute("transform") {
@@ -233,13 +216,27 @@ fn walk(node: roxmltree::Node, ctm: Affine, access: bool, w: &mut Walk) -> Resul
         };
         let access = access || marked_access(child);
         if is_container(child.tag_name().name()) {
-            walk(child, ctm, access, w)?;
+            let viewport = ["x", "y", "width", "height", "viewBox"];
+            if child.tag_name().name() == "svg" && viewport.iter().any(|a| child.has_attribute(*a))
+            {
+                w.warnings.push(format!(
+                    "{} is a nested viewport; its x, y, width, height and viewBox are not applied (its shapes are read in the outer user units)",
+                    describe(child)
+                ));
+            }
+            if stack.len() >= limits::MAX_DEPTH {
+                return Err(SvgError::TooBig {
+                    what: "levels of nested groups",
+                    limit: limits::MAX_DEPTH,
+                });
+            }
+            stack.push((child.children(), ctm, access));
             continue;
         }
         let tol = w.tol / ctm.max_scale();
         let exact = w.exact && !access && ctm.is_similarity();
-        if let Some(subs) = element_subpaths(child, tol, exact, &mut w.warnings)? {
-            w.add(child, subs, ctm, access)?;
+        if let Some(subs) = element_subpaths(child, tol, exact, &mut w.warnings, &mut w.budget)? {
+            w.add(child, subs, ctm, access);
         }
     }
     Ok(())
@@ -253,9 +250,30 @@ fn element_subpaths(
     tol: f64,
     exact: bool,
     warnings: &mut Vec<String>,
+    budget: &mut Budget,
 ) -> Result<Option<Vec<Sub>>, SvgError> {
     let name = el.tag_name().name();
     let subs = match name {
+        "path" => {
+            return parse_path(el.attribute("d").unwrap_or(""), tol, exact, budget)
+                .map(Some)
+                .map_err(|e| in_element(el, ElementProblem::Path(e)))
+        }
+        "line" => vec![Sub {
+            pts: vec![
+                Vertex::new(
+                    length_attr(el, "x1", 0.0)?,
+                    length_attr(el, "y1", 0.0)?,
+                    0.0,
+                ),
+                Vertex::new(
+                    length_attr(el, "x2", 0.0)?,
+                    length_attr(el, "y2", 0.0)?,
+                    0.0,
+                ),
+            ],
+            closed: false,
+        }],
         "polygon" | "polyline" => vec![Sub {
             pts: points_attr(el.attribute("points").unwrap_or(""))?
                 .into_iter()
@@ -263,9 +281,7 @@ fn element_subpaths(
                 .collect(),
             closed: name == "polygon",
         }],
-        "path" => parse_path(el.attribute("d").unwrap_or(""), tol, exact)
-            .map_err(|e| in_element(el, ElementProblem::Path(e)))?,
-        "rect" => rect(el, tol, exact)?,
+        "rect" => rect(el, tol, exact, budget)?,
         "circle" | "ellipse" => vec![ellipse(el, tol, exact)?],
         "use" => {
             warnings.push(format!(
@@ -274,15 +290,10 @@ fn element_subpaths(
             ));
             return Ok(None);
         }
-        "line" => {
-            warnings.push(format!(
-                "{} is a single line, not a shape; ignored",
-                describe(el)
-            ));
-            return Ok(None);
-        }
         _ => return Ok(None),
     };
+    let n = subs.iter().map(|s| s.pts.len()).sum();
+    budget.vertices(n)?;
     Ok(Some(subs))
 }
 
@@ -291,7 +302,12 @@ fn element_subpaths(
 /// any `A` command (a rounded rectangle is how drawing programs write a
 /// filleted plate). As in SVG: a radius given alone serves for both, and
 /// each is at most half the side it rounds.
-fn rect(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Vec<Sub>, SvgError> {
+fn rect(
+    el: roxmltree::Node,
+    tol: f64,
+    exact: bool,
+    budget: &mut Budget,
+) -> Result<Vec<Sub>, SvgError> {
     let x = length_attr(el, "x", 0.0)?;
     let y = length_attr(el, "y", 0.0)?;
     let wd = length_attr(el, "width", 0.0)?;
@@ -345,7 +361,7 @@ fn rect(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Vec<Sub>, SvgError
         side('V', y + ry, ht - 2.0 * ry),
         corner(x + rx, y),
     );
-    parse_path(&d, tol, exact).map_err(|e| in_element(el, ElementProblem::Path(e)))
+    parse_path(&d, tol, exact, budget).map_err(|e| in_element(el, ElementProblem::Path(e)))
 }
 
 /// A `<circle>` or `<ellipse>` as a closed polygon within `tol`, or, when
@@ -375,29 +391,16 @@ fn ellipse(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Sub, SvgError> 
 }
 
 impl Walk {
-    /// Adds an element's subpaths as loops (or access loops), transformed;
-    /// every one must be closed.
-    fn add(
-        &mut self,
-        el: roxmltree::Node,
-        subs: Vec<Sub>,
-        ctm: Affine,
-        access: bool,
-    ) -> Result<(), SvgError> {
+    /// Adds an element's subpaths, transformed: closed ones as loops (or
+    /// access loops), open ones as pieces to join.
+    fn add(&mut self, el: roxmltree::Node, subs: Vec<Sub>, ctm: Affine, access: bool) {
         let mirror = ctm.mirrors();
+        let many = subs.len() > 1;
         let mut loops = Vec::new();
         for (k, sub) in subs.into_iter().enumerate() {
             let mut pts = sub.pts;
             let at = |i: usize| pts.get(i).map(|v: &Vertex| [v.x, v.y]);
             let closes = pts.len() > 2 && at(0) == at(pts.len() - 1);
-            if !sub.closed && !closes {
-                return Err(SvgError::OpenSubpath {
-                    element: describe(el),
-                    subpath: k,
-                    from: at(0).unwrap_or_default(),
-                    to: pts.last().map(|v| [v.x, v.y]).unwrap_or_default(),
-                });
-            }
             if closes {
                 pts.pop();
             }
@@ -413,7 +416,19 @@ impl Walk {
                     Vertex::new(x, y, b)
                 })
                 .collect();
-            if access {
+            if !sub.closed && !closes {
+                let label = if many {
+                    format!("{} (subpath {k})", describe(el))
+                } else {
+                    describe(el)
+                };
+                let piece = Piece { pts, label };
+                if access {
+                    self.access_pieces.push(piece);
+                } else {
+                    self.pieces.push(piece);
+                }
+            } else if access {
                 self.access.push(positions(&pts));
             } else {
                 loops.push((pts, describe(el)));
@@ -423,7 +438,6 @@ impl Walk {
             take_written_bulges(pts, &b);
         }
         self.loops.extend(loops);
-        Ok(())
     }
 }
 
@@ -453,61 +467,48 @@ fn take_written_bulges(pts: &mut [Vertex], written: &[f64]) {
     }
 }
 
-fn split_length(s: &str) -> Option<(f64, &str)> {
-    let s = s.trim();
-    let end = s
-        .find(|c: char| c.is_ascii_alphabetic() || c == '%')
-        .unwrap_or(s.len());
-    let v = s[..end].trim().parse::<f64>().ok()?;
-    Some((v, s[end..].trim()))
-}
-
-/// Factor from user units to catalogue units.
-fn user_unit(root: roxmltree::Node, opts: &ReadOptions) -> Result<f64, SvgError> {
-    let physical = root
-        .attribute("width")
-        .and_then(split_length)
-        .and_then(|(v, u)| {
-            LengthUnit::parse(u)
-                .filter(|u| matches!(u, LengthUnit::Mm | LengthUnit::Cm | LengthUnit::In))
-                .map(|u| (v, u))
-        });
-    let Some((w, unit)) = physical else {
-        return Ok(opts.fallback.factor_to(opts.units));
-    };
-    let to_cat = unit.factor_to(opts.units);
-    let vb: Option<Vec<f64>> = root.attribute("viewBox").map(|s| {
-        let mut lx = Lexer::new(s);
-        std::iter::from_fn(|| lx.number()).collect()
-    });
-    match vb.as_deref() {
-        Some([_, _, vw, _]) if *vw > 0.0 && vw.is_finite() && w.is_finite() && w > 0.0 => {
-            Ok(w / vw * to_cat)
-        }
-        Some(_) => Err(SvgError::BadViewBox),
-        // CSS pixels: 96 per inch.
-        None => Ok(LengthUnit::In.factor_to(opts.units) / 96.0),
-    }
-}
-
 /// Reads an SVG drawing into a part in `opts.units`, unvalidated: the
 /// reader finds the shapes, [`validate_part`](super::validate_part) judges
 /// them the same way for every format.
 pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
+    if bytes.len() > limits::MAX_BYTES {
+        return Err(SvgError::TooBig {
+            what: "bytes in an SVG file",
+            limit: limits::MAX_BYTES,
+        });
+    }
     let text = std::str::from_utf8(bytes).map_err(SvgError::NotUtf8)?;
-    let doc = roxmltree::Document::parse(text).map_err(SvgError::NotXml)?;
+    limits::prescan(text).map_err(SvgError::from)?;
+    // A DOCTYPE is read (most exporters write one); internal entities are
+    // expanded by the parser within the prescan's bound, external ones are
+    // never fetched (no resolver is given) and referring to one is
+    // refused by the prescan.
+    let parsing = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: u32::try_from(4 * limits::MAX_ELEMENTS).unwrap_or(u32::MAX),
+        ..roxmltree::ParsingOptions::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(text, parsing).map_err(|e| match e {
+        roxmltree::Error::NodesLimitReached => SvgError::TooBig {
+            what: "XML nodes (elements, text, comments) in the file",
+            limit: 4 * limits::MAX_ELEMENTS,
+        },
+        e => SvgError::NotXml(e),
+    })?;
     let root = doc.root_element();
     if root.tag_name().name() != "svg" {
         return Err(SvgError::NotSvg(root.tag_name().name().to_string()));
     }
-    let k = user_unit(root, opts)?;
+    let (k, unit_note) = units::user_unit(root, opts)?;
     let mut w = Walk {
         tol: opts.chord_tolerance / k,
         exact: !opts.arcs.flatten(),
         loops: Vec::new(),
         access: Vec::new(),
-        warnings: Vec::new(),
-        depth_guard: 0,
+        pieces: Vec::new(),
+        access_pieces: Vec::new(),
+        warnings: unit_note.into_iter().collect(),
+        budget: Budget::new(),
     };
     let access = marked_access(root);
     let ctm = match root.attribute("transform") {
@@ -515,6 +516,16 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
         None => Affine::ID,
     };
     walk(root, ctm, access, &mut w)?;
+    // Pieces join within the join tolerance, which is in catalogue units.
+    let join_tol = opts.join_tolerance / k;
+    let join_tol = if join_tol.is_finite() { join_tol } else { 0.0 };
+    let open = join::join_into(
+        &mut w.loops,
+        &mut w.access,
+        w.pieces,
+        w.access_pieces,
+        join_tol,
+    )?;
     // User units down to part units up: (x, y) -> (x, -y), then scale; the
     // flip turns every arc the other way.
     let map = |pts: Vec<P>| -> Vec<P> { pts.into_iter().map(|p| [p[0] * k, -p[1] * k]).collect() };
@@ -531,7 +542,8 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
     };
     let loops = w.loops.into_iter().map(|(p, l)| (map_v(p), l)).collect();
     let access = w.access.into_iter().map(map).collect();
-    Ok(pick_outline(loops, access, w.warnings, opts.units)?)
+    let picked = pick_outline(loops, access, w.warnings, opts.units);
+    join::settle_open(picked, open, k, join_tol)
 }
 
 /// Writes a part as SVG with a physical size in `units`, so that any SVG

@@ -4,6 +4,7 @@
 //! vertices when the caller asks.
 
 use super::lexer::Lexer;
+use super::limits::{Budget, Exceeded};
 use crate::part::outline::{arc_pieces, MAX_ARC_PIECES, P};
 use fixplan_core::outline::Vertex;
 
@@ -17,6 +18,24 @@ pub enum PathError {
     /// A letter that is not an SVG path command.
     #[error("unknown path command '{0}'")]
     UnknownCommand(char),
+    /// The file's budget of commands or vertices is spent: what was
+    /// counted and the bound.
+    #[error("more than {limit} {what}, the SVG reader's fixed limit (a guard against runaway and hostile files; it cannot be raised); simplify the drawing or split it into one file per part")]
+    TooBig {
+        /// What was counted.
+        what: &'static str,
+        /// The bound.
+        limit: usize,
+    },
+}
+
+impl From<Exceeded> for PathError {
+    fn from(e: Exceeded) -> Self {
+        PathError::TooBig {
+            what: e.what,
+            limit: e.limit,
+        }
+    }
 }
 
 /// A subpath in user units, before transforms.
@@ -36,6 +55,8 @@ struct PathParser<'a> {
     /// Circular arcs become bulges rather than chords.
     exact: bool,
     subs: Vec<Sub>,
+    /// Vertices of `subs`, all together.
+    done: usize,
     /// The subpath being drawn.
     cur: Vec<Vertex>,
     /// The current point.
@@ -48,29 +69,45 @@ struct PathParser<'a> {
 }
 
 /// Parses path data into subpaths, curves flattened within `tol`, circular
-/// arcs exact when `exact`.
-pub(super) fn parse_path(d: &str, tol: f64, exact: bool) -> Result<Vec<Sub>, PathError> {
+/// arcs exact when `exact`, every command and vertex taken from `budget`.
+pub(super) fn parse_path(
+    d: &str,
+    tol: f64,
+    exact: bool,
+    budget: &mut Budget,
+) -> Result<Vec<Sub>, PathError> {
     let mut p = PathParser {
         lx: Lexer::new(d),
         tol,
         exact,
         subs: Vec::new(),
+        done: 0,
         cur: Vec::new(),
         pos: [0.0, 0.0],
         start: [0.0, 0.0],
         last_ctrl: None,
     };
     let mut cmd: Option<u8> = None;
+    let mut drawn = 0;
     while let Some(c) = p.next_command(cmd)? {
         cmd = Some(c);
+        budget.command()?;
         p.command(c)?;
         p.expect_separator()?;
+        let now = p.drawn();
+        budget.vertices(now.saturating_sub(drawn))?;
+        drawn = now;
     }
     p.flush(false);
     Ok(p.subs)
 }
 
 impl PathParser<'_> {
+    /// Vertices drawn so far, all subpaths.
+    fn drawn(&self) -> usize {
+        self.done + self.cur.len()
+    }
+
     fn bad(&self) -> PathError {
         PathError::BadData(self.lx.tail())
     }
@@ -123,6 +160,7 @@ impl PathParser<'_> {
     /// nothing and is dropped.
     fn flush(&mut self, closed: bool) {
         if self.cur.len() > 1 || closed {
+            self.done += self.cur.len();
             self.subs.push(Sub {
                 pts: std::mem::take(&mut self.cur),
                 closed,
