@@ -18,8 +18,8 @@ reader is wrong and not that the two looked at different things:
   their transforms, nested to any depth; DIMENSION, TEXT, HATCH, POINT and
   the like are not outline; LINE, ARC, CIRCLE, LWPOLYLINE and 2D POLYLINE
   (bulges exact), ELLIPSE and SPLINE (flattened to 1e-4 drawing units) are.
-  Units from `$INSUNITS`; a unitless file takes the `units` its entry in
-  SOURCES.md gives (what a manifest entry would say).
+  Units from `$INSUNITS`; a unitless file takes the `units` options.json
+  gives it (what its manifest entry would say).
 - SVG: every shape svgelements renders (paths, rects, circles, ellipses,
   polygons, polylines, lines, `use`), transforms applied; `width`/`height`
   and `viewBox` by SVG's rules, 96 px per inch for unitless lengths;
@@ -401,16 +401,16 @@ def svg_drawing(path, opts):
         t = type(el).__name__
         kinds[t] = kinds.get(t, 0) + 1
         p = abs(se.Path(el))
-        sub, first = [], None
+        sub = []
         for seg in p:
             if isinstance(seg, se.Move):
-                flush(sub, first, pieces, loops, False)
-                sub, first = [], p2(seg.end)
+                flush(sub, pieces, loops, False)
+                sub = []
             elif isinstance(seg, se.Close):
                 a, b = p2(seg.start), p2(seg.end)
                 if math.dist(a, b) > 0:
                     sub.append(line(a, b))
-                flush(sub, first, pieces, loops, True)
+                flush(sub, pieces, loops, True)
                 sub = []
             elif isinstance(seg, se.Line):
                 sub.append(line(p2(seg.start), p2(seg.end)))
@@ -420,13 +420,13 @@ def svg_drawing(path, opts):
                 n = max(16, int(seg.length(error=1e-6) * px / 0.02))
                 pts = [p2(seg.point(i / n)) for i in range(n + 1)]
                 sub.extend(polyline_pieces(pts))
-        flush(sub, first, pieces, loops, False)
+        flush(sub, pieces, loops, False)
     w = svg.values.get("width")
     units_from = f"width {w!r}, viewBox {svg.values.get('viewBox')!r}"
     return pieces, loops, kinds, skipped, units_from, px
 
 
-def flush(sub, first, pieces, loops, closed):
+def flush(sub, pieces, loops, closed):
     if not sub:
         return
     if closed:
