@@ -14,6 +14,6 @@ pub(crate) use curves::{
     arc_pieces, arc_points, circle_loop, dist, exact_arc, exact_circle, flatten_vertices, fmt,
     fmt_pt, positions, scale_of, straight, MAX_ARC_PIECES, P,
 };
-pub(crate) use join::{join_pieces, nearest_other_end, reversed, Piece};
+pub(crate) use join::{join_pieces, nearest_other_end, reversed, OpenChain, Piece};
 pub use pick::OutlineError;
 pub(crate) use pick::{pick_outline, pick_outlines};
