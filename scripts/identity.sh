@@ -2,12 +2,14 @@
 # Output identity check: the md5s that a change meant to keep behaviour
 # (a refactor, a speed-up) must leave as they are. Prints one line a check;
 # compare with scripts/identity.expected (`diff <(scripts/identity.sh) scripts/identity.expected`).
-# Usage: scripts/identity.sh [path/to/fixplan]   (default: target/ci/fixplan, built if missing)
+# Usage: scripts/identity.sh [path/to/fixplan]   (default: target/ci/fixplan-it, the
+# integration tests' copy of the CLI, built with CI's features, so no second
+# zenoh build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=${1:-target/ci/fixplan}
+bin=${1:-target/ci/fixplan-it}
 if [ ! -x "$bin" ]; then
-  cargo build --profile ci --locked -p fixplan-coordinator --bin fixplan >&2
+  cargo build --profile ci --locked -p fixplan-tests --features fixplan-tests/tls --bin fixplan-it >&2
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
