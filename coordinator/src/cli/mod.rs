@@ -8,10 +8,10 @@ pub mod solve;
 pub mod study;
 
 use crate::run::backend::Backend;
-use crate::run::{default_catalog, load_and_run, RunOptions};
+use crate::run::{default_catalog, load_and_run_with, RunOptions};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use fixplan_catalog::ArcMode;
+use fixplan_catalog::{ArcMode, LoadOptions};
 use std::path::PathBuf;
 
 /// Design modular fixtures for planar parts: every fixture of three round
@@ -109,6 +109,12 @@ enum Cmd {
         /// No progress display and no summary table.
         #[arg(short, long)]
         quiet: bool,
+        /// Read every part file as a sheet: each outer loop a part of its
+        /// own (`id#1`, `id#2`, ... by position: bottom edge, then left
+        /// edge), whatever the manifest's `sheet` says. See
+        /// docs/cad-files.md.
+        #[arg(long)]
+        sheet: bool,
         #[command(flatten)]
         cluster: cluster::RunClusterArgs,
         #[command(flatten)]
@@ -307,6 +313,14 @@ fn quiet_logs(cmd: &Cmd) -> bool {
     }
 }
 
+/// How `fixplan run` reads the catalogue: `--sheet` over the manifest.
+fn sheet_load(sheet: bool) -> LoadOptions {
+    LoadOptions {
+        sheet: sheet.then_some(true),
+        ..LoadOptions::default()
+    }
+}
+
 fn real_main() -> Result<()> {
     let cli = Cli::parse();
     // Once per process, before any work: library code only emits events.
@@ -328,6 +342,7 @@ fn real_main() -> Result<()> {
             resume,
             shard_size,
             quiet,
+            sheet,
             cluster,
             search,
         } => {
@@ -338,19 +353,22 @@ fn real_main() -> Result<()> {
                 }
                 None => Backend::Embedded { threads },
             };
-            load_and_run(&RunOptions {
-                catalog: catalog.unwrap_or_else(default_catalog),
-                kit,
-                top_k,
-                full_counts,
-                output,
-                resume,
-                shard_size,
-                quiet,
-                search: search.options(),
-                backend,
-                arcs,
-            })?;
+            load_and_run_with(
+                &RunOptions {
+                    catalog: catalog.unwrap_or_else(default_catalog),
+                    kit,
+                    top_k,
+                    full_counts,
+                    output,
+                    resume,
+                    shard_size,
+                    quiet,
+                    search: search.options(),
+                    backend,
+                    arcs,
+                },
+                &sheet_load(sheet),
+            )?;
         }
         Cmd::Study(a) => {
             study::study_cli_main(&a, default_catalog())?;

@@ -82,7 +82,17 @@ pub fn load_catalog_arcs(path: &Path, arcs: Option<ArcMode>) -> Result<Catalog> 
 
 /// Loads `opts.catalog` and `opts.kit`, then [`run_catalog`].
 pub fn load_and_run(opts: &RunOptions) -> Result<Totals> {
-    let catalog = load_catalog_arcs(&opts.catalog, opts.arcs)?;
+    load_and_run_with(opts, &LoadOptions::default())
+}
+
+/// [`load_and_run`] with the catalogue read with `load` (`--sheet`);
+/// `opts.arcs` is applied over it.
+pub fn load_and_run_with(opts: &RunOptions, load: &LoadOptions) -> Result<Totals> {
+    let load = LoadOptions {
+        arcs: opts.arcs,
+        ..*load
+    };
+    let catalog = load_catalog_with(&opts.catalog, &load)?;
     let spec = load_kit(&opts.kit, catalog.units)?;
     run_catalog(&catalog, &spec, opts)
 }

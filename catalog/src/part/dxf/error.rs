@@ -42,7 +42,7 @@ pub enum DxfError {
         /// What lies near the ends (boxed: errors travel by value).
         cause: Box<OpenCause>,
     },
-    /// The file goes over one of the reader's [`Limits`](super::Limits).
+    /// The file goes over one of the reader's [`Limits`](crate::part::Limits).
     #[error(transparent)]
     Limit(#[from] LimitExceeded),
     /// The loops found do not make one part.

@@ -39,6 +39,9 @@ pub(crate) struct OpenChain {
     pub labels: Vec<String>,
     pub start: P,
     pub end: P,
+    /// Joining its own ends would make a loop (it has more than one edge,
+    /// or an arc): a chain that nearly closes has a gap between them.
+    pub closable: bool,
 }
 
 /// The free ends of the pieces by grid cell, so that joining many pieces
@@ -151,6 +154,7 @@ pub(crate) fn join_pieces(pieces: Vec<Piece>, tol: f64) -> (Vec<Vec<Vertex>>, Ve
                         labels,
                         start: pt(chain[0]),
                         end: pt(chain[chain.len() - 1]),
+                        closable: chain.len() > 2 || chain.iter().any(Vertex::is_arc),
                     });
                     break;
                 }
@@ -197,14 +201,14 @@ fn nearest_free(
 }
 
 /// The free end nearest to `p` among the chains' ends other than chain
-/// `skip`'s end `p` itself (its other end counts: a chain that nearly
-/// closes has a gap between its own ends): the distance, the point and
-/// the first label of its chain.
+/// `skip`'s end `p` itself (its other end counts when the chain is
+/// [`OpenChain::closable`]): the distance, the point and the first label
+/// of its chain.
 pub(crate) fn nearest_other_end(open: &[OpenChain], skip: usize, p: P) -> Option<(f64, P, &str)> {
     let mut best: Option<(f64, P, &str)> = None;
     for (i, c) in open.iter().enumerate() {
         for q in [c.start, c.end] {
-            if i == skip && q == p {
+            if i == skip && (q == p || !c.closable) {
                 continue;
             }
             let d = dist(p, q);
