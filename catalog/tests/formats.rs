@@ -166,8 +166,10 @@ fn svg_inkscape_style_file() {
     assert!(part.outline.len() > 5);
 }
 
+/// A file in mm, one user unit a millimetre (a file without a size is in
+/// CSS px, with a warning).
 fn svg_doc(body: &str) -> String {
-    format!("<svg xmlns=\"http://www.w3.org/2000/svg\">{body}</svg>")
+    format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1000mm\" height=\"1000mm\" viewBox=\"0 0 1000 1000\">{body}</svg>")
 }
 
 fn svg_part(body: &str) -> fixplan_core::Part {

@@ -278,18 +278,18 @@ fn physical_units_by_their_definitions() {
 }
 
 #[test]
-fn no_size_takes_the_fallback_unit_and_says_so() {
+fn no_size_is_css_pixels_too_and_says_so() {
     for attrs in [
         "",
         r#"width="100%" viewBox="0 0 100 50""#,
-        r#"viewBox="0 0 100 50""#,
+        r#"viewBox="0 0 400 200""#,
     ] {
         let (w, warnings) = rect_width_mm(attrs, &opts_mm());
-        assert!(close(w, 100.0, 1e-12), "{attrs}: {w}");
+        assert!(close(w, 100.0 * 25.4 / 96.0, 1e-9), "{attrs}: {w}");
         assert!(
             warnings
                 .iter()
-                .any(|m| m.contains("no physical size") && m.contains("1 mm")),
+                .any(|m| m.contains("no physical unit") && m.contains("0.264583 mm")),
             "{attrs}: {warnings:?}"
         );
     }
@@ -309,6 +309,13 @@ fn a_manifest_units_choice_replaces_pixels() {
     );
     let (w, _) = rect_width_mm("", &inch);
     assert!(close(w, 2540.0, 1e-9), "{w}");
+    // In an inch catalogue, mm chosen for a file without a size.
+    let mm_in_inch = ReadOptions {
+        fallback: LengthUnit::Mm,
+        ..ReadOptions::new(Units::In)
+    };
+    let (w, _) = rect_width_mm("", &mm_in_inch);
+    assert!(close(w, 100.0 / 25.4, 1e-12), "{w}");
 }
 
 #[test]

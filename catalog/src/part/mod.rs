@@ -17,7 +17,9 @@ pub use raw::{
     ArcMode, Format, LayerFilter, LimitExceeded, Limits, PolygonRole, RawPart, ReadOptions,
     DEFAULT_CHORD_TOLERANCE_MM, DEFAULT_JOIN_TOLERANCE_MM,
 };
-pub use svg::{read_svg, write_svg, ElementProblem, PathError, SvgError, TransformError};
+pub use svg::{
+    read_svg, read_svg_parts, write_svg, ElementProblem, PathError, SvgError, TransformError,
+};
 pub use validate::{validate_part, InvalidPolygon, PolygonProblem};
 
 use fixplan_core::Part;
@@ -92,9 +94,9 @@ fn check_options(bytes: &[u8], opts: &ReadOptions) -> Result<(), ReadError> {
 }
 
 /// [`read_raw`] for a file that may be a sheet: with
-/// [`ReadOptions::sheet`], every outer loop of a DXF drawing as a part of
-/// its own, in the order [`read_dxf_parts`] gives; otherwise (and for SVG
-/// and JSON, whose readers give one part) the one part.
+/// [`ReadOptions::sheet`], every outer loop of a DXF or SVG drawing as a
+/// part of its own, in the order [`read_dxf_parts`] gives; otherwise (and
+/// for JSON, which holds one part) the one part.
 pub fn read_parts(
     bytes: &[u8],
     format: Format,
@@ -103,6 +105,9 @@ pub fn read_parts(
     if opts.sheet && format == Format::Dxf {
         check_options(bytes, opts)?;
         Ok(read_dxf_parts(bytes, opts)?)
+    } else if opts.sheet && format == Format::Svg {
+        check_options(bytes, opts)?;
+        Ok(read_svg_parts(bytes, opts)?)
     } else {
         Ok(vec![read_raw(bytes, format, opts)?])
     }

@@ -143,31 +143,52 @@ pub(super) fn settle_open(
     k: f64,
     tol: f64,
 ) -> Result<RawPart, SvgError> {
+    let mut parts = settle_open_parts(picked.map(|raw| vec![raw]), open, k, tol)?;
+    parts
+        .pop()
+        .ok_or(SvgError::Outline(OutlineError::NoClosedLoop {
+            only_access: false,
+        }))
+}
+
+/// [`settle_open`] for a sheet: a chain is linework inside a part when it
+/// lies within the extent of one of the parts, and is reported on that one.
+pub(super) fn settle_open_parts(
+    picked: Result<Vec<RawPart>, OutlineError>,
+    open: Vec<Open>,
+    k: f64,
+    tol: f64,
+) -> Result<Vec<RawPart>, SvgError> {
     let Some(first) = open.first() else {
         return Ok(picked?);
     };
-    let mut raw = match picked {
-        Ok(raw) => raw,
+    let mut parts = match picked {
+        Ok(parts) => parts,
         // The open chain is why there is no outline.
         Err(OutlineError::NoClosedLoop { .. }) => return Err(first.path.clone()),
         Err(e) => return Err(e.into()),
     };
-    // The outline's extent back in user units (y flipped back).
-    let user: Vec<Vertex> = raw
-        .outline
+    // Each outline's extent back in user units (y flipped back).
+    let extents: Vec<[f64; 4]> = parts
         .iter()
-        .map(|v| Vertex::new(v.x / k, -v.y / k, 0.0))
+        .map(|raw| {
+            let user: Vec<Vertex> = raw
+                .outline
+                .iter()
+                .map(|v| Vertex::new(v.x / k, -v.y / k, 0.0))
+                .collect();
+            bbox_of(user.iter())
+        })
         .collect();
-    let ob = bbox_of(user.iter());
     for o in open {
         let b = o.bbox;
-        let inside = b[0] >= ob[0] - tol
-            && b[1] >= ob[1] - tol
-            && b[2] <= ob[2] + tol
-            && b[3] <= ob[3] + tol;
-        if !inside {
+        let holder = extents.iter().position(|ob| {
+            b[0] >= ob[0] - tol && b[1] >= ob[1] - tol && b[2] <= ob[2] + tol && b[3] <= ob[3] + tol
+        });
+        let Some(holder) = holder else {
             return Err(o.path);
-        }
+        };
+        let raw = &mut parts[holder];
         raw.warnings.push(format!(
             "{} from {} to {} (SVG user units) is open linework inside the outline, not a closed shape; ignored",
             chain_name(o.pieces, &o.first),
@@ -175,5 +196,5 @@ pub(super) fn settle_open(
             fmt_pt(o.ends[1])
         ));
     }
-    Ok(raw)
+    Ok(parts)
 }

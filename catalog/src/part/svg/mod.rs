@@ -15,12 +15,12 @@
 //! **Units** (`units.rs`). By SVG's length rules for the root's `width`
 //! (or, without one, `height`) and `viewBox`: one user unit is `width /
 //! viewBox-width`, in the width's unit (mm, cm, Q, in, pt, pc: physical,
-//! no warning; a bare number or px: CSS px, 96 to the inch, with a warning
-//! stating the scale). A width without a `viewBox` makes user units CSS
-//! px. Without a width or height in absolute units (none, `%`), the file
-//! has no size at all and user units are the catalogue's fallback unit
-//! (a manifest entry's `units`), with a warning: drawings made for fixplan
-//! by hand or by script rarely mean pixels.
+//! no warning; a bare number or px: CSS px, 96 to the inch). A width
+//! without a `viewBox` makes user units CSS px. Without a width or height
+//! in absolute units (none, `%`) a user unit is one CSS px, as browsers
+//! and Inkscape take it. Whenever the file carries no physical unit a
+//! warning states the scale taken, and a manifest entry's `units` (seen
+//! when it differs from the catalogue's) takes the place of px.
 //!
 //! **What is read.** `polygon`, `polyline`, `line`, `path` (M, L, H, V, C,
 //! S, Q, T, A, Z, absolute and relative, curves flattened to the chord
@@ -63,7 +63,7 @@ pub use error::{ElementProblem, SvgError};
 pub use path::PathError;
 pub use transform::TransformError;
 
-use super::outline::{arc_pieces, pick_outline, positions, Piece, P};
+use super::outline::{arc_pieces, pick_outline, pick_outlines, positions, Piece, P};
 use super::raw::{RawPart, ReadOptions};
 use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
@@ -471,6 +471,32 @@ fn take_written_bulges(pts: &mut [Vertex], written: &[f64]) {
 /// reader finds the shapes, [`validate_part`](super::validate_part) judges
 /// them the same way for every format.
 pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
+    let d = read_loops(bytes, opts)?;
+    let picked = pick_outline(d.loops, d.access, d.warnings, opts.units);
+    join::settle_open(picked, d.open, d.k, d.join_tol)
+}
+
+/// Reads an SVG sheet: every outer loop a part of its own, in the order
+/// `outline::pick_outlines` documents (as for a DXF sheet).
+pub fn read_svg_parts(bytes: &[u8], opts: &ReadOptions) -> Result<Vec<RawPart>, SvgError> {
+    let d = read_loops(bytes, opts)?;
+    let picked = pick_outlines(d.loops, d.access, d.warnings, opts.units);
+    join::settle_open_parts(picked, d.open, d.k, d.join_tol)
+}
+
+/// What a drawing holds before an outline is picked: closed loops (in
+/// part units), access regions, the warnings so far, and the open chains
+/// with the scale and join tolerance they are judged by (user units).
+struct Drawn {
+    loops: Vec<(Vec<Vertex>, String)>,
+    access: Vec<Vec<P>>,
+    warnings: Vec<String>,
+    open: Vec<join::Open>,
+    k: f64,
+    join_tol: f64,
+}
+
+fn read_loops(bytes: &[u8], opts: &ReadOptions) -> Result<Drawn, SvgError> {
     if bytes.len() > limits::MAX_BYTES {
         return Err(SvgError::TooBig {
             what: "bytes in an SVG file",
@@ -542,8 +568,14 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
     };
     let loops = w.loops.into_iter().map(|(p, l)| (map_v(p), l)).collect();
     let access = w.access.into_iter().map(map).collect();
-    let picked = pick_outline(loops, access, w.warnings, opts.units);
-    join::settle_open(picked, open, k, join_tol)
+    Ok(Drawn {
+        loops,
+        access,
+        warnings: w.warnings,
+        open,
+        k,
+        join_tol,
+    })
 }
 
 /// Writes a part as SVG with a physical size in `units`, so that any SVG

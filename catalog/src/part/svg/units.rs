@@ -147,36 +147,29 @@ pub(super) fn user_unit(
             // A physical size without a viewBox: user units are CSS px.
             None => (LengthUnit::In.factor_to(opts.units) / 96.0, None),
         },
-        Length::Px(px) => {
-            let per_px = match vb {
-                Some(vb) => px / vb[along],
-                None => 1.0,
+        // No physical unit: px by SVG's rules (no size at all leaves user
+        // units at one px, as browsers and Inkscape take them), unless the
+        // manifest chose a unit for the file.
+        Length::Px(_) | Length::None => {
+            let per_px = match (size, vb) {
+                (Length::Px(px), Some(vb)) => px / vb[along],
+                _ => 1.0,
             };
-            if let Some(u) = chosen {
-                let k = per_px * u.factor_to(opts.units);
-                let note = format!(
-                    "no physical unit in the file (its size is in px): 1 user unit read as {} mm, the part's units = \"{}\" taking the place of px",
-                    mm_of(k),
-                    u.label()
-                );
-                (k, Some(note))
-            } else {
-                let k = per_px * px_mm * to_cat;
-                let note = format!(
-                    "no physical unit in the file: 1 user unit read as {} mm ({px_name}); give the root <svg> a width in mm or in if the drawing is meant at another scale",
-                    mm_of(k)
-                );
-                (k, Some(note))
-            }
-        }
-        Length::None => {
-            let u = chosen.unwrap_or(opts.fallback);
+            let (k, what) = match chosen {
+                Some(u) => (
+                    per_px * u.factor_to(opts.units),
+                    format!(
+                        "the part's units = \"{}\" taking the place of px",
+                        u.label()
+                    ),
+                ),
+                None => (per_px * px_mm * to_cat, px_name.to_string()),
+            };
             let note = format!(
-                "no physical size in the file (no width or height in absolute units): 1 user unit read as 1 {} (the {}); set units = \"mm\" or \"in\" on its manifest entry, or give the root <svg> a width in mm or in, if that is wrong",
-                u.label(),
-                if chosen.is_some() { "part's units" } else { "catalogue's units" }
+                "no physical unit in the file: 1 user unit read as {} mm ({what}); if the drawing is meant in mm or in, give the root <svg> a width in that unit (width=\"100mm\" with viewBox=\"0 0 100 ...\"), or set units = \"mm\" or \"in\" on its manifest entry",
+                mm_of(k)
             );
-            (u.factor_to(opts.units), Some(note))
+            (k, Some(note))
         }
     })
 }
