@@ -10,6 +10,7 @@ use fixplan_catalog::{
     Catalog, CatalogPart, InvalidPolygon, KitSpec, PartError, PartErrorKind, PolygonProblem,
     PolygonRole,
 };
+use fixplan_coordinator::output::messages::{TOPIC_FIXTURES, TOPIC_SCENE};
 use fixplan_core::polygon::PolygonError;
 use fixplan_core::{Case, Part, Units};
 use std::path::{Path, PathBuf};
@@ -144,7 +145,10 @@ pub fn channels(path: &Path) -> Vec<(Vec<u8>, Vec<u8>)> {
     let f = fixplan_coordinator::output::ResultsFile::open(path).unwrap();
     let mut v = Vec::new();
     let c = f.for_each_part(|_, m| {
-        v.push((m.fixtures, m.scene));
+        v.push((
+            m.get(TOPIC_FIXTURES).unwrap().to_vec(),
+            m.get(TOPIC_SCENE).unwrap().to_vec(),
+        ));
         true
     });
     assert!(c.unwrap().complete);

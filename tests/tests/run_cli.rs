@@ -173,7 +173,7 @@ fn runs_the_sample_catalogue_by_default() {
     let mut ids = Vec::new();
     let c = file
         .for_each_part(|_, m| {
-            ids.push(serde_json::from_slice::<PartMsg>(&m.part).unwrap().id);
+            ids.push(m.decode::<PartMsg>().unwrap().id);
             true
         })
         .unwrap();
@@ -199,7 +199,7 @@ fn export_matches_solve_for_each_part() {
     let mut parts = Vec::new();
     let c = file
         .for_each_part(|_, m| {
-            parts.push(serde_json::from_slice::<PartMsg>(&m.part).unwrap());
+            parts.push(m.decode::<PartMsg>().unwrap());
             true
         })
         .unwrap();
@@ -394,7 +394,10 @@ fn fixtures_and_scenes(results: &Path) -> Vec<(Vec<u8>, Vec<u8>)> {
     ResultsFile::open(results)
         .unwrap()
         .for_each_part(|_, m| {
-            v.push((m.fixtures, m.scene));
+            v.push((
+                m.get(TOPIC_FIXTURES).unwrap().to_vec(),
+                m.get(TOPIC_SCENE).unwrap().to_vec(),
+            ));
             true
         })
         .unwrap();
@@ -789,7 +792,7 @@ fn an_invalid_part_shows_what_was_read() {
     let file = ResultsFile::open(&res).unwrap();
     let mut seen = 0;
     file.for_each_part(|_, m| {
-        let part: PartMsg = serde_json::from_slice(&m.part).unwrap();
+        let part: PartMsg = m.decode().unwrap();
         if part.id != "bowtie" {
             return true;
         }
@@ -802,7 +805,7 @@ fn an_invalid_part_shows_what_was_read() {
         );
         let error = part.error.clone().unwrap();
         assert!(error.starts_with("bowtie: "), "{error}");
-        let scene: Value = serde_json::from_slice(&m.scene).unwrap();
+        let scene: Value = serde_json::from_slice(m.get(TOPIC_SCENE).unwrap()).unwrap();
         let part_entity = &scene["entities"][0];
         assert_eq!(part_entity["texts"][0]["text"], error.as_str());
         assert_eq!(

@@ -3,22 +3,10 @@
 //! solving thread of the embedded run), so that writing the results file
 //! is a copy. Compressing was most of the coordinator's work per part.
 
+use super::channels::PART_CHANNELS;
 use bytes::Bytes;
 use serde::{Deserialize, Serialize};
 use std::cell::RefCell;
-
-/// Channel ids of a results file (schema `i` belongs to channel `i`): the
-/// ids the MCAP writer gave them before chunks were made by the workers,
-/// and what every chunk's message records name.
-pub const CHANNEL_RUN: u16 = 1;
-/// `/fixplan/part`.
-pub const CHANNEL_PART: u16 = 2;
-/// `/fixplan/fixtures`.
-pub const CHANNEL_FIXTURES: u16 = 3;
-/// `/fixplan/scene`.
-pub const CHANNEL_SCENE: u16 = 4;
-/// A part's chunk holds one message on each, in this order.
-pub const PART_CHANNELS: [u16; 3] = [CHANNEL_PART, CHANNEL_FIXTURES, CHANNEL_SCENE];
 
 /// zstd level of every chunk: the fastest, as the MCAP writer used before
 /// (the files are small beside the enumeration's time; a worker's CPU is
@@ -131,7 +119,7 @@ impl PartChunk {
     }
 
     /// Whether this chunk, made elsewhere, has the shape of part
-    /// `index`'s: its log time, one message on each part channel in order
+    /// `index`'s: its log time, one message on each of [`PART_CHANNELS`] in order
     /// at offsets inside its records, and a zstd frame that declares its
     /// records' size. The coordinator copies unchecked chunks into the
     /// results file; this keeps a worker's bug from making a part
@@ -142,13 +130,16 @@ impl PartChunk {
             return Err(format!("its log time is {}, not {log_time}", self.log_time));
         }
         let channels: Vec<u16> = self.offsets.iter().map(|o| o.0).collect();
-        if channels != PART_CHANNELS {
+        if !channels
+            .iter()
+            .eq(PART_CHANNELS.iter().map(|c| &c.channel.id))
+        {
             return Err(format!("its messages are on channels {channels:?}"));
         }
         let starts = self.offsets.iter().map(|o| o.1);
-        if self.offsets[0].1 != 0
+        if self.offsets.first().map(|o| o.1) != Some(0)
             || starts.clone().zip(starts.skip(1)).any(|(a, b)| a >= b)
-            || self.offsets[2].1 >= self.uncompressed_size
+            || self.offsets.last().map(|o| o.1) >= Some(self.uncompressed_size)
         {
             return Err(format!(
                 "its message offsets {:?} do not fit {} bytes",
@@ -195,16 +186,18 @@ impl PartChunk {
 mod tests {
     use super::*;
 
+    /// A chunk with a message on every part channel, as a part's.
     fn part_chunk(log_time: u64) -> PartChunk {
-        PartChunk::encode(
-            log_time,
-            &[
-                (CHANNEL_PART, 7, b"{\"part\":1}"),
-                (CHANNEL_FIXTURES, 7, b"{\"fixtures\":[]}"),
-                (CHANNEL_SCENE, 7, b"{\"entities\":[]}"),
-            ],
-        )
-        .expect("compress")
+        let datas: Vec<String> = PART_CHANNELS
+            .iter()
+            .map(|c| format!("{{\"topic\":{:?}}}", c.channel.topic))
+            .collect();
+        let messages: Vec<(u16, u32, &[u8])> = PART_CHANNELS
+            .iter()
+            .zip(&datas)
+            .map(|(c, d)| (c.channel.id, 7, d.as_bytes()))
+            .collect();
+        PartChunk::encode(log_time, &messages).expect("compress")
     }
 
     #[test]
@@ -216,7 +209,7 @@ mod tests {
         swapped.offsets.swap(0, 1);
         assert!(swapped.fits(7_000).unwrap_err().contains("channels"));
         let mut short = ok.clone();
-        short.uncompressed_size = short.offsets[2].1;
+        short.uncompressed_size = short.offsets[short.offsets.len() - 1].1;
         assert!(short.fits(7_000).unwrap_err().contains("offsets"));
         let mut size = ok.clone();
         size.uncompressed_size += 1;

@@ -1,12 +1,16 @@
-//! The JSON messages of a results file, one type per MCAP channel. Their
-//! JSON Schemas are in [`super::schemas`]; the layout is documented in the
-//! README ("MCAP layout").
+//! The JSON messages of a results file, one type per MCAP channel, and
+//! what a part's messages are made from ([`PartContent`]). Which channel
+//! carries which message is [`super::channels`]; the JSON Schemas are
+//! generated from these types ([`super::schemas`]); the layout is
+//! documented in the README ("MCAP layout").
 
+use crate::job::SearchInfo;
 pub use crate::job::Timing;
-use fixplan_catalog::Catalog;
+use fixplan_catalog::{Catalog, CatalogPart};
 use fixplan_core::outline::Vertex;
 use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units};
 use schemars::JsonSchema;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::path::Path;
@@ -36,6 +40,46 @@ pub const METADATA_RUN: &str = "fixplan.run";
 /// Nanoseconds of log time per part: part `i` is logged at `i` seconds, so
 /// Foxglove's timeline steps through the catalogue one part per second.
 pub const NS_PER_PART: u64 = 1_000_000_000;
+
+/// A JSON message of a results file: the topic of its channel and the
+/// name of the schema generated from it.
+pub trait Message: Serialize + DeserializeOwned + JsonSchema {
+    /// Its channel.
+    const TOPIC: &'static str;
+    /// Its schema's name (and title).
+    const SCHEMA: &'static str;
+}
+
+/// A JSON message each part has one of, made from the solved part.
+pub trait PartMessage: Message {
+    /// The message of `part`.
+    fn of(part: &PartContent) -> Self;
+}
+
+/// Everything a part's messages are made from: its place and entry in
+/// the catalogue, the run's unit and kit, the outline and access regions
+/// as read, and what solving it found.
+#[derive(Clone, Copy)]
+pub struct PartContent<'a> {
+    /// Position in the catalogue: the messages' log time and sequence.
+    pub index: usize,
+    /// The catalogue entry.
+    pub entry: &'a CatalogPart,
+    /// The catalogue's unit.
+    pub units: Units,
+    /// The run's kit.
+    pub kit: &'a Kit,
+    /// The outline (as read, for an invalid part; empty if nothing was).
+    pub outline: &'a [Vertex],
+    /// Access regions.
+    pub access: &'a [Vec<Point>],
+    /// The part's result.
+    pub result: &'a SolveResult,
+    /// How long it took.
+    pub timing: Timing,
+    /// `--grid-steps` summaries and the `--good-enough` stop.
+    pub search: &'a SearchInfo,
+}
 
 /// `/fixplan/run`: what was run, once at the start of the file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -132,6 +176,11 @@ pub fn catalog_digest(c: &Catalog) -> String {
     format!("sha256:{hex}")
 }
 
+impl Message for RunMsg {
+    const TOPIC: &'static str = TOPIC_RUN;
+    const SCHEMA: &'static str = SCHEMA_RUN;
+}
+
 impl RunMsg {
     /// Whether a file written by `other` can be continued by this run:
     /// everything equal except where the catalogue was read from.
@@ -195,6 +244,36 @@ pub struct PartMsg {
 /// `PartMsg::stopped` of a part stopped by `--good-enough`.
 pub const STOPPED_GOOD_ENOUGH: &str = "good_enough";
 
+impl Message for PartMsg {
+    const TOPIC: &'static str = TOPIC_PART;
+    const SCHEMA: &'static str = SCHEMA_PART;
+}
+
+impl PartMessage for PartMsg {
+    fn of(p: &PartContent) -> PartMsg {
+        let (result, search) = (p.result, p.search);
+        PartMsg {
+            index: p.index,
+            id: p.entry.id.clone(),
+            file: p.entry.file.as_ref().map(|f| f.display().to_string()),
+            status: result.status,
+            error: result.error.clone(),
+            warnings: p.entry.warnings.clone(),
+            units: p.units,
+            quantity: p.entry.quantity,
+            outline: p.outline.to_vec(),
+            access: p.access.to_vec(),
+            counts: result.counts,
+            fixtures: result.fixtures.len(),
+            best_score: result.fixtures.first().map(|f| f.score),
+            timing: p.timing,
+            refine: search.steps.clone(),
+            stopped: search.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
+            stopped_at: search.stopped_at,
+        }
+    }
+}
+
 /// `/fixplan/fixtures`: `{"part": ID, ...}` plus the result format of SPEC
 /// Appendix A (with contacts and plate placement per fixture). Exactly one
 /// line of `fixplan export --json`.
@@ -205,4 +284,208 @@ pub struct FixturesMsg {
     /// Status, counts and ranked fixtures.
     #[serde(flatten)]
     pub result: SolveResult,
+}
+
+impl Message for FixturesMsg {
+    const TOPIC: &'static str = TOPIC_FIXTURES;
+    const SCHEMA: &'static str = SCHEMA_FIXTURES;
+}
+
+impl PartMessage for FixturesMsg {
+    fn of(p: &PartContent) -> FixturesMsg {
+        FixturesMsg {
+            part: p.entry.id.clone(),
+            result: p.result.clone(),
+        }
+    }
+}
+
+/// The JSON of each message, pinned from literals: field names, order and
+/// forms are the file format, which nothing outside this module may move.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixplan_core::report::{
+        ClampReport, ContactReport, FixtureReport, PlacementReport, PoseReport,
+    };
+    use fixplan_core::segments::SegmentKind;
+    use fixplan_core::{Clamp, HoleKind, MountHole, Pattern};
+
+    fn json<T: Serialize>(m: &T) -> String {
+        serde_json::to_string(m).expect("json")
+    }
+
+    #[test]
+    fn the_run_message_keeps_its_json() {
+        let run = RunMsg {
+            tool: "fixplan".into(),
+            version: "0.0.0".into(),
+            catalog: CatalogInfo {
+                name: "cat".into(),
+                source: "dir".into(),
+                units: Units::In,
+                parts: 2,
+                digest: "sha256:00".into(),
+            },
+            kit_name: "kit".into(),
+            kit: Kit {
+                spacing: 25.0,
+                cols: 4,
+                rows: 3,
+                pattern: Pattern::Alternating,
+                locator_radius: 5.5,
+                clamp: Clamp {
+                    mount_holes: vec![
+                        MountHole {
+                            offset: [0, 0],
+                            kind: HoleKind::Any,
+                        },
+                        MountHole {
+                            offset: [1, 0],
+                            kind: HoleKind::Tapped,
+                        },
+                    ],
+                    axis_offset: 1.5,
+                    travel: [2.0, 9.25],
+                    body: vec![[0.0, 0.0], [1.0, 0.5]],
+                    plunger: vec![[0.0, -0.5]],
+                },
+            },
+            params: Params {
+                max_clamp_angle_deg: 45.0,
+                edge_trim: Some(0.5),
+                min_clearance: None,
+                grid_step: 2,
+                top_k: 10,
+                full_counts: false,
+                wrenches: Some(vec![[1.0, 0.0, -2.0]]),
+            },
+            grid_steps: Some(vec![4, 2]),
+            good_enough: None,
+        };
+        assert_eq!(
+            json(&run),
+            r#"{"tool":"fixplan","version":"0.0.0","catalog":{"name":"cat","source":"dir","units":"in","parts":2,"digest":"sha256:00"},"kit_name":"kit","kit":{"spacing":25.0,"cols":4,"rows":3,"pattern":"alternating","locator_radius":5.5,"clamp":{"mount_holes":[[0,0,"any"],[1,0,"tapped"]],"axis_offset":1.5,"travel":[2.0,9.25],"body":[[0.0,0.0],[1.0,0.5]],"plunger":[[0.0,-0.5]]}},"params":{"max_clamp_angle_deg":45.0,"edge_trim":0.5,"min_clearance":null,"grid_step":2,"top_k":10,"full_counts":false,"wrenches":[[1.0,0.0,-2.0]]},"grid_steps":[4,2]}"#
+        );
+    }
+
+    #[test]
+    fn the_part_message_keeps_its_json() {
+        let part = PartMsg {
+            index: 3,
+            id: "p".into(),
+            file: Some("p.dxf".into()),
+            status: Status::Ok,
+            error: None,
+            warnings: vec!["w".into()],
+            units: Units::Mm,
+            quantity: 2.5,
+            outline: vec![
+                Vertex::new(0.0, 0.0, 0.0),
+                Vertex::new(10.0, 0.0, 0.5),
+                Vertex::new(0.0, 5.0, 0.0),
+            ],
+            access: vec![vec![[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]]],
+            counts: Some(Counts {
+                segments: 3,
+                combinations: 10,
+                setups: 4,
+                candidates: 2,
+                admissible: 0,
+                exact: false,
+            }),
+            fixtures: 1,
+            best_score: Some(0.25),
+            timing: Timing {
+                prepare_ms: 0.5,
+                enumerate_ms: 1.0,
+                shards: 2,
+            },
+            refine: Some(vec![crate::job::StepSummary {
+                grid_step: 2,
+                counts: Counts {
+                    segments: 3,
+                    combinations: 10,
+                    setups: 4,
+                    candidates: 2,
+                    admissible: 1,
+                    exact: true,
+                },
+                fixtures: 1,
+                best_score: Some(0.25),
+                best: None,
+                added: Some(1),
+                improved_by: None,
+                stopped_at: None,
+                enumerate_ms: 1.0,
+            }]),
+            stopped: Some(STOPPED_GOOD_ENOUGH.into()),
+            stopped_at: Some(7),
+        };
+        assert_eq!(
+            json(&part),
+            r#"{"index":3,"id":"p","file":"p.dxf","status":"ok","error":null,"warnings":["w"],"units":"mm","quantity":2.5,"outline":[[0.0,0.0],[10.0,0.0,0.5],[0.0,5.0]],"access":[[[1.0,1.0],[2.0,1.0],[1.0,2.0]]],"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"counts_exact":false},"fixtures":1,"best_score":0.25,"timing":{"prepare_ms":0.5,"enumerate_ms":1.0,"shards":2},"refine":[{"grid_step":2,"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1},"fixtures":1,"best_score":0.25,"best":null,"added":1,"improved_by":null,"enumerate_ms":1.0}],"stopped":"good_enough","stopped_at":7}"#
+        );
+    }
+
+    #[test]
+    fn the_fixtures_message_keeps_its_json() {
+        let fixture = FixtureReport {
+            rank: 1,
+            score: 0.25,
+            segments: [0, 1, 2],
+            locators: [[0, 0], [2, 0], [0, 1]],
+            pose: PoseReport {
+                x: 1.0,
+                y: 2.0,
+                theta_deg: 90.0,
+            },
+            clamp: ClampReport {
+                segment: 1,
+                rotation_deg: 180,
+                mount: [3, 1],
+                extension: 4.5,
+                contact: [5.0, 6.0],
+            },
+            borderline: false,
+            contacts: vec![ContactReport {
+                point: [1.0, 0.0],
+                normal: [0.0, 1.0],
+            }],
+            placement: PlacementReport {
+                rotation_deg: 90,
+                locators: [[1, 1], [3, 1], [1, 2]],
+                clamp_holes: vec![[4, 2], [5, 2]],
+            },
+        };
+        let fixtures = FixturesMsg {
+            part: "p".into(),
+            result: SolveResult {
+                status: Status::Ok,
+                error: None,
+                counts: Some(Counts {
+                    segments: 3,
+                    combinations: 10,
+                    setups: 4,
+                    candidates: 2,
+                    admissible: 1,
+                    exact: true,
+                }),
+                segment_kinds: vec![SegmentKind::Line, SegmentKind::Arc, SegmentKind::Line],
+                fixtures: vec![fixture],
+            },
+        };
+        assert_eq!(
+            json(&fixtures),
+            r#"{"part":"p","status":"ok","counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1},"segment_kinds":["line","arc","line"],"fixtures":[{"rank":1,"score":0.25,"segments":[0,1,2],"locators":[[0,0],[2,0],[0,1]],"pose":{"x":1.0,"y":2.0,"theta_deg":90.0},"clamp":{"segment":1,"rotation_deg":180,"mount":[3,1],"extension":4.5,"contact":[5.0,6.0]},"borderline":false,"contacts":[{"point":[1.0,0.0],"normal":[0.0,1.0]}],"placement":{"rotation_deg":90,"locators":[[1,1],[3,1],[1,2]],"clamp_holes":[[4,2],[5,2]]}}]}"#
+        );
+        let invalid = FixturesMsg {
+            part: "q".into(),
+            result: SolveResult::invalid("q: open outline"),
+        };
+        assert_eq!(
+            json(&invalid),
+            r#"{"part":"q","status":"invalid","error":"q: open outline","fixtures":[]}"#
+        );
+    }
 }

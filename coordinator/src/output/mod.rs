@@ -1,8 +1,10 @@
-//! The results file: one message type per MCAP channel, their JSON
-//! Schemas, finished chunks and the MCAP file written from them, the writer (chunk per
-//! part, resumable) and the reader.
-//! Uses `job` (the types a part's messages carry) and the core crate.
+//! The results file: its channels (one list), one message type per
+//! channel, their JSON Schemas, finished chunks and the MCAP file written
+//! from them, the writer (chunk per part, resumable) and the reader.
+//! Uses `job` (the types a part's messages carry), `view::scene` (the
+//! scene channel's message) and the core crate.
 
+pub mod channels;
 pub mod chunk;
 pub mod mcap_file;
 pub mod messages;

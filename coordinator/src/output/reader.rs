@@ -1,6 +1,7 @@
 //! Reading a results file back, complete or cut short by a kill: the run
 //! message, then each part's messages grouped in catalogue order.
 
+use super::channels::{part_slot, PART_CHANNELS};
 use super::messages::*;
 use super::writer::PartMessages;
 use mcap::read::Options;
@@ -40,8 +41,8 @@ pub struct ResultsFile {
 pub struct Contents {
     /// The run message (what was run).
     pub run: RunMsg,
-    /// Indices of the parts whose three messages are all present, in file
-    /// order.
+    /// Indices of the parts whose messages (one on each part channel) are
+    /// all present, in file order.
     pub parts: Vec<usize>,
     /// False when the file has no summary (an interrupted run).
     pub complete: bool,
@@ -79,29 +80,19 @@ impl ResultsFile {
         let stream = MessageStream::new_with_options(&self.bytes, Options::IgnoreEndMagic.into())
             .map_err(|e| self.format_err(e.to_string()))?;
         let mut run: Option<RunMsg> = None;
-        let mut cur: Option<(usize, [Option<Vec<u8>>; 3])> = None;
+        let mut cur: Option<Gathered> = None;
         let mut truncated = None;
         let mut parts = Vec::new();
         let mut keep_going = true;
-        let flush = |cur: &mut Option<(usize, [Option<Vec<u8>>; 3])>,
+        let flush = |cur: &mut Option<Gathered>,
                      run: &Option<RunMsg>,
                      parts: &mut Vec<usize>,
                      keep_going: &mut bool,
                      on_part: &mut dyn FnMut(&RunMsg, PartMessages) -> bool| {
-            if let (Some((index, [Some(part), Some(fixtures), Some(scene)])), Some(run)) =
-                (cur.take(), run)
-            {
-                parts.push(index);
+            if let (Some(m), Some(run)) = (cur.take().and_then(Gathered::complete), run) {
+                parts.push(m.index);
                 if *keep_going {
-                    *keep_going = on_part(
-                        run,
-                        PartMessages {
-                            index,
-                            part,
-                            fixtures,
-                            scene,
-                        },
-                    );
+                    *keep_going = on_part(run, m);
                 }
             }
         };
@@ -113,25 +104,26 @@ impl ResultsFile {
                     break;
                 }
             };
-            let slot = match msg.channel.topic.as_str() {
-                TOPIC_RUN => {
-                    let r: RunMsg = serde_json::from_slice(&msg.data)
-                        .map_err(|e| self.format_err(format!("{TOPIC_RUN}: {e}")))?;
-                    run = Some(r);
-                    continue;
-                }
-                TOPIC_PART => 0,
-                TOPIC_FIXTURES => 1,
-                TOPIC_SCENE => 2,
-                _ => continue,
+            let topic = msg.channel.topic.as_str();
+            if topic == TOPIC_RUN {
+                let r: RunMsg = serde_json::from_slice(&msg.data)
+                    .map_err(|e| self.format_err(format!("{TOPIC_RUN}: {e}")))?;
+                run = Some(r);
+                continue;
+            }
+            let Some(slot) = part_slot(topic) else {
+                continue;
             };
             let index = (msg.log_time / NS_PER_PART) as usize;
-            if cur.as_ref().map(|c| c.0) != Some(index) {
+            if cur.as_ref().map(|c| c.index) != Some(index) {
                 flush(&mut cur, &run, &mut parts, &mut keep_going, &mut on_part);
-                cur = Some((index, [None, None, None]));
+                cur = Some(Gathered {
+                    index,
+                    messages: Default::default(),
+                });
             }
             if let Some(c) = cur.as_mut() {
-                c.1[slot] = Some(msg.data.into_owned());
+                c.messages[slot] = Some(msg.data.into_owned());
             }
         }
         flush(&mut cur, &run, &mut parts, &mut keep_going, &mut on_part);
@@ -142,6 +134,24 @@ impl ResultsFile {
             complete,
             truncated,
         })
+    }
+}
+
+/// The messages of one part read so far, by their place in
+/// [`PART_CHANNELS`].
+struct Gathered {
+    index: usize,
+    messages: [Option<Vec<u8>>; PART_CHANNELS.len()],
+}
+
+impl Gathered {
+    /// The part's messages, if there is one on every part channel.
+    fn complete(self) -> Option<PartMessages> {
+        if self.messages.iter().any(Option::is_none) {
+            return None;
+        }
+        let messages = self.messages.map(Option::unwrap_or_default);
+        Some(PartMessages::read(self.index, messages))
     }
 }
 
@@ -157,8 +167,8 @@ impl PartRecord {
     /// Decodes the part and fixtures messages (the scene is for viewers).
     pub fn decode(m: &PartMessages) -> Result<PartRecord, serde_json::Error> {
         Ok(PartRecord {
-            part: serde_json::from_slice(&m.part)?,
-            fixtures: serde_json::from_slice(&m.fixtures)?,
+            part: m.decode()?,
+            fixtures: m.decode()?,
         })
     }
 }

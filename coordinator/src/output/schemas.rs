@@ -1,7 +1,7 @@
 //! The JSON Schemas embedded in a results file, one per channel of
-//! [`super::messages`]: what lets a generic MCAP viewer decode them.
+//! [`super::channels`]: what lets a generic MCAP viewer decode them.
 
-use super::messages::{FixturesMsg, PartMsg, RunMsg, SCHEMA_FIXTURES, SCHEMA_PART, SCHEMA_RUN};
+use super::messages::Message;
 use schemars::{generate::SchemaSettings, JsonSchema};
 
 /// The JSON Schema of `T`, generated from the type (serde attributes and
@@ -18,23 +18,10 @@ pub fn schema_of<T: JsonSchema>(title: &str) -> serde_json::Value {
     v
 }
 
-fn pretty(v: &serde_json::Value) -> Vec<u8> {
-    serde_json::to_vec_pretty(v).unwrap_or_default()
-}
-
-/// The schema of `/fixplan/run`, generated from [`RunMsg`].
-pub fn run_schema() -> Vec<u8> {
-    pretty(&schema_of::<RunMsg>(SCHEMA_RUN))
-}
-
-/// The schema of `/fixplan/part`, generated from [`PartMsg`].
-pub fn part_schema() -> Vec<u8> {
-    pretty(&schema_of::<PartMsg>(SCHEMA_PART))
-}
-
-/// The schema of `/fixplan/fixtures`, generated from [`FixturesMsg`].
-pub fn fixtures_schema() -> Vec<u8> {
-    pretty(&schema_of::<FixturesMsg>(SCHEMA_FIXTURES))
+/// The schema of JSON message `M` as a results file embeds it: generated
+/// ([`schema_of`]), titled with its schema name, pretty-printed.
+pub fn generated_schema<M: Message>() -> Vec<u8> {
+    serde_json::to_vec_pretty(&schema_of::<M>(M::SCHEMA)).unwrap_or_default()
 }
 
 /// The official `foxglove.SceneUpdate` JSON Schema, vendored byte for byte
@@ -107,6 +94,7 @@ fn walk_objects(v: &serde_json::Value, path: &str, found: &mut Vec<String>) {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::output::channels::all_channels;
     use crate::output::messages::SCHEMA_SCENE;
     use sha2::{Digest, Sha256};
 
@@ -145,15 +133,43 @@ pub(crate) mod tests {
 
     #[test]
     fn generated_schemas_are_titled_2020_12_with_properties_everywhere() {
-        let schemas = [
-            (SCHEMA_RUN, run_schema()),
-            (SCHEMA_PART, part_schema()),
-            (SCHEMA_FIXTURES, fixtures_schema()),
-        ];
-        for (title, bytes) in schemas {
-            let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-            assert_viewer_ready(title, &v);
+        for c in all_channels().filter(|c| c.schema_name != SCHEMA_SCENE) {
+            let v: serde_json::Value = serde_json::from_slice(&(c.schema)()).unwrap();
+            assert_viewer_ready(c.schema_name, &v);
         }
+    }
+
+    /// The generated schemas are part of the file format: they change only
+    /// with the message types of [`crate::output::messages`].
+    #[test]
+    fn generated_schemas_keep_their_bytes() {
+        let digests: Vec<(&str, String)> = all_channels()
+            .map(|c| {
+                let digest = Sha256::digest((c.schema)());
+                let hex = digest.iter().map(|b| format!("{b:02x}")).collect();
+                (c.schema_name, hex)
+            })
+            .collect();
+        let want = [
+            (
+                "fixplan.Run",
+                "4c2b358ec58c49bf1edc43f034430f8c784d43344b347d62e9c2fdab744e5140",
+            ),
+            (
+                "fixplan.Part",
+                "cdf4f807005d013297e8512f48ce44116f13e4c0fa9a27f8f62d6799144c7f84",
+            ),
+            (
+                "fixplan.Fixtures",
+                "05dda1f46479ffa3f515d654a3d45908ba14b402d89926ea7041d847fb2c1bba",
+            ),
+            (
+                SCHEMA_SCENE,
+                "bc563208a8b4bb2eaecd17713405ef2d9ba87264ac73ae375ba5ab30368c8991",
+            ),
+        ];
+        let want: Vec<(&str, String)> = want.iter().map(|(n, h)| (*n, h.to_string())).collect();
+        assert_eq!(digests, want);
     }
 
     #[test]

@@ -1,17 +1,15 @@
-//! Writing a results file: MCAP, one zstd chunk per part (three messages:
-//! part, fixtures, scene), summary and indexes. Chunks come finished
+//! Writing a results file: MCAP, one zstd chunk per part (a message on
+//! each of [`PART_CHANNELS`]), summary and indexes. Chunks come finished
 //! ([`PartChunk`]: made by a worker, or by the solving thread of an
 //! embedded run), so writing a part is a copy. The file is flushed every
 //! few parts ([`FLUSH_BYTES`], [`FLUSH_PARTS`]), so a run killed at any
 //! moment leaves a file whose complete chunks hold whole parts;
 //! `--resume` reads them back.
 
-use super::chunk::{
-    PartChunk, CHANNEL_FIXTURES, CHANNEL_PART, CHANNEL_RUN, CHANNEL_SCENE, PART_CHANNELS,
-};
+use super::channels::{all_channels, part_slot, PART_CHANNELS, RUN_CHANNEL};
+use super::chunk::PartChunk;
 use super::mcap_file::McapFile;
 use super::messages::*;
-use super::schemas::{fixtures_schema, part_schema, run_schema, scene_schema};
 use mcap::records::{Channel, Metadata};
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -29,20 +27,50 @@ pub enum OutError {
     Json(#[from] serde_json::Error),
 }
 
-/// The three messages of one part, already serialised.
+/// The messages of one part, already serialised: one on each of
+/// [`PART_CHANNELS`], in its order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartMessages {
     /// Position of the part in the catalogue: its log time.
     pub index: usize,
-    /// `/fixplan/part` message.
-    pub part: Vec<u8>,
-    /// `/fixplan/fixtures` message.
-    pub fixtures: Vec<u8>,
-    /// `/fixplan/scene` message.
-    pub scene: Vec<u8>,
+    messages: [Vec<u8>; PART_CHANNELS.len()],
 }
 
 impl PartMessages {
+    /// The messages of `part`, each made by its channel's encoder.
+    pub fn encode(part: &PartContent) -> serde_json::Result<PartMessages> {
+        let mut messages: [Vec<u8>; PART_CHANNELS.len()] = Default::default();
+        for (m, c) in messages.iter_mut().zip(&PART_CHANNELS) {
+            *m = (c.encode)(part)?;
+        }
+        Ok(PartMessages {
+            index: part.index,
+            messages,
+        })
+    }
+
+    /// The messages of part `index` as read from a file, in the order of
+    /// [`PART_CHANNELS`].
+    pub fn read(index: usize, messages: [Vec<u8>; PART_CHANNELS.len()]) -> PartMessages {
+        PartMessages { index, messages }
+    }
+
+    /// The message on channel `topic`, if it is a part channel.
+    pub fn get(&self, topic: &str) -> Option<&[u8]> {
+        part_slot(topic).map(|i| self.messages[i].as_slice())
+    }
+
+    /// The message `M`, decoded.
+    pub fn decode<M: Message>(&self) -> serde_json::Result<M> {
+        match self.get(M::TOPIC) {
+            Some(data) => serde_json::from_slice(data),
+            None => Err(serde::de::Error::custom(format!(
+                "{} is not a part channel",
+                M::TOPIC
+            ))),
+        }
+    }
+
     /// The part's chunk (compressed here: on the solving thread, or the
     /// worker, never the writer's).
     pub fn chunk(&self) -> std::io::Result<PartChunk> {
@@ -58,14 +86,9 @@ impl PartMessages {
         self.index as u64 * NS_PER_PART
     }
 
-    fn records(&self) -> [(u16, u32, &[u8]); 3] {
+    fn records(&self) -> [(u16, u32, &[u8]); PART_CHANNELS.len()] {
         let seq = self.index as u32;
-        let [part, fixtures, scene] = PART_CHANNELS;
-        [
-            (part, seq, &self.part),
-            (fixtures, seq, &self.fixtures),
-            (scene, seq, &self.scene),
-        ]
+        std::array::from_fn(|i| (PART_CHANNELS[i].channel.id, seq, &self.messages[i][..]))
     }
 }
 
@@ -124,29 +147,18 @@ impl ResultsWriter {
     /// [`METADATA_RUN`] metadata record.
     pub fn create(file: File, run: &RunMsg) -> Result<ResultsWriter, OutError> {
         let mut w = McapFile::new(BufWriter::with_capacity(FLUSH_BYTES, file), "", &library())?;
-        let channels = [
-            (CHANNEL_RUN, SCHEMA_RUN, run_schema(), TOPIC_RUN),
-            (CHANNEL_PART, SCHEMA_PART, part_schema(), TOPIC_PART),
-            (
-                CHANNEL_FIXTURES,
-                SCHEMA_FIXTURES,
-                fixtures_schema(),
-                TOPIC_FIXTURES,
-            ),
-            (CHANNEL_SCENE, SCHEMA_SCENE, scene_schema(), TOPIC_SCENE),
-        ];
-        for (id, name, schema, topic) in channels {
-            w.schema(id, name, "jsonschema", &schema)?;
+        for c in all_channels() {
+            w.schema(c.id, c.schema_name, "jsonschema", &(c.schema)())?;
             w.channel(Channel {
-                id,
-                schema_id: id,
-                topic: topic.into(),
+                id: c.id,
+                schema_id: c.id,
+                topic: c.topic.into(),
                 message_encoding: "json".into(),
                 metadata: BTreeMap::new(),
             })?;
         }
         let data = serde_json::to_vec(run)?;
-        w.chunk(&PartChunk::encode(0, &[(CHANNEL_RUN, 0, &data)])?)?;
+        w.chunk(&PartChunk::encode(0, &[(RUN_CHANNEL.id, 0, &data)])?)?;
         w.metadata(&run_metadata(run)?)?;
         w.flush()?;
         Ok(ResultsWriter {

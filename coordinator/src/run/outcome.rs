@@ -1,11 +1,10 @@
-//! What a solved part becomes in the results file: its three messages
-//! (part, fixtures, scene) in one compressed chunk, and the summary the
+//! What a solved part becomes in the results file: its messages (one on
+//! each part channel) in one compressed chunk, and the summary the
 //! progress display shows.
 
 use crate::job::{JobContext, Solved};
-use crate::output::messages::{FixturesMsg, PartMsg, STOPPED_GOOD_ENOUGH};
+use crate::output::messages::PartContent;
 use crate::output::{PartChunk, PartMessages};
-use crate::view::scene::{scene_json, PartScene};
 use fixplan_catalog::CatalogPart;
 use fixplan_core::Status;
 
@@ -68,68 +67,30 @@ pub fn part_outcome_packed(
         timing,
         search,
     } = solved;
-    let (outline, access) = match &cp.part {
-        Ok(p) => (p.outline.clone(), p.access.clone()),
-        // What was read, if anything: the picture shows what is wrong.
-        Err(e) => e.read().map_or((Vec::new(), Vec::new()), |p| {
-            (p.outline.clone(), p.access.clone())
-        }),
+    // What was read of an invalid part, if anything: the picture shows
+    // what is wrong.
+    let read = match &cp.part {
+        Ok(p) => Some(p),
+        Err(e) => e.read(),
     };
-    let best = result.fixtures.first();
-    let part_msg = PartMsg {
+    let messages = PartMessages::encode(&PartContent {
         index,
-        id: cp.id.clone(),
-        file: cp.file.as_ref().map(|f| f.display().to_string()),
-        status: result.status,
-        error: result.error.clone(),
-        warnings: cp.warnings.clone(),
-        units: ctx.units,
-        quantity: cp.quantity,
-        outline: outline.clone(),
-        access: access.clone(),
-        counts: result.counts,
-        fixtures: result.fixtures.len(),
-        best_score: best.map(|f| f.score),
-        timing,
-        refine: search.steps.clone(),
-        stopped: search.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
-        stopped_at: search.stopped_at,
-    };
-    let caption = match &result.error {
-        Some(e) => e.clone(),
-        None => format!("{}: no fixture", cp.id),
-    };
-    let shown = best.ok_or(caption.as_str());
-    let scene = scene_json(PartScene {
-        index,
-        id: &cp.id,
+        entry: cp,
         units: ctx.units,
         kit: ctx.kit,
-        outline: &outline,
-        access: &access,
-        best: shown,
+        outline: read.map_or(&[], |p| &p.outline),
+        access: read.map_or(&[], |p| &p.access),
+        result: &result,
+        timing,
+        search: &search,
     })?;
-    let part = serde_json::to_vec(&part_msg)?;
-    let (status, error) = (result.status, result.error.clone());
-    let admissible = admissible_found(result.status, result.counts);
-    let kept = result.fixtures.len();
-    let fixtures = serde_json::to_vec(&FixturesMsg {
-        part: cp.id.clone(),
-        result,
-    })?;
-    let messages = PartMessages {
-        index,
-        part,
-        fixtures,
-        scene,
-    };
     Ok(PartOutcome {
         chunk: pack(&messages)?,
         id: cp.id.clone(),
-        status,
-        error,
-        admissible,
-        kept,
+        status: result.status,
+        admissible: admissible_found(result.status, result.counts),
+        kept: result.fixtures.len(),
+        error: result.error,
         steps: search.steps,
         stopped_at: search.stopped_at,
     })

@@ -99,7 +99,7 @@ fn copy_finished(
             write_err = Some(e);
             return false;
         }
-        if let Ok(p) = serde_json::from_slice::<PartMsg>(&m.part) {
+        if let Ok(p) = m.decode::<PartMsg>() {
             let admissible = super::outcome::admissible_found(p.status, p.counts);
             progress.resumed(p.status, admissible, p.fixtures);
         }

@@ -1,6 +1,7 @@
 //! `fixplan show` and `fixplan export`: a results file as terminal tables
 //! or as JSON lines.
 
+use crate::output::messages::{FixturesMsg, TOPIC_FIXTURES};
 use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
 use anyhow::Result;
 use fixplan_core::outline::edges_of;
@@ -217,7 +218,7 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
     let mut err = None;
     let contents = file.for_each_part(|_, m| {
         if let Some(p) = part {
-            match serde_json::from_slice::<crate::output::messages::FixturesMsg>(&m.fixtures) {
+            match m.decode::<FixturesMsg>() {
                 Ok(f) if f.part != p => return true,
                 Ok(_) => {}
                 Err(e) => {
@@ -227,7 +228,7 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
             }
         }
         let r = out
-            .write_all(&m.fixtures)
+            .write_all(m.get(TOPIC_FIXTURES).unwrap_or_default())
             .and_then(|_| out.write_all(b"\n"));
         if let Err(e) = r {
             err = Some(e.into());
