@@ -13,6 +13,7 @@
 pub mod bench;
 pub mod cli;
 pub mod cluster;
+pub mod drawing;
 pub mod job;
 pub mod output;
 pub mod run;

@@ -1,14 +1,16 @@
 //! The results file: its channels (one list), one message type per
 //! channel, their JSON Schemas, finished chunks and the MCAP file written
 //! from them, the writer (chunk per part, resumable) and the reader.
-//! Uses `job` (the types a part's messages carry), `view::scene` (the
-//! scene channel's message) and the core crate.
+//! The Foxglove scene is one of its messages ([`scene`]). Uses `job` (the
+//! types a part's messages carry), `drawing` (what the scene draws) and
+//! the core crate.
 
 pub mod channels;
 pub mod chunk;
 pub mod mcap_file;
 pub mod messages;
 pub mod reader;
+pub mod scene;
 pub mod schemas;
 pub mod writer;
 

@@ -6,9 +6,9 @@
 //! byte. A part's arcs are exact SVG arcs (`A` path commands); a polygon
 //! part is a `polygon`, as before arcs.
 
-use super::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
-use super::outline::{extent_points, has_arcs, vertex_points};
 use super::svg::escape;
+use crate::drawing::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
+use crate::drawing::outline::{extent_points, has_arcs, vertex_points};
 use crate::output::messages::RunMsg;
 use crate::output::reader::PartRecord;
 use fixplan_core::outline::{edges_of, Edge, Vertex};

@@ -3,12 +3,12 @@
 //! `metric-25` kit.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
-use super::draw::fixture_drawing;
 use super::picture::{fixture_svg, part_svg};
-use super::scene::{scene_update, PartScene};
 use super::show::print_part;
+use crate::drawing::draw::fixture_drawing;
 use crate::output::messages::{CatalogInfo, FixturesMsg, PartMsg, RunMsg};
 use crate::output::reader::PartRecord;
+use crate::output::scene::{scene_update, PartScene};
 use fixplan_core::outline::Vertex;
 use fixplan_core::segments::SegmentKind;
 use fixplan_core::{solve, Params, Part, Point, SolveResult, Status, Units};
@@ -348,7 +348,7 @@ fn svg_arc_flags_put_the_arc_on_the_right_side() {
 /// without a fixture, in two units, and again once the cache is warm.
 #[test]
 fn the_scene_json_is_the_serialised_scene_update() {
-    use super::scene::scene_json;
+    use crate::output::scene::scene_json;
     let run = run_msg();
     let rec = record(&run, "half-round", arc_plate());
     let f = &rec.fixtures.result.fixtures[0];

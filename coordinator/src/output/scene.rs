@@ -8,10 +8,10 @@
 //! (~400 us a part). Fields are declared in alphabetical order, which is
 //! the order a `Value` map wrote them in, so the bytes did not change.
 
-use super::draw::{
+use crate::drawing::draw::{
     bounds, fixture_drawing, plate_holes, plate_outline, Circle, FixtureDrawing, Hole,
 };
-use super::outline::{extent_points, flattened};
+use crate::drawing::outline::{extent_points, flattened};
 use crate::output::messages::NS_PER_PART;
 use fixplan_core::outline::Vertex;
 use fixplan_core::{FixtureReport, Kit, Point, Units};
