@@ -69,7 +69,8 @@ enum Cmd {
         #[arg(long, value_name = "DIR|catalog.toml")]
         catalog: Option<PathBuf>,
         /// The kit: a built-in name (`paper-inch`, `metric-25`) or a kit TOML
-        /// file. Its lengths are read in the catalogue's unit.
+        /// file. Its lengths are converted to the catalogue's unit (a kit
+        /// file states its own `units`).
         #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
         kit: String,
         /// Circular arcs of the parts (DXF bulges, ARC, CIRCLE, SVG circular

@@ -2,7 +2,7 @@
 //! what a part's messages are made from ([`PartContent`]). Which channel
 //! carries which message is [`super::channels`]; the JSON Schemas are
 //! generated from these types ([`super::schemas`]); the layout is
-//! documented in the README ("MCAP layout").
+//! documented in the README ("The results file (MCAP)").
 
 use crate::job::SearchInfo;
 pub use crate::job::Timing;

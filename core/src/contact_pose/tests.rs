@@ -172,7 +172,7 @@ fn continuum_threshold_separates() {
     assert!(least_genuine > CONTINUUM_REL * 100.0);
 }
 
-/// Why tangential poses are singular setups (README, "Choices"): row `k`
+/// Why tangential poses are singular setups (docs/model.md, section 13): row `k`
 /// of the pose Jacobian is contact `k`'s wrench `(f, L_k x f)` with its
 /// force part turned into the part frame, so with rows scaled to unit
 /// length `|det J| = |det W| / prod |w_k|` at every pose.
