@@ -4,11 +4,11 @@
 //! duplicate entities dropped, every entity that cannot be used named,
 //! and the reader's limits counted.
 
-use super::super::outline::{dist, reversed, Piece, P};
+use super::super::outline::{dist, reversed, Affine, Piece, P};
 use super::super::raw::{LimitExceeded, Limits, ReadOptions};
 use super::entities::{entity_name, entity_shape, ocs_flip, Curves, Shape};
 use super::error::DxfError;
-use super::transform::Transform;
+use super::transform;
 use dxf::entities::{Entity, EntityType, Insert};
 use dxf::{Block, Drawing};
 use fixplan_core::outline::Vertex;
@@ -44,7 +44,7 @@ pub(super) struct Found {
 struct Place {
     path: String,
     layer: Option<String>,
-    xf: Transform,
+    xf: Affine,
     depth: usize,
 }
 
@@ -105,7 +105,7 @@ impl<'a> Walk<'a> {
         let top = Place {
             path: String::new(),
             layer: None,
-            xf: Transform::ID,
+            xf: Affine::ID,
             depth: 0,
         };
         for (k, e) in drawing.entities().enumerate() {
@@ -237,7 +237,7 @@ impl<'a> Walk<'a> {
         if pts.len() < 2 && !closed {
             return Ok(());
         }
-        let pts = at.xf.vertices(pts, closed, tol);
+        let pts = transform::place(at.xf, pts, closed, tol);
         let first = pts.first().map(|v| [v.x, v.y]).unwrap_or_default();
         if pts.iter().all(|v| dist([v.x, v.y], first) <= self.join_tol) {
             self.found.warnings.push(format!(
@@ -328,15 +328,14 @@ impl<'a> Walk<'a> {
                     f64::from(c) * ins.column_spacing,
                     f64::from(r) * ins.row_spacing,
                 ];
-                let xf = Transform::insert(
+                let xf = at.xf.mul(transform::insert(
                     base,
                     [ins.x_scale_factor, ins.y_scale_factor],
                     offset,
                     ins.rotation,
                     [ins.location.x, ins.location.y],
                     flip,
-                )
-                .then(at.xf);
+                ));
                 let cell = if rows * cols > 1 {
                     format!(" (row {}, column {})", r + 1, c + 1)
                 } else {

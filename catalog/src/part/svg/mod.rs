@@ -63,14 +63,14 @@ pub use error::{ElementProblem, SvgError};
 pub use path::PathError;
 pub use transform::TransformError;
 
-use super::outline::{arc_pieces, pick_outline, pick_outlines, positions, Piece, P};
+use super::outline::{arc_pieces, pick_outline, pick_outlines, positions, Affine, Piece, P};
 use super::raw::{RawPart, ReadOptions};
 use fixplan_core::outline::Vertex;
 use fixplan_core::{Part, Units};
 use lexer::Lexer;
 use limits::Budget;
 use path::{parse_path, Sub};
-use transform::{parse_transform, Affine};
+use transform::parse_transform;
 
 fn in_element(node: roxmltree::Node, problem: ElementProblem) -> SvgError {
     SvgError::InElement {
@@ -394,7 +394,6 @@ impl Walk {
     /// Adds an element's subpaths, transformed: closed ones as loops (or
     /// access loops), open ones as pieces to join.
     fn add(&mut self, el: roxmltree::Node, subs: Vec<Sub>, ctm: Affine, access: bool) {
-        let mirror = ctm.mirrors();
         let many = subs.len() > 1;
         let mut loops = Vec::new();
         for (k, sub) in subs.into_iter().enumerate() {
@@ -404,18 +403,7 @@ impl Walk {
             if closes {
                 pts.pop();
             }
-            let pts: Vec<Vertex> = pts
-                .into_iter()
-                .map(|v| {
-                    let [x, y] = ctm.apply([v.x, v.y]);
-                    let b = if mirror && v.bulge != 0.0 {
-                        -v.bulge
-                    } else {
-                        v.bulge
-                    };
-                    Vertex::new(x, y, b)
-                })
-                .collect();
+            let pts = ctm.vertices(pts);
             if !sub.closed && !closes {
                 let label = if many {
                     format!("{} (subpath {k})", describe(el))

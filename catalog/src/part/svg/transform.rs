@@ -1,6 +1,8 @@
-//! `transform` attributes: SVG's affine maps and their parser.
+//! `transform` attributes: their parser into the readers' affine maps
+//! ([`Affine`]).
 
 use super::lexer::Lexer;
+use crate::part::outline::Affine;
 
 /// Why a `transform` attribute cannot be used.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -15,68 +17,6 @@ pub enum TransformError {
     /// the transform in question.
     #[error("unsupported transform \"{0}\"")]
     Unsupported(String),
-}
-
-/// Affine map `(x, y) -> (a x + c y + e, b x + d y + f)`, SVG's order.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Affine([f64; 6]);
-
-impl Affine {
-    /// The identity: no transform.
-    pub(super) const ID: Affine = Affine([1.0, 0.0, 0.0, 1.0, 0.0, 0.0]);
-
-    /// `self` then `o` applied first (SVG nesting: parent * child).
-    pub(super) fn mul(self, o: Affine) -> Affine {
-        let [a, b, c, d, e, f] = self.0;
-        let [a2, b2, c2, d2, e2, f2] = o.0;
-        Affine([
-            a * a2 + c * b2,
-            b * a2 + d * b2,
-            a * c2 + c * d2,
-            b * c2 + d * d2,
-            a * e2 + c * f2 + e,
-            b * e2 + d * f2 + f,
-        ])
-    }
-
-    /// The image of `p`.
-    pub(super) fn apply(self, p: [f64; 2]) -> [f64; 2] {
-        let [a, b, c, d, e, f] = self.0;
-        [a * p[0] + c * p[1] + e, b * p[0] + d * p[1] + f]
-    }
-
-    /// Whether the map keeps circles circles: a uniform scale, a rotation,
-    /// a translation and possibly a reflection (columns orthogonal and of
-    /// equal length, to a relative `1e-9`).
-    pub(super) fn is_similarity(self) -> bool {
-        let [a, b, c, d, _, _] = self.0;
-        let (p, q) = (a * a + b * b, c * c + d * d);
-        let tol = 1e-9 * p.max(q);
-        p > 0.0
-            && p.is_finite()
-            && q.is_finite()
-            && (p - q).abs() <= tol
-            && (a * c + b * d).abs() <= tol
-    }
-
-    /// Whether the map mirrors (negative determinant), which turns every
-    /// arc the other way.
-    pub(super) fn mirrors(self) -> bool {
-        let [a, b, c, d, _, _] = self.0;
-        a * d - b * c < 0.0
-    }
-
-    /// Largest stretch of the map, to keep chord errors within tolerance
-    /// after scaling.
-    pub(super) fn max_scale(self) -> f64 {
-        let [a, b, c, d, _, _] = self.0;
-        let s = a.hypot(b).max(c.hypot(d));
-        if s.is_finite() && s > 0.0 {
-            s
-        } else {
-            1.0
-        }
-    }
 }
 
 /// A `transform` attribute as one map (its transforms composed left to
