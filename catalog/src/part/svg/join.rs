@@ -6,7 +6,9 @@
 
 use super::error::{chain_name, SvgError};
 use crate::part::outline::OutlineError;
-use crate::part::outline::{dist, fmt_pt, join_pieces, positions, OpenChain, Piece, P};
+use crate::part::outline::{
+    dist, fmt_pt, join_pieces, nearest_other_end, positions, OpenChain, Piece, P,
+};
 use crate::part::raw::RawPart;
 use fixplan_core::outline::Vertex;
 
@@ -35,11 +37,6 @@ fn bbox_of<'a>(pts: impl Iterator<Item = &'a Vertex>) -> [f64; 4] {
 /// The chains of `open` as [`Open`]s: each with the pieces' extent and
 /// its nearest other free end.
 fn describe_open(open: Vec<OpenChain>, pieces: &[Piece], tol: f64, access: bool) -> Vec<Open> {
-    let ends: Vec<(usize, P)> = open
-        .iter()
-        .enumerate()
-        .flat_map(|(i, c)| [(i, c.start), (i, c.end)])
-        .collect();
     open.iter()
         .enumerate()
         .map(|(i, c)| {
@@ -50,20 +47,14 @@ fn describe_open(open: Vec<OpenChain>, pieces: &[Piece], tol: f64, access: bool)
                     .flat_map(|p| p.pts.iter()),
             );
             let size = (bbox[2] - bbox[0]).hypot(bbox[3] - bbox[1]);
-            // The nearest free end to either end, the chain's own other end
-            // included; the two ends of one chain at one point are not a gap.
-            let mut nearest: Option<(P, f64)> = None;
-            for own in [c.start, c.end] {
-                for &(j, q) in &ends {
-                    if j == i && (q == own || c.start == c.end) {
-                        continue;
-                    }
-                    let d = dist(own, q);
-                    if nearest.is_none_or(|n| d < n.1) {
-                        nearest = Some((q, d));
-                    }
-                }
-            }
+            // The nearest free end to either end, as the DXF reader finds it
+            // (the chain's own other end included when joining the two would
+            // make a loop).
+            let nearest = [c.start, c.end]
+                .into_iter()
+                .filter_map(|own| nearest_other_end(&open, i, own))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map(|(d, q, _)| (q, d));
             let gap = nearest.is_some_and(|(_, d)| d <= GAP_SHARE * size);
             let first = c.labels.first().cloned().unwrap_or_default();
             Open {
