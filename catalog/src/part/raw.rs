@@ -53,24 +53,31 @@ pub struct LayerFilter {
     pub ignore: Vec<String>,
 }
 
-fn same_layer(a: &str, b: &str) -> bool {
-    a.trim().eq_ignore_ascii_case(b.trim())
-}
-
 impl LayerFilter {
+    /// A layer's name as the filter compares it: trimmed, ASCII case
+    /// folded (for sets of names; [`LayerFilter::reads`] compares without
+    /// allocating, to the same effect).
+    pub fn key(layer: &str) -> String {
+        layer.trim().to_ascii_lowercase()
+    }
+
+    /// Whether `ignore` names `layer`: nothing on it is read, not even the
+    /// blocks an INSERT on it places.
+    pub fn ignores(&self, layer: &str) -> bool {
+        names(&self.ignore, layer)
+    }
+
     /// Whether an entity on `layer` is read; `access` says the layer holds
     /// access constraints, which `read` does not need to name.
     pub fn reads(&self, layer: &str, access: bool) -> bool {
-        if self.ignore.iter().any(|l| same_layer(l, layer)) {
-            return false;
-        }
-        access || self.read.is_empty() || self.read.iter().any(|l| same_layer(l, layer))
+        !self.ignores(layer) && (access || self.read.is_empty() || names(&self.read, layer))
     }
+}
 
-    /// Whether the filter reads every layer.
-    pub fn is_all(&self) -> bool {
-        self.read.is_empty() && self.ignore.is_empty()
-    }
+/// Whether `list` names `layer`, as [`LayerFilter::key`] compares.
+fn names(list: &[String], layer: &str) -> bool {
+    list.iter()
+        .any(|l| l.trim().eq_ignore_ascii_case(layer.trim()))
 }
 
 /// Bounds on what one part file may cost to read, whatever it holds: a

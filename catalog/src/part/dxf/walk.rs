@@ -5,7 +5,7 @@
 //! and the reader's limits counted.
 
 use super::super::outline::{dist, reversed, Affine, Piece, P};
-use super::super::raw::{LimitExceeded, Limits, ReadOptions};
+use super::super::raw::{LayerFilter, LimitExceeded, Limits, ReadOptions};
 use super::entities::{entity_name, entity_shape, ocs_flip, Curves, Shape};
 use super::error::DxfError;
 use super::transform;
@@ -121,7 +121,7 @@ impl<'a> Walk<'a> {
     fn layer_warnings(&mut self) {
         let f = &self.opts.layers;
         for l in &f.read {
-            if !self.layers_seen.contains(&l.trim().to_ascii_lowercase()) {
+            if !self.layers_seen.contains(&LayerFilter::key(l)) {
                 self.found.warnings.push(format!(
                     "layer {l} (named in layers) has no entities in this drawing"
                 ));
@@ -152,7 +152,7 @@ impl<'a> Walk<'a> {
             Some(inherited) if own.trim() == "0" => inherited.clone(),
             _ => own.to_string(),
         };
-        self.layers_seen.insert(layer.trim().to_ascii_lowercase());
+        self.layers_seen.insert(LayerFilter::key(&layer));
         let name = entity_name(&e.specific);
         let handle = if e.common.handle.is_empty() {
             String::new()
@@ -162,7 +162,7 @@ impl<'a> Walk<'a> {
         let label = format!("{name} #{k}{} on layer {layer}", at.path);
         let warn_label = format!("{name} #{k}{handle}{} on layer {layer}", at.path);
         if let EntityType::Insert(ins) = &e.specific {
-            if self.opts.layers.ignore.iter().any(|l| same(l, &layer)) {
+            if self.opts.layers.ignores(&layer) {
                 self.skipped += 1;
                 return Ok(());
             }
@@ -391,8 +391,4 @@ impl<'a> Walk<'a> {
         };
         rot(fwd).min(rot(back))
     }
-}
-
-fn same(a: &str, b: &str) -> bool {
-    a.trim().eq_ignore_ascii_case(b.trim())
 }
