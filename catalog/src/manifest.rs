@@ -4,8 +4,8 @@
 
 use crate::error::{part_name, CatalogError, EntryProblem, PartError, PartErrorKind};
 use crate::part::{
-    flatten_vertices, read_parts, validate_part, ArcMode, Format, LayerFilter, LimitExceeded,
-    Limits, RawPart, ReadError, ReadOptions,
+    flatten_vertices, read_parts, validate_part, ArcMode, Format, LayerFilter, Limits, RawPart,
+    ReadError, ReadOptions,
 };
 use crate::units::{self, LengthUnit};
 use fixplan_core::outline::Vertex;
@@ -243,16 +243,12 @@ fn file_bytes(path: &Path, limits: &Limits) -> Result<Vec<u8>, PartErrorKind> {
             kind: file_kind(&meta),
         });
     }
-    let too_big = |len: u64| {
-        PartErrorKind::Read(ReadError::Limit(LimitExceeded {
-            what: format!("the file's {len} bytes"),
-            limit: limits.file_bytes,
-            key: "file_bytes",
-        }))
+    let within = |len: u64| {
+        limits
+            .check_file_bytes(len)
+            .map_err(|e| PartErrorKind::Read(ReadError::Limit(e)))
     };
-    if meta.len() > limits.file_bytes {
-        return Err(too_big(meta.len()));
-    }
+    within(meta.len())?;
     let mut bytes = Vec::new();
     let file = std::fs::File::open(path).map_err(unreadable)?;
     std::io::Read::read_to_end(
@@ -260,10 +256,7 @@ fn file_bytes(path: &Path, limits: &Limits) -> Result<Vec<u8>, PartErrorKind> {
         &mut bytes,
     )
     .map_err(unreadable)?;
-    let len = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
-    if len > limits.file_bytes {
-        return Err(too_big(len));
-    }
+    within(u64::try_from(bytes.len()).unwrap_or(u64::MAX))?;
     Ok(bytes)
 }
 

@@ -82,15 +82,7 @@ fn check_options(bytes: &[u8], opts: &ReadOptions) -> Result<(), ReadError> {
         return Err(ReadError::JoinTolerance(opts.join_tolerance));
     }
     let len = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
-    if len > opts.limits.file_bytes {
-        return Err(LimitExceeded {
-            what: format!("the file's {len} bytes"),
-            limit: opts.limits.file_bytes,
-            key: "file_bytes",
-        }
-        .into());
-    }
-    Ok(())
+    Ok(opts.limits.check_file_bytes(len)?)
 }
 
 /// [`read_raw`] for a file that may be a sheet: with
@@ -102,15 +94,15 @@ pub fn read_parts(
     format: Format,
     opts: &ReadOptions,
 ) -> Result<Vec<RawPart>, ReadError> {
-    if opts.sheet && format == Format::Dxf {
-        check_options(bytes, opts)?;
-        Ok(read_dxf_parts(bytes, opts)?)
-    } else if opts.sheet && format == Format::Svg {
-        check_options(bytes, opts)?;
-        Ok(read_svg_parts(bytes, opts)?)
-    } else {
-        Ok(vec![read_raw(bytes, format, opts)?])
+    if !opts.sheet {
+        return Ok(vec![read_raw(bytes, format, opts)?]);
     }
+    check_options(bytes, opts)?;
+    Ok(match format {
+        Format::Dxf => read_dxf_parts(bytes, opts)?,
+        Format::Svg => read_svg_parts(bytes, opts)?,
+        Format::Json => vec![read_json(bytes, opts)?],
+    })
 }
 
 /// Reads and validates a part file's bytes: the part and the warnings of

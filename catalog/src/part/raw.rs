@@ -124,6 +124,19 @@ impl Limits {
         }
         true
     }
+
+    /// A file of `len` bytes within [`Limits::file_bytes`], or the limit it
+    /// goes over.
+    pub fn check_file_bytes(&self, len: u64) -> Result<(), LimitExceeded> {
+        if len <= self.file_bytes {
+            return Ok(());
+        }
+        Err(LimitExceeded {
+            what: format!("the file's {len} bytes"),
+            limit: self.file_bytes,
+            key: "file_bytes",
+        })
+    }
 }
 
 impl Default for Limits {
