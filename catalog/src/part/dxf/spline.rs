@@ -9,8 +9,9 @@
 //! fit points alone do not define the curve AutoCAD draws, so a spline
 //! without control points is not read.
 
-use super::super::outline::{dist, P};
+use super::super::outline::P;
 use super::super::raw::LimitExceeded;
+use fixplan_core::geometry::{point_segment_dist2, v2};
 
 /// Highest degree read; CAD tools write 1 to 3 (5 at most in some).
 const MAX_DEGREE: usize = 11;
@@ -55,17 +56,6 @@ impl Nurbs<'_> {
         let w = d[p][2];
         [d[p][0] / w, d[p][1] / w]
     }
-}
-
-/// Distance from `q` to the segment `a`-`b`.
-fn to_segment(q: P, a: P, b: P) -> f64 {
-    let ab = [b[0] - a[0], b[1] - a[1]];
-    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-    if len2 <= 0.0 {
-        return dist(q, a);
-    }
-    let t = (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / len2).clamp(0.0, 1.0);
-    dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]])
 }
 
 /// The points of a spline from its DXF fields: start included, each
@@ -163,7 +153,9 @@ fn subdivide(
             .iter()
             .map(|f| nurbs.at(ta + f * (tb - ta), k))
             .chain(std::iter::once(pm))
-            .all(|q| to_segment(q, pa, pb) <= tol);
+            .all(|q| {
+                point_segment_dist2(v2(q[0], q[1]), v2(pa[0], pa[1]), v2(pb[0], pb[1])) <= tol * tol
+            });
     if flat {
         if out.len() > max_pieces {
             return Err(SplineProblem::Limit(LimitExceeded {
@@ -183,6 +175,7 @@ fn subdivide(
 
 #[cfg(test)]
 mod tests {
+    use super::super::super::outline::dist;
     use super::*;
 
     #[test]
