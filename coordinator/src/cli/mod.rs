@@ -8,7 +8,7 @@ pub mod solve;
 pub mod study;
 
 use crate::run::backend::Backend;
-use crate::run::{default_catalog, load_and_run_with, RunOptions};
+use crate::run::{default_catalog, load_and_run, RunOptions};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use fixplan_catalog::{ArcMode, LoadOptions};
@@ -354,7 +354,7 @@ fn real_main() -> Result<()> {
                 }
                 None => Backend::Embedded { threads },
             };
-            load_and_run_with(
+            load_and_run(
                 &RunOptions {
                     catalog: catalog.unwrap_or_else(default_catalog),
                     kit,

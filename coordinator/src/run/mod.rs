@@ -80,14 +80,9 @@ pub fn load_catalog_arcs(path: &Path, arcs: Option<ArcMode>) -> Result<Catalog> 
     Ok(load_catalog_with(path, &opts)?)
 }
 
-/// Loads `opts.catalog` and `opts.kit`, then [`run_catalog`].
-pub fn load_and_run(opts: &RunOptions) -> Result<Totals> {
-    load_and_run_with(opts, &LoadOptions::default())
-}
-
-/// [`load_and_run`] with the catalogue read with `load` (`--sheet`);
-/// `opts.arcs` is applied over it.
-pub fn load_and_run_with(opts: &RunOptions, load: &LoadOptions) -> Result<Totals> {
+/// Loads `opts.catalog` (read with `load`, e.g. `--sheet`, and
+/// `opts.arcs` over it) and `opts.kit`, then [`run_catalog`].
+pub fn load_and_run(opts: &RunOptions, load: &LoadOptions) -> Result<Totals> {
     let load = LoadOptions {
         arcs: opts.arcs,
         ..*load
