@@ -315,6 +315,18 @@ mod tests {
         serde_json::to_string(m).expect("json")
     }
 
+    /// Exact counts of a small part, as a full enumeration gives them.
+    fn exact_counts() -> Counts {
+        Counts {
+            segments: 3,
+            combinations: 10,
+            setups: 4,
+            candidates: 2,
+            admissible: 1,
+            exact: true,
+        }
+    }
+
     #[test]
     fn the_run_message_keeps_its_json() {
         let run = RunMsg {
@@ -403,14 +415,7 @@ mod tests {
             },
             refine: Some(vec![crate::job::StepSummary {
                 grid_step: 2,
-                counts: Counts {
-                    segments: 3,
-                    combinations: 10,
-                    setups: 4,
-                    candidates: 2,
-                    admissible: 1,
-                    exact: true,
-                },
+                counts: exact_counts(),
                 fixtures: 1,
                 best_score: Some(0.25),
                 best: None,
@@ -463,14 +468,7 @@ mod tests {
             result: SolveResult {
                 status: Status::Ok,
                 error: None,
-                counts: Some(Counts {
-                    segments: 3,
-                    combinations: 10,
-                    setups: 4,
-                    candidates: 2,
-                    admissible: 1,
-                    exact: true,
-                }),
+                counts: Some(exact_counts()),
                 segment_kinds: vec![SegmentKind::Line, SegmentKind::Arc, SegmentKind::Line],
                 fixtures: vec![fixture],
             },
