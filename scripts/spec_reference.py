@@ -6,6 +6,9 @@ compared with the production implementation.
 
 usage: python3 scripts/spec_reference.py CASE.json [--max-seconds N]
 
+Sections 1-9 (polygons, circular arcs, holes).  Self-checks of section 9:
+scripts/spec_reference_holes_test.py; hole cases: scripts/spec_cases_holes/.
+
 Prints {"status", "counts": {segments, combinations, setups, candidates,
 admissible}, "fixtures": [...]} with ALL admissible fixtures (top_k ignored),
 sorted by the spec's ranking.
@@ -171,6 +174,96 @@ SECTION 8 (outlines with circular arcs), written from SPEC.md and this file only
      a sound necessary condition.
  C35 Output for parts with arcs adds "segment_kinds" (8.6) and
      "arc_diagnostics" {continua, degenerate, tangential}.
+
+SECTION 9 (parts with holes), written from SPEC.md and this file only
+ C36 Input: "holes" absent, null or [] = no holes: the code paths above, so
+     the output is byte-identical to before (spec_reference_holes_test.py
+     diffs every case of scripts/spec_cases/ against commit 8e9afe9).  A part
+     with >= 1 hole always takes the arc code path (C22-C35), even when every
+     edge is straight, so its result has "segment_kinds" and
+     "arc_diagnostics" too, and "segment_loops" (9.6) right after
+     "segment_kinds".  Reason: one code path for the part region.
+ C37 Validation order: the outline (unchanged messages), then every hole in
+     input order: first the hole as a loop of its own, by the outline's rules
+     (straight-only: C21, >= 3 vertices; with arcs: C24), message prefix
+     "part: hole k: ", e.g. "part: hole 1: edge 0 crosses edge 2 at (x, y)";
+     then hole k against the outline (contact, then containment), then
+     against each hole j < k (contact, then containment either way); access
+     constraints and the kit after all holes.  Messages:
+       "part: hole k crosses the outline at (x, y)"
+       "part: hole k touches the outline at (x, y)"
+       "part: hole k lies outside the outline"
+       "part: hole k crosses hole j at (x, y)"   (j < k)
+       "part: hole k touches hole j at (x, y)"
+       "part: hole a lies inside hole b"         (whichever contains which)
+     prefixed "part: " like every message naming the part (section 7);
+     coordinates in catalogue units with %g (so "(12.5, 3)", not the SPEC
+     example's "(12.5, 3.0)", as C21 already does for edges).  Reason: SPEC
+     9.1 gives two examples, not the list; compare messages by their words.
+ C38 Sharing a point: two loops share a point when a pair of their edges
+     meets with the tolerance tol = 1e-9 x max(1, |outline coordinates|)
+     (C24's intersection test, near-tangency included) or comes closer than
+     tol (exact closest pair of line/arc edges).  The polygon outline's own
+     validation is exact (C21); between loops the C24 tolerance is used for
+     every part.  The reported point is the first meeting point found (hole
+     edges in input order, then the other loop's edges), or the hole's
+     point of the closest pair.  "crosses" vs "touches": the hole's edges are
+     cut at the meeting points and each piece judged at its midpoint (pieces
+     within tol of the other loop skipped): pieces strictly inside AND
+     strictly outside the other loop = crosses, otherwise touches (tangent
+     circles, a vertex on a wall, a shared stretch of wall).  Reason: SPEC's
+     parenthesis "meets a loop without crossing it touches it".
+ C39 "Strictly inside the outline" / "inside another hole" (no contact found)
+     is decided at the hole's first vertex (winding number, C43); a hole
+     outside the outline is invalid ("lies outside the outline").  A hole
+     inside another is reported whichever was listed first.  Reason: 9.1
+     names the condition but no message for a hole outside the outline.
+ C40 Orientation (9.2): each hole's orientation is the sign of its true area
+     (arcs included, as 8.1's rule for the outline); a CCW hole is reversed by
+     8.1's rule (each bulge negated and moved with its edge), so a round hole
+     listed either way becomes two half circles with b = -1 (concave).
+     Edges: outline (CCW) first, then hole 0 (CW), hole 1, ...; segments in
+     (edge, position) order; segment_loops[i] = 0 (outline) or k + 1.
+ C41 Segments (9.3): C25 with the part region = all loops: a grown-edge
+     point goes when its distance to the part region is < r - eps, the
+     region tested by the winding number over every loop (0 inside a hole,
+     the holes being CW) and the distance taken to every edge of every loop;
+     cuts at the level sets of every other edge, holes' included.  Concave
+     arcs have radius R - r, no feature when R - r <= eps (lattice units:
+     a bore with R - r = 1e-8 mm = 1e-9 lattice offers nothing; 2e-8 mm
+     does).  Smooth joints (C26) are looked up inside the loop: vertex i of
+     a loop joins the loop's previous edge and edge i; the end of a loop's
+     last edge is the loop's first vertex.  A slot of width exactly 2r keeps
+     its straight walls (their grown lines coincide at distance exactly r
+     from both walls: not "narrower than 2r").  Reason: 9.3 as written.
+ C42 Clearance (9.4): C33 with every loop: boundary distance to every edge of
+     every loop, and containment by "a polygon vertex in the part region
+     (winding over all loops) or an outline vertex inside the polygon"; with
+     boundaries apart by >= min_clearance this is exact (the material is
+     connected; a polygon whose boundary lies in a hole lies inside it, one
+     covering a hole has its boundary in the material or around the whole
+     part).  min_clearance 0: C33's overlap test over all loops (a hole
+     vertex or edge midpoint strictly inside the polygon is an overlap).
+ C43 Inside test (all parts, arcs): the chord-polygon crossing count with
+     signed circular segments (C25) is ambiguous for a point exactly on an
+     arc's chord (e.g. on the centre line of a round outline, where both half
+     circles share the chord: the washer's hole vertex (-8, 0) was found
+     outside the outline).  Such a point, and only such a point, is decided
+     by the sum of the angles the true edges subtend at it instead.  No
+     earlier result changes (checked on every case of scripts/spec_cases/).
+ C44 Metric (9.5): C15/C23's exact true-region sums (chord polygon plus
+     signed circular segments) over all loops; the holes, being CW, subtract
+     their area, first and polar second moments; c and rho from the totals.
+     Checked against closed forms, a grid and Monte Carlo.
+ C45 Concentric arcs only (a round outline and a round bore: the washer):
+     the three equations do not change when the part turns about the common
+     centre, so a setup has either no solution or a continuum: no pose
+     either way (8.4), and the round washer has no fixture.  In C28 G(theta)
+     is then constant (non-zero: no root); collinear locator triples make
+     the linear part singular for every theta (arc_diagnostics.degenerate).
+ C46 Clamp tip, plunger or body inside a hole: nothing special; the clamp may
+     push on a hole's wall from inside the hole (its segments are segments
+     like any other), and 9.4 decides the clearance.
 """
 import sys
 import json

@@ -344,6 +344,32 @@ def test_segments():
     res = S.solve(case, max_seconds=-1)
     check('numbering over loops', res['segment_loops'] == [0] * 4 + [1] * 4 + [2] * 2 and
           res['segment_kinds'] == ['line'] * 8 + ['arc'] * 2, (res['segment_loops'], res['segment_kinds']))
+    # an access constraint inside a bore (9.3: rule 3 unchanged): bore R = 8 at
+    # (25, 15), grown arcs of radius 5; access square [31, 32] x [13, 17].
+    # The grown circle comes within r = 3 of the square for |phi| < phi0, where
+    # it meets the circle of radius 3 about the corner (31, 17) / (31, 13):
+    # (5c - 6)^2 + (5s - 2)^2 = 9, i.e. 3c + s = 2.8.  Each half circle loses
+    # 5 phi0 at its right end, where edge_trim now applies (no smooth joint
+    # left there); its left end (joint at (17, 15)) stays untrimmed.
+    case = plate_with_bore(8.0)
+    case['access'] = [rect(31, 13, 32, 17)]
+    res = S.solve(case, max_seconds=-1)
+    c = (16.8 - math.sqrt(16.8 ** 2 - 4 * 10 * 6.84)) / 20
+    phi0 = math.atan2(2.8 - 3 * c, c)
+    want = 5 * (math.pi - phi0) - 1.0
+    ok = res['segment_loops'] == [0, 0, 0, 0, 1, 1]
+    if ok:
+        verts, hole_verts, _ = S.part_loops(case)
+        edges = S.loop_edges(verts, l)
+        n_out = len(edges)
+        edges += S.loop_edges(hole_verts[0], l)
+        acc = [[(x / l, y / l) for x, y in a] for a in case['access']]
+        segs, _ = S.build_segments_arcs(edges, acc, r / l, 1.0 / l, [(0, n_out), (n_out, 2)])
+        lens = [(sg.s1 - sg.s0) * l for sg in segs if sg.edge >= n_out]
+        ok = len(lens) == 2 and all(abs(x - want) < 1e-9 for x in lens)
+    else:
+        lens = None
+    check('access square inside a bore: arcs shortened to %.6f' % want, ok, (res['segment_loops'], lens))
     # window: its walls grow inward by r, corners trimmed by r each side of the
     # concave corner plus edge_trim: a 20 x 14 window gives lines of 20 - 6 - 2
     # and 14 - 6 - 2 (lattice units / 10)

@@ -1,3 +1,13 @@
+#!/usr/bin/env python3
+"""Writes the hand-made SPEC 9 cases (parts with holes) of this folder.
+
+usage (from the repository root): python3 scripts/spec_cases_holes/gen_cases.py
+
+Kit and parameters are those of scripts/spec_cases/l-shape.json (spacing 10,
+12 x 12 plate, locator radius 3, the two-hole clamp).  These cases are NOT in
+scripts/spec_cases/ because the Rust solver does not read holes yet; they are
+for scripts/spec_reference.py and scripts/spec_reference_holes_test.py.
+"""
 import json, copy, os
 base = json.load(open('scripts/spec_cases/l-shape.json'))
 kit = base['kit']
