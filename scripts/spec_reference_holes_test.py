@@ -381,6 +381,94 @@ def test_segments():
     check('window wall segment lengths', all(abs(x - y) < 1e-12 for x, y in zip(lens, want)), lens)
 
 
+def keyhole_hole():
+    """a round hole R 6 at (15, 15) with a slot 4 wide to x = 35, listed CCW"""
+    x = 15 + math.sqrt(36 - 4)
+    sweep = 2 * math.pi - 2 * math.atan2(2, x - 15)
+    return [[x, 13], [35, 13], [35, 17], [x, 17, math.tan(sweep / 4)]]
+
+
+def sampled_segments_check(name, case, step_mm=0.01):
+    """segments against dense sampling of every grown edge, the distance to
+    the material computed here: each run of points at distance >= r - eps
+    longer than 2 edge_trim is one segment, its ends edge_trim inside the
+    run's ends (0 at a smooth joint), and no segment elsewhere"""
+    l = case['kit']['spacing']
+    r = case['kit']['locator_radius'] / l
+    trim = case['params']['edge_trim'] / l
+    h = step_mm / l
+    verts, hole_verts, _ = S.part_loops(case)
+    edges = S.loop_edges(verts, l)
+    loops = [(0, len(edges))]
+    for hv in hole_verts:
+        he = S.loop_edges(hv, l)
+        loops.append((len(edges), len(he)))
+        edges += he
+    segs, smooth = S.build_segments_arcs(edges, [], r, trim, loops)
+    nxt = {}
+    for st, cnt in loops:
+        for k in range(cnt):
+            nxt[st + k] = st + (k + 1) % cnt
+    mat = Material(case)
+    bad = []
+    n_runs = 0
+    for i, e in enumerate(edges):
+        f = S.grow_feature(e, i, r)
+        mine = [sg for sg in segs if sg.edge == i]
+        if f is None:
+            if mine:
+                bad.append(('segments on a vanished feature', i))
+            continue
+        L = f.length
+        m = max(2, int(L / h))
+        ok = []
+        for k in range(m + 1):
+            p = f.point(L * k / m)
+            ok.append(mat.dist((p[0] * l, p[1] * l)) / l >= r - 1e-9)
+        runs = []
+        k = 0
+        while k <= m:
+            if ok[k]:
+                j = k
+                while j + 1 <= m and ok[j + 1]:
+                    j += 1
+                runs.append((L * k / m, L * j / m))
+                k = j + 1
+            else:
+                k += 1
+        tol = 1.01 * L / m
+        used = set()
+        for lo, hi in runs:
+            a = lo if (lo == 0.0 and smooth[i]) else lo + trim
+            b = hi if (hi == L and smooth[nxt[i]]) else hi - trim
+            inside = [sg for sg in mine if lo - tol <= (sg.s0 + sg.s1) / 2 <= hi + tol]
+            if b - a > 2 * tol:
+                n_runs += 1
+                if len(inside) != 1 or abs(inside[0].s0 - a) > tol or abs(inside[0].s1 - b) > tol:
+                    bad.append((i, (lo, hi), [(sg.s0, sg.s1) for sg in inside]))
+                used.update(id(sg) for sg in inside)
+            elif b - a < -2 * tol and inside:
+                bad.append(('segment in a short run', i, (lo, hi)))
+            else:
+                used.update(id(sg) for sg in inside)     # borderline length: either way
+        if any(id(sg) not in used for sg in mine):
+            bad.append(('segment outside every run', i))
+    check('%s: %d segments match dense sampling (%d runs)' % (name, len(segs), n_runs), not bad, bad[:3])
+
+
+def test_segments_sampled():
+    l_window = [[10, 5], [40, 5], [40, 15], [20, 15], [20, 25], [10, 25]]
+    for name, holes in (('L-shaped window', [l_window]),
+                        ('keyhole hole', [keyhole_hole()]),
+                        ('slot hole', load('slot-hole-cw')['holes']),
+                        ('bore + window + narrow slot', [circ(9, 9, 5), rect(20, 4, 44, 14),
+                                                         [[15, 20], [40, 20, 1], [40, 25], [15, 25, 1]]])):
+        case = load('plate-bore')
+        case['holes'] = holes
+        sampled_segments_check(name, case)
+    sampled_segments_check('flange', load('flange-bolts'))
+
+
 # ------------------------------------------------- 9.1 validation
 def test_validation():
     want = {
@@ -699,6 +787,7 @@ def main():
     t0 = time.time()
     test_metric()
     test_segments()
+    test_segments_sampled()
     test_validation()
     test_orientation()
     test_translation()
