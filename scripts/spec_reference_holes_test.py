@@ -234,9 +234,9 @@ def test_metric():
     check('metric plate-bore grid centroid', math.dist(gc, c) < 0.02, (gc, c))
     check('metric plate-bore grid rho', close(grho, rho, 2e-3), (grho, rho))
 
-    # flange: R 28 round, bore 10, bolt holes 3.5, 3.5, 4.5 at (19, 0), (-19, 0), (0, 19)
+    # flange: R 28 round, bore 10, bolt holes 3.5 and 4.5 at (19, 0) and (0, 19)
     case = load('flange-bolts')
-    holes = [(0, 0, 10), (19, 0, 3.5), (-19, 0, 3.5), (0, 19, 4.5)]
+    holes = [(0, 0, 10), (19, 0, 3.5), (0, 19, 4.5)]
     A0 = math.pi * 28 ** 2 - sum(math.pi * R * R for _, _, R in holes)
     Sx = -sum(math.pi * R * R * x for x, _, R in holes)
     Sy = -sum(math.pi * R * R * y for _, y, R in holes)
@@ -761,10 +761,10 @@ def test_case_results():
         'slot-narrow': ('ok', [4, 16, 960, 692, 692]),
         'bore-near-edge': ('ok', [6, 50, 319, 341, 293]),
         'slot-hole-ccw': ('ok', [8, 112, 1425, 1512, 1232]),
-        'flange-bolts': ('ok', [10, 210, 542, 276, 64]),
+        'flange-bolts': ('ok', [8, 112, 416, 157, 32]),
     }
     if not QUICK:
-        want['frame-window-clamp'] = ('ok', [8, 112, 13974, 23662, 17825])
+        want['frame-window-clamp'] = ('ok', [8, 112, 4440, 6073, 4524])
     keys = ['segments', 'combinations', 'setups', 'candidates', 'admissible']
     for name, (st, cnt) in want.items():
         res = solve(load(name), name)
@@ -792,6 +792,8 @@ def main():
     test_orientation()
     test_translation()
     names = ['plate-bore', 'window-plate', 'washer-square', 'bore-near-edge', 'slot-hole-ccw', 'flange-bolts']
+    if not QUICK:
+        names.append('frame-window-clamp')
     test_contacts(names)
     test_clearance()
     test_case_results()

@@ -28,8 +28,8 @@ case('plate-bore', rect(0, 0, 50, 30), [circ(15, 15, 6)])
 case('window-plate', rect(0, 0, 50, 40), [rect(15, 13, 35, 27)])
 case('slot-narrow', rect(0, 0, 50, 30), [[[15, 12.5], [35, 12.5, 1], [35, 17.5], [15, 17.5, 1]]])
 case('bore-near-edge', rect(0, 0, 50, 30), [circ(9, 15, 5)], pattern='alternating')
-case('frame-window-clamp', rect(0, 0, 70, 50), [rect(12, 12, 58, 38)])
-case('flange-bolts', circ(0, 0, 28), [circ(0, 0, 10), circ(19, 0, 3.5), circ(-19, 0, 3.5), circ(0, 19, 4.5)], angle=60)
+case('frame-window-clamp', rect(0, 0, 56, 40), [rect(10, 10, 46, 30)])
+case('flange-bolts', circ(0, 0, 28), [circ(0, 0, 10), circ(19, 0, 3.5), circ(0, 19, 4.5)], angle=60)
 ccw = [[20, 10], [30, 10, 1], [30, 20], [20, 20, 1]]
 cw = [[20, 10, -1], [20, 20], [30, 20, -1], [30, 10]]
 case('slot-hole-ccw', rect(0, 0, 50, 30), [ccw])
