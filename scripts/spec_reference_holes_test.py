@@ -336,6 +336,17 @@ def test_segments():
     check('slot 8 > 2r: 2 lines, 2 arcs on its walls',
           res['segment_loops'] == [0, 0, 0, 0, 1, 1, 1, 1] and res['segment_kinds'][4:] == ['arc', 'line', 'arc', 'line'],
           (res['segment_loops'], res['segment_kinds']))
+    # C41: a slot exactly 2r wide keeps its straight walls (grown onto one line
+    # at distance exactly r from both), its round ends (R = r) give nothing;
+    # 0.01 mm narrower gives nothing at all
+    for holes, want in (([[[15, 12], [35, 12, 1], [35, 18], [15, 18, 1]]], [0] * 4 + [1] * 2),
+                        ([rect(15, 12, 35, 18)], [0] * 4 + [1] * 2),
+                        ([rect(15, 12, 35, 17.99)], [0] * 4)):
+        case = load('slot-narrow')
+        case['holes'] = holes
+        res = S.solve(case, max_seconds=-1)
+        check('slot %s: segment_loops %s' % (json.dumps(holes[0]), want), res['segment_loops'] == want,
+              res['segment_loops'])
     # numbering: outline first, then holes in input order (hole 1's segments before hole 0's
     # would be wrong); window (4 lines) listed before the bore
     case = load('plate-bore')
