@@ -6,6 +6,9 @@ compared with the production implementation.
 
 usage: python3 scripts/spec_reference.py CASE.json [--max-seconds N]
 
+Sections 1-9 (polygons, circular arcs, holes).  Self-checks of section 9:
+scripts/spec_reference_holes_test.py; hole cases: scripts/spec_cases_holes/.
+
 Prints {"status", "counts": {segments, combinations, setups, candidates,
 admissible}, "fixtures": [...]} with ALL admissible fixtures (top_k ignored),
 sorted by the spec's ranking.
@@ -171,6 +174,96 @@ SECTION 8 (outlines with circular arcs), written from SPEC.md and this file only
      a sound necessary condition.
  C35 Output for parts with arcs adds "segment_kinds" (8.6) and
      "arc_diagnostics" {continua, degenerate, tangential}.
+
+SECTION 9 (parts with holes), written from SPEC.md and this file only
+ C36 Input: "holes" absent, null or [] = no holes: the code paths above, so
+     the output is byte-identical to before (spec_reference_holes_test.py
+     diffs every case of scripts/spec_cases/ against commit 8e9afe9).  A part
+     with >= 1 hole always takes the arc code path (C22-C35), even when every
+     edge is straight, so its result has "segment_kinds" and
+     "arc_diagnostics" too, and "segment_loops" (9.6) right after
+     "segment_kinds".  Reason: one code path for the part region.
+ C37 Validation order: the outline (unchanged messages), then every hole in
+     input order: first the hole as a loop of its own, by the outline's rules
+     (straight-only: C21, >= 3 vertices; with arcs: C24), message prefix
+     "part: hole k: ", e.g. "part: hole 1: edge 0 crosses edge 2 at (x, y)";
+     then hole k against the outline (contact, then containment), then
+     against each hole j < k (contact, then containment either way); access
+     constraints and the kit after all holes.  Messages:
+       "part: hole k crosses the outline at (x, y)"
+       "part: hole k touches the outline at (x, y)"
+       "part: hole k lies outside the outline"
+       "part: hole k crosses hole j at (x, y)"   (j < k)
+       "part: hole k touches hole j at (x, y)"
+       "part: hole a lies inside hole b"         (whichever contains which)
+     prefixed "part: " like every message naming the part (section 7);
+     coordinates in catalogue units with %g (so "(12.5, 3)", not the SPEC
+     example's "(12.5, 3.0)", as C21 already does for edges).  Reason: SPEC
+     9.1 gives two examples, not the list; compare messages by their words.
+ C38 Sharing a point: two loops share a point when a pair of their edges
+     meets with the tolerance tol = 1e-9 x max(1, |outline coordinates|)
+     (C24's intersection test, near-tangency included) or comes closer than
+     tol (exact closest pair of line/arc edges).  The polygon outline's own
+     validation is exact (C21); between loops the C24 tolerance is used for
+     every part.  The reported point is the first meeting point found (hole
+     edges in input order, then the other loop's edges), or the hole's
+     point of the closest pair.  "crosses" vs "touches": the hole's edges are
+     cut at the meeting points and each piece judged at its midpoint (pieces
+     within tol of the other loop skipped): pieces strictly inside AND
+     strictly outside the other loop = crosses, otherwise touches (tangent
+     circles, a vertex on a wall, a shared stretch of wall).  Reason: SPEC's
+     parenthesis "meets a loop without crossing it touches it".
+ C39 "Strictly inside the outline" / "inside another hole" (no contact found)
+     is decided at the hole's first vertex (winding number, C43); a hole
+     outside the outline is invalid ("lies outside the outline").  A hole
+     inside another is reported whichever was listed first.  Reason: 9.1
+     names the condition but no message for a hole outside the outline.
+ C40 Orientation (9.2): each hole's orientation is the sign of its true area
+     (arcs included, as 8.1's rule for the outline); a CCW hole is reversed by
+     8.1's rule (each bulge negated and moved with its edge), so a round hole
+     listed either way becomes two half circles with b = -1 (concave).
+     Edges: outline (CCW) first, then hole 0 (CW), hole 1, ...; segments in
+     (edge, position) order; segment_loops[i] = 0 (outline) or k + 1.
+ C41 Segments (9.3): C25 with the part region = all loops: a grown-edge
+     point goes when its distance to the part region is < r - eps, the
+     region tested by the winding number over every loop (0 inside a hole,
+     the holes being CW) and the distance taken to every edge of every loop;
+     cuts at the level sets of every other edge, holes' included.  Concave
+     arcs have radius R - r, no feature when R - r <= eps (lattice units:
+     a bore with R - r = 1e-8 mm = 1e-9 lattice offers nothing; 2e-8 mm
+     does).  Smooth joints (C26) are looked up inside the loop: vertex i of
+     a loop joins the loop's previous edge and edge i; the end of a loop's
+     last edge is the loop's first vertex.  A slot of width exactly 2r keeps
+     its straight walls (their grown lines coincide at distance exactly r
+     from both walls: not "narrower than 2r").  Reason: 9.3 as written.
+ C42 Clearance (9.4): C33 with every loop: boundary distance to every edge of
+     every loop, and containment by "a polygon vertex in the part region
+     (winding over all loops) or an outline vertex inside the polygon"; with
+     boundaries apart by >= min_clearance this is exact (the material is
+     connected; a polygon whose boundary lies in a hole lies inside it, one
+     covering a hole has its boundary in the material or around the whole
+     part).  min_clearance 0: C33's overlap test over all loops (a hole
+     vertex or edge midpoint strictly inside the polygon is an overlap).
+ C43 Inside test (all parts, arcs): the chord-polygon crossing count with
+     signed circular segments (C25) is ambiguous for a point exactly on an
+     arc's chord (e.g. on the centre line of a round outline, where both half
+     circles share the chord: the washer's hole vertex (-8, 0) was found
+     outside the outline).  Such a point, and only such a point, is decided
+     by the sum of the angles the true edges subtend at it instead.  No
+     earlier result changes (checked on every case of scripts/spec_cases/).
+ C44 Metric (9.5): C15/C23's exact true-region sums (chord polygon plus
+     signed circular segments) over all loops; the holes, being CW, subtract
+     their area, first and polar second moments; c and rho from the totals.
+     Checked against closed forms, a grid and Monte Carlo.
+ C45 Concentric arcs only (a round outline and a round bore: the washer):
+     the three equations do not change when the part turns about the common
+     centre, so a setup has either no solution or a continuum: no pose
+     either way (8.4), and the round washer has no fixture.  In C28 G(theta)
+     is then constant (non-zero: no root); collinear locator triples make
+     the linear part singular for every theta (arc_diagnostics.degenerate).
+ C46 Clamp tip, plunger or body inside a hole: nothing special; the clamp may
+     push on a hole's wall from inside the hole (its segments are segments
+     like any other), and 9.4 decides the clearance.
 """
 import sys
 import json
@@ -712,9 +805,32 @@ def region_contains(p, edges):
             if b[1] <= y and o < 0:
                 w -= 1
         if e.kind == 'arc':
+            if o == 0 and dot(sub(p, a), sub(b, p)) > 0:
+                # p exactly on an arc's chord (which is no boundary): the
+                # crossing count above is ambiguous there (SPEC 9, C43)
+                return winding_by_angles(p, edges) != 0
             if math.hypot(x - e.C[0], y - e.C[1]) < e.R and o * e.sg < 0:
                 w += e.sg
     return w != 0
+
+
+def winding_by_angles(p, edges):
+    """winding number of the true loops around p (not on them) as the sum of
+    the angles the edges subtend at p; an arc subtends its chord's angle, plus
+    2 pi sg when p lies between chord and arc, or exactly sg pi when p lies
+    on the chord"""
+    tot = 0.0
+    for e in edges:
+        va, vb = sub(e.P0, p), sub(e.P1, p)
+        o = crs(va, vb)
+        dl = math.atan2(o, dot(va, vb))
+        if e.kind == 'arc':
+            if o == 0 and dot(va, vb) < 0:
+                dl = e.sg * math.pi
+            elif o * e.sg < 0 and math.hypot(p[0] - e.C[0], p[1] - e.C[1]) < e.R:
+                dl += TWO_PI * e.sg
+        tot += dl
+    return int(round(tot / TWO_PI))
 
 
 def region_dist(p, edges):
@@ -1005,9 +1121,18 @@ def breakpoints_edge(f, e, Rr):
     return out
 
 
-def build_segments_arcs(edges, access, r, trim):
-    """SPEC 2 + 8.2 for an outline with arcs (edges CCW, lattice units)."""
+def build_segments_arcs(edges, access, r, trim, loops=None):
+    """SPEC 2 + 8.2 for an outline with arcs (edges CCW, lattice units).
+    loops (SPEC 9): [(first edge, number of edges)] of each closed loop of
+    `edges` (outline CCW, holes CW); None = one loop."""
     n = len(edges)
+    if loops is None:
+        loops = [(0, n)]
+    prv, nxt = [0] * n, [0] * n
+    for st_, cnt in loops:
+        for k in range(cnt):
+            prv[st_ + k] = st_ + (k - 1) % cnt
+            nxt[st_ + k] = st_ + (k + 1) % cnt
     acc_edges = []
     for poly in access:
         m = len(poly)
@@ -1015,7 +1140,7 @@ def build_segments_arcs(edges, access, r, trim):
     # smooth joints: vertex i joins edge i-1 (in) and edge i (out)
     smooth = []
     for i in range(n):
-        ein, eout = edges[i - 1], edges[i]
+        ein, eout = edges[prv[i]], edges[i]
         t_in = edge_tangents(ein)[1]
         t_out = edge_tangents(eout)[0]
         smooth.append(abs(crs(t_in, t_out)) <= 1e-6 and dot(t_in, t_out) > 0
@@ -1055,7 +1180,7 @@ def build_segments_arcs(edges, access, r, trim):
                 kept.append((x, y))
         for x, y in kept:
             a = x if (x == 0.0 and smooth[i]) else x + trim
-            b = y if (y == L and smooth[(i + 1) % n]) else y - trim
+            b = y if (y == L and smooth[nxt[i]]) else y - trim
             if b - a > EPS:
                 s = Seg()
                 s.edge = i
@@ -1832,6 +1957,190 @@ def process_setup_arcs(setup, segs, r, y0, tmin, tmax, cosmax, mc, mholes, alt, 
                     finish(sg, k, d, e, j, q, s, margin, unrot(f), p_part)
 
 
+# ---------------------------------------------------------------- holes (SPEC 9)
+def closest_on_edge(p, e):
+    """the point of edge e nearest to p"""
+    if e.kind == 'line':
+        ab = sub(e.P1, e.P0)
+        L2 = dot(ab, ab)
+        t = 0.0 if L2 <= 0 else max(0.0, min(1.0, dot(sub(p, e.P0), ab) / L2))
+        return (e.P0[0] + t * ab[0], e.P0[1] + t * ab[1])
+    dx, dy = p[0] - e.C[0], p[1] - e.C[1]
+    d = math.hypot(dx, dy)
+    if d > 0.0 and in_span(e, p):
+        return (e.C[0] + e.R * dx / d, e.C[1] + e.R * dy / d)
+    return e.P0 if math.dist(p, e.P0) <= math.dist(p, e.P1) else e.P1
+
+
+def edge_edge_closest(e, f):
+    """(distance, point on e) of the closest pair of two edges that do not
+    intersect (every local minimum of the distance between a line and a circle
+    or two circles is at an end point or on the normal through a centre)"""
+    best = (math.inf, e.P0)
+
+    def cand(p_e, q_f):
+        nonlocal best
+        d = math.dist(p_e, q_f)
+        if d < best[0]:
+            best = (d, p_e)
+    for p in (e.P0, e.P1):
+        cand(p, closest_on_edge(p, f))
+    for q in (f.P0, f.P1):
+        cand(closest_on_edge(q, e), q)
+    for g, h, swap in ((e, f, False), (f, e, True)):
+        if g.kind == 'arc' and h.kind == 'line':
+            F = closest_on_edge(g.C, h)          # foot of the centre on the line
+            G = closest_on_edge(F, g)
+            if swap:
+                cand(F, G)
+            else:
+                cand(G, F)
+    if e.kind == 'arc' and f.kind == 'arc':
+        dx, dy = f.C[0] - e.C[0], f.C[1] - e.C[1]
+        d = math.hypot(dx, dy)
+        if d > 0:
+            u = (dx / d, dy / d)
+            for s1 in (1, -1):
+                p = (e.C[0] + s1 * e.R * u[0], e.C[1] + s1 * e.R * u[1])
+                if not in_span(e, p):
+                    continue
+                for s2 in (1, -1):
+                    q = (f.C[0] + s2 * f.R * u[0], f.C[1] + s2 * f.R * u[1])
+                    if in_span(f, q):
+                        cand(p, q)
+    return best
+
+
+def edge_frac(e, p):
+    """position of a point of edge e as a fraction of the edge, in [0, 1]"""
+    if e.kind == 'line':
+        ab = sub(e.P1, e.P0)
+        return max(0.0, min(1.0, dot(sub(p, e.P0), ab) / dot(ab, ab)))
+    rel = arc_rel(e.a0, e.sg, math.atan2(p[1] - e.C[1], p[0] - e.C[0]))
+    if rel > abs(e.sweep):       # just before the start (tolerance)
+        rel = 0.0 if rel > (abs(e.sweep) + TWO_PI) / 2 else abs(e.sweep)
+    return rel / abs(e.sweep)
+
+
+def edge_at(e, fr):
+    if e.kind == 'line':
+        return (e.P0[0] + fr * (e.P1[0] - e.P0[0]), e.P0[1] + fr * (e.P1[1] - e.P0[1]))
+    ang = e.a0 + e.sweep * fr
+    return (e.C[0] + e.R * math.cos(ang), e.C[1] + e.R * math.sin(ang))
+
+
+def loop_contact(A, B, tol):
+    """first point where loop A (edges) meets loop B within tol, or None"""
+    for e in A:
+        for f in B:
+            pts = edge_edge_points(e, f, tol)
+            if pts == 'overlap':
+                for q, g in ((e.P0, f), (e.P1, f), (f.P0, e), (f.P1, e)):
+                    if pt_edge_dist(q, g) <= tol:
+                        return q
+                return e.P0
+            if pts:
+                return pts[0]
+            d, p = edge_edge_closest(e, f)
+            if d <= tol:
+                return p
+    return None
+
+
+def loop_sides(A, B, tol):
+    """(has a piece strictly inside B, has a piece strictly outside B): each
+    edge of A is cut where it meets B and each piece judged at its midpoint"""
+    has_in = has_out = False
+    for e in A:
+        fr = [0.0, 1.0]
+        for f in B:
+            pts = edge_edge_points(e, f, tol)
+            if pts == 'overlap':
+                continue
+            fr += [edge_frac(e, p) for p in pts]
+        fr = sorted(set(fr))
+        for x, y in zip(fr, fr[1:]):
+            for w in (0.5, 0.25, 0.75):
+                m = edge_at(e, x + w * (y - x))
+                if min(pt_edge_dist(m, f) for f in B) <= tol:
+                    continue
+                if region_contains(m, B):
+                    has_in = True
+                else:
+                    has_out = True
+                break
+    return has_in, has_out
+
+
+def check_holes(outline, holes, scale):
+    """SPEC 9.1 across loops (each loop already valid on its own).
+    outline, holes: edge lists in catalogue units, any orientation."""
+    tol = 1e-9 * scale
+    for k, H in enumerate(holes):
+        p = loop_contact(H, outline, tol)
+        if p is not None:
+            has_in, has_out = loop_sides(H, outline, tol)
+            verb = 'crosses' if (has_in and has_out) else 'touches'
+            raise Invalid("part: hole %d %s the outline at (%g, %g)" % (k, verb, p[0], p[1]))
+        if not region_contains(H[0].P0, outline):
+            raise Invalid("part: hole %d lies outside the outline" % k)
+        for j in range(k):
+            G = holes[j]
+            p = loop_contact(H, G, tol)
+            if p is not None:
+                has_in, has_out = loop_sides(H, G, tol)
+                verb = 'crosses' if (has_in and has_out) else 'touches'
+                raise Invalid("part: hole %d %s hole %d at (%g, %g)" % (k, verb, j, p[0], p[1]))
+            if region_contains(H[0].P0, G):
+                raise Invalid("part: hole %d lies inside hole %d" % (k, j))
+            if region_contains(G[0].P0, H):
+                raise Invalid("part: hole %d lies inside hole %d" % (j, k))
+
+
+def reverse_loop(verts):
+    """SPEC 8.1 / 9.2: (v0, v1, ..., v(n-1)) -> (v0, v(n-1), ..., v1), each
+    bulge negated and moved with its edge"""
+    nv = len(verts)
+    return [(verts[0][0], verts[0][1], -verts[nv - 1][2])] + \
+        [(verts[nv - k][0], verts[nv - k][1], -verts[nv - k - 1][2]) for k in range(1, nv)]
+
+
+def loop_edges(verts, scale=1.0):
+    nv = len(verts)
+    return [make_edge((verts[i][0] / scale, verts[i][1] / scale),
+                      (verts[(i + 1) % nv][0] / scale, verts[(i + 1) % nv][1] / scale), verts[i][2])
+            for i in range(nv)]
+
+
+def parse_holes(raw_holes, outline_verts):
+    """validates the holes of a part (SPEC 9.1) and normalises each to
+    clockwise (SPEC 9.2); returns the list of normalised vertex lists"""
+    if not isinstance(raw_holes, list):
+        raise Invalid("part: holes is not a list of loops")
+    hverts = []
+    hedges = []
+    for k, h in enumerate(raw_holes):
+        name = 'part: hole %d' % k
+        if not isinstance(h, list):
+            raise Invalid("%s: not a list of vertices" % name)
+        vs = parse_vertices(h, name)
+        if any(v[2] != 0.0 for v in vs):
+            es = validate_outline(vs, name)
+        else:
+            validate_polygon([[x, y] for x, y, _ in vs], name)
+            es = loop_edges(vs)
+        hverts.append(vs)
+        hedges.append(es)
+    scale = max(1.0, max(max(abs(v[0]), abs(v[1])) for v in outline_verts))
+    check_holes(loop_edges(outline_verts), hedges, scale)
+    out = []
+    for vs, es in zip(hverts, hedges):
+        if true_signed_area(es) > 0:
+            vs = reverse_loop(vs)
+        out.append(vs)
+    return out
+
+
 # ---------------------------------------------------------------- main solver
 def parse_vertices(raw, name):
     out = []
@@ -1843,6 +2152,39 @@ def parse_vertices(raw, name):
     return out
 
 
+def part_loops(case):
+    """validates the part of a case (outline, then holes: SPEC 1, 8.1, 9.1) and
+    normalises it (SPEC 9.2): returns (outline vertices CCW, [hole vertices
+    CW], outline has arcs), vertices (x, y, bulge) in catalogue units"""
+    verts = parse_vertices(case['part'], 'part')
+    has_arcs = any(v[2] != 0.0 for v in verts)
+    if has_arcs:
+        edges_phys = validate_outline(verts, 'part')
+    else:
+        validate_polygon([[v[0], v[1]] for v in verts], 'part')
+    holes_raw = case.get('holes') or []
+    hole_verts = parse_holes(holes_raw, verts) if holes_raw else []
+    # normalise to CCW (SPEC 8.1: the orientation is the sign of the true area;
+    # reversing moves each bulge with its edge and flips its sign)
+    if has_arcs:
+        if true_signed_area(edges_phys) < 0:
+            verts = reverse_loop(verts)
+    else:
+        if signed_area([(x, y) for x, y, _ in verts]) < 0:
+            verts = reverse_loop(verts)
+    return verts, hole_verts, has_arcs
+
+
+def material_props(case):
+    """area, centroid, radius of gyration of the part region (SPEC 9.5), in
+    catalogue units"""
+    verts, hole_verts, _ = part_loops(case)
+    edges = loop_edges(verts)
+    for hv in hole_verts:
+        edges += loop_edges(hv)
+    return true_area_props(edges)
+
+
 def solve(case, max_seconds=None, generic=False):
     t_start = time.time()
     units = case.get('units', 'mm')
@@ -1850,14 +2192,9 @@ def solve(case, max_seconds=None, generic=False):
     access = case.get('access') or []
     kit = case['kit']
     params = case.get('params') or {}
-    verts = parse_vertices(part, 'part')
-    has_arcs = any(v[2] != 0.0 for v in verts)
-    arc_path = has_arcs or generic
-    if has_arcs:
-        edges_phys = validate_outline(verts, 'part')
-    else:
-        part = [[v[0], v[1]] for v in verts]
-        validate_polygon(part, 'part')
+    verts, hole_verts, has_arcs = part_loops(case)
+    has_holes = len(hole_verts) > 0
+    arc_path = has_arcs or generic or has_holes
     for ai, a in enumerate(access):
         validate_polygon(a, 'access constraint %d' % ai)
     l = float(kit['spacing'])
@@ -1885,20 +2222,7 @@ def solve(case, max_seconds=None, generic=False):
     gstep = int(params.get('grid_step') or 1)
     wrenches = params.get('wrenches')
 
-    # normalise to CCW (SPEC 8.1: the orientation is the sign of the true area;
-    # reversing moves each bulge with its edge and flips its sign)
-    if has_arcs:
-        if true_signed_area(edges_phys) < 0:
-            nv = len(verts)
-            verts = [(verts[0][0], verts[0][1], -verts[nv - 1][2])] + \
-                [(verts[nv - k][0], verts[nv - k][1], -verts[nv - k - 1][2]) for k in range(1, nv)]
-        part = [(x, y) for x, y, _ in verts]
-    else:
-        part = [(float(x), float(y)) for x, y in part]
-        if signed_area(part) < 0:
-            part = [part[0]] + part[:0:-1]
-        verts = [(x, y, 0.0) for x, y in part]
-    part_phys = part
+    part = [(x, y) for x, y, _ in verts]
     P = [(x / l, y / l) for x, y in part]
     ACC = [[(float(x) / l, float(y) / l) for x, y in a] for a in access]
     r = r_phys / l
@@ -1915,12 +2239,18 @@ def solve(case, max_seconds=None, generic=False):
     cosmax = math.cos(math.radians(max_angle))
 
     EDG = None
+    loop_of = None
     if arc_path:
-        nv = len(verts)
-        EDG = [make_edge((verts[i][0] / l, verts[i][1] / l),
-                         (verts[(i + 1) % nv][0] / l, verts[(i + 1) % nv][1] / l), verts[i][2])
-               for i in range(nv)]
-        segs, _smooth = build_segments_arcs(EDG, ACC, r, trim)
+        # SPEC 9.2: outline edges first, then each (clockwise) hole's, in input order
+        EDG = loop_edges(verts, l)
+        loops = [(0, len(EDG))]
+        loop_of = [0] * len(EDG)
+        for hk, hv in enumerate(hole_verts):
+            he = loop_edges(hv, l)
+            loops.append((len(EDG), len(he)))
+            loop_of += [hk + 1] * len(he)
+            EDG += he
+        segs, _smooth = build_segments_arcs(EDG, ACC, r, trim, loops)
     else:
         segs = build_segments(P, ACC, r, trim)
     nseg = len(segs)
@@ -2103,6 +2433,8 @@ def solve(case, max_seconds=None, generic=False):
            'seconds': round(time.time() - t_start, 3)}
     if arc_path:
         res['segment_kinds'] = [s.kind for s in segs]
+        if has_holes:
+            res['segment_loops'] = [loop_of[s.edge] for s in segs]
         res['arc_diagnostics'] = diag
     return res
 
