@@ -25,8 +25,7 @@
 
 use crate::error::CatalogError;
 use crate::units::parse_units;
-use fixplan_core::prepare::validate_kit;
-use fixplan_core::{Clamp, HoleKind, Kit, MountHole, Params, Pattern, Units};
+use fixplan_core::{validate_kit, Clamp, HoleKind, Kit, MountHole, Params, Pattern, Units};
 use std::path::Path;
 
 /// The kit of Brost & Goldberg's examples (1996, section VII: "an 18 x 18
@@ -234,7 +233,7 @@ fn finish(
         min_clearance: Some(params.min_clearance_or_default(units)),
         ..params
     };
-    fixplan_core::prepare::validate_params(&params, units)
+    fixplan_core::validate_params(&params, units)
         .map_err(|e| invalid(path, format!("kit {name}: {e}")))?;
     Ok(KitSpec { name, kit, params })
 }

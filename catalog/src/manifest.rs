@@ -8,8 +8,7 @@ use crate::part::{
     ReadError, ReadOptions,
 };
 use crate::units::{self, LengthUnit};
-use fixplan_core::outline::Vertex;
-use fixplan_core::{Part, Units};
+use fixplan_core::{Part, Units, Vertex};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

@@ -9,8 +9,8 @@ use common::*;
 use fixplan_catalog::{
     load_catalog, load_catalog_with, parse_part, ArcMode, Format, LoadOptions, ReadOptions,
 };
-use fixplan_core::outline::{mass_properties, Outline, Vertex};
-use fixplan_core::Part;
+use fixplan_core::parts::{mass_properties, Outline};
+use fixplan_core::{Part, Vertex};
 use std::f64::consts::{FRAC_PI_4, PI};
 
 fn exact() -> ReadOptions {

@@ -11,7 +11,7 @@ use common::*;
 use fixplan_catalog::{
     load_catalog, load_catalog_with, parse_part, Catalog, Format, LoadOptions, ReadOptions,
 };
-use fixplan_core::outline::mass_properties;
+use fixplan_core::parts::mass_properties;
 use fixplan_core::Units;
 
 /// Group code/value pairs; values are anything printable.

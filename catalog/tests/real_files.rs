@@ -14,7 +14,8 @@
 mod common;
 use common::*;
 use fixplan_catalog::load_catalog;
-use fixplan_core::outline::{edges_of, mass_properties, Vertex};
+use fixplan_core::parts::{edges_of, mass_properties};
+use fixplan_core::Vertex;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 

@@ -3,8 +3,8 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::{parse_part, write_dxf, write_json, write_svg, Format, ReadOptions};
-use fixplan_core::outline::{validate_outline, Vertex};
-use fixplan_core::{Part, Units};
+use fixplan_core::parts::validate_outline;
+use fixplan_core::{Part, Units, Vertex};
 use proptest::prelude::*;
 
 /// A part with every kind of arc: a convex fillet (bulge tan(pi/8)), a

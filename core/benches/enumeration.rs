@@ -3,13 +3,11 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fixplan_core::angle_set::AngleSet;
-use fixplan_core::form_closure::{wrench, LocatorWrenches};
-use fixplan_core::geometry::{polygon_clearance, polygon_clearance_below, v2};
-use fixplan_core::locator_sweep::{Sweep, SweepScratch, SweptSegment};
-use fixplan_core::metric::{MaxForceMetric, Metric, PartContact};
-use fixplan_core::pose::{solve_poses, Line};
-use fixplan_core::segments::{Feature, LineFeature, Segment};
+use fixplan_core::parts::{
+    polygon_clearance, polygon_clearance_below, solve_poses, v2, wrench, AngleSet, Feature, Line,
+    LineFeature, LocatorWrenches, MaxForceMetric, Metric, PartContact, Segment, Sweep,
+    SweepScratch, SweptSegment,
+};
 use fixplan_core::{prepare, Case};
 use std::hint::black_box;
 

@@ -2,17 +2,17 @@
 //! axis crosses a segment's form-closure interval, then the mount search by
 //! increasing extension with every admissibility test.
 
-use crate::admissibility::{lap, Scratch};
-use crate::arc::GrownArc;
-use crate::form_closure::{wrench, LocatorWrenches};
+use crate::checks::admissibility::{lap, Obstacles, Scratch};
+use crate::checks::form_closure::{wrench, LocatorWrenches};
+use crate::checks::plate::Placement;
+use crate::geometry::arc::GrownArc;
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
+use crate::input::setting::Setting;
 use crate::input::Pattern;
-use crate::metric::PartContact;
-use crate::plate::Placement;
-use crate::pose::Pose;
-use crate::prepare::PreparedPart;
-use crate::ranking::{Fixture, TopK};
-use crate::report::Counts;
+use crate::metric::{Metric, PartContact};
+use crate::poses::pose::Pose;
+use crate::results::ranking::{Fixture, TopK};
+use crate::results::report::Counts;
 use crate::segments::{arc_inward_normal, Feature, LineFeature, Segment};
 use crate::setups::{lattice_point, Setup};
 use nalgebra::Vector3;
@@ -128,11 +128,11 @@ struct SetupContext<'a> {
 
 impl SetupContext<'_> {
     /// See `count_only`.
-    fn count_only(&self, prep: &PreparedPart, acc: &mut Accumulator) -> bool {
+    fn count_only(&self, search: &ClampSearch, acc: &mut Accumulator) -> bool {
         if let Some(weak) = self.count_only.get() {
             return weak;
         }
-        let weak = acc.prune && prep.locators_too_weak(&self.part_locators, acc);
+        let weak = acc.prune && search.locators_too_weak(&self.part_locators, acc);
         self.count_only.set(Some(weak));
         weak
     }
@@ -164,9 +164,29 @@ impl Mount {
     };
 }
 
-impl PreparedPart {
+/// What the clamp search reads of a prepared part: the segments the tip
+/// may touch, the setting (clamp, plate, angle, clearance), the metric
+/// that scores fixtures and what the clamp must keep clear of.
+#[derive(Clone, Copy)]
+pub(crate) struct ClampSearch<'a> {
+    /// The usable segments, numbered as combinations number them.
+    pub(crate) segments: &'a [Segment],
+    /// The kit and parameters in lattice units.
+    pub(crate) setting: &'a Setting,
+    /// Scores a fixture's four contacts.
+    pub(crate) metric: &'a dyn Metric,
+    /// Part, access regions and locators, for the clearance checks.
+    pub(crate) obstacles: Obstacles<'a>,
+}
+
+impl ClampSearch<'_> {
     /// Counts a setup, and every candidate and admissible fixture it gives.
-    pub fn process_setup(&self, setup: &Setup, acc: &mut Accumulator, scratch: &mut Scratch) {
+    pub(crate) fn process_setup(
+        &self,
+        setup: &Setup,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
         let clock = scratch.timing.is_some().then(std::time::Instant::now);
         self.process_setup_untimed(setup, acc, scratch, None);
         let ns = lap(clock);
@@ -179,7 +199,7 @@ impl PreparedPart {
     /// same code path, so re-deriving a reported fixture (a coordinator
     /// checking a worker's result) gives it bit for bit, at a fraction of
     /// the cost. Counts cover that segment and rotation only.
-    pub fn process_setup_for_clamp(
+    pub(crate) fn process_setup_for_clamp(
         &self,
         setup: &Setup,
         acc: &mut Accumulator,
@@ -459,7 +479,7 @@ impl PreparedPart {
         let locs = setup.locators.map(lattice_point);
         let mut margin = cand.margin;
         for l in &locs {
-            let d = (cand.q - *l).norm() - 2.0 * self.r;
+            let d = (cand.q - *l).norm() - 2.0 * self.obstacles.locator_radius;
             if d < -EPS {
                 return None;
             }
@@ -534,11 +554,11 @@ impl PreparedPart {
                 continue;
             }
             let clock = scratch.timing.is_some().then(std::time::Instant::now);
-            let clear = scratch.clamp_clear(self, setup, k, m, t);
+            let clear = scratch.clamp_clear(&self.obstacles, setup, k, m, t);
             let placement = clear.and_then(|_| {
                 let pts = scratch.plate_points(&setup.locators, c, k, m);
                 let s = &self.setting;
-                crate::plate::fit(pts, s.cols, s.rows, s.pattern)
+                crate::checks::plate::fit(pts, s.cols, s.rows, s.pattern)
             });
             let ns = lap(clock);
             if let Some(tm) = scratch.timing.as_mut() {

@@ -1,32 +1,33 @@
 //! Locator setups (SPEC section 3): for a segment combination, the lattice
 //! points for locators 2 and 3 and the part poses that touch all three.
 //!
-//! Pruning: two of the three segments, both lines, are the pivot: one
-//! locator at the origin, the other at every lattice point of their
-//! annulus (up to quarter turns), and the third locator only in the region
-//! the third segment sweeps while the pivot's contacts stay on their
-//! segments (`locator_sweep.rs`); on three lines, poses are worked out
-//! only at the angles that keep the pivot's contacts on their segments.
-//! Of the pairs of lines, the one with the thinnest annulus pivots: the
-//! region is built once per lattice point of that annulus, so the pair
-//! with the fewest points costs least (half the time on `gluegun-28`). A
-//! combination with one arc pivots on its two lines. Each triple is then
-//! moved to SPEC's canonical frame (`L1` at the origin, `L2` in the
+//! Pruning: two of the three segments are the pivot, one locator at the
+//! origin, the other at every lattice point of their annulus (up to
+//! quarter turns), and the third locator only in the region the third
+//! segment sweeps while the pivot's contacts stay on their segments
+//! ([`crate::sweeps`]); on three lines, poses are worked out only at the
+//! angles that keep the pivot's contacts on their segments. The pivot is
+//! two lines when the combination has two (of the pairs of lines, the one
+//! with the thinnest annulus: the region is built once per lattice point
+//! of that annulus, so the pair with the fewest points costs least), else
+//! a line and an arc (again the thinnest such pair), so the arc is only
+//! swept, never solved for at every point of its annuli. Each triple is
+//! then moved to SPEC's canonical frame (`L1` at the origin, `L2` in the
 //! quadrant `Q`) and solved there, so a setup's numbers never depend on
-//! which pair pivoted. Without two usable lines, `L2` comes from the
-//! annulus (a, b) and `L3` from the annuli (a, c) around `L1` and (b, c)
-//! around `L2`. Only lattice points and angles that cannot give a setup
-//! are skipped, so the set found is exactly SPEC's; the brute-force tests
-//! enumerate without pruning.
+//! which pair pivoted. Without a pivot (three arcs, or nearly parallel
+//! lines the sweep refuses), `L2` comes from the annulus (a, b) and `L3`
+//! from the annuli (a, c) around `L1` and (b, c) around `L2`. Only lattice
+//! points and angles that cannot give a setup are skipped, so the set
+//! found is exactly SPEC's; the brute-force tests enumerate without
+//! pruning.
 
-use crate::angle_set::{wrap_angle, AngleSet};
-use crate::contact_pose::solve_contact_poses_within;
+use crate::geometry::angle_set::{wrap_angle, AngleSet};
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
-use crate::locator_sweep::{PivotPoint, Sweep, SweepScratch};
-use crate::pose::{solve_poses_where, Line, Pose};
-use crate::prepare::{PairBounds, PreparedPart};
-use crate::segments::{Feature, Segment};
+use crate::poses::contact_pose::solve_contact_poses_within;
+use crate::poses::pose::{solve_poses_where, Line, Pose};
+use crate::segments::{Feature, PairBounds, PairTable, Segment};
+use crate::sweeps::{PivotPoint, Sweep, SweepScratch, SweptSegment};
 use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
 
@@ -50,21 +51,50 @@ pub struct Setup {
     pub margin: f64,
 }
 
-impl PreparedPart {
+/// What the setup search reads of a prepared part: its segments, as they
+/// are and as the sweep uses them, their pair bounds, and the lattice
+/// locators 2 and 3 may take.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SetupSearch<'a> {
+    /// The usable segments, numbered as combinations number them.
+    pub(crate) segments: &'a [Segment],
+    /// Each segment as the sweep uses it (same order).
+    pub(crate) swept: &'a [SweptSegment],
+    /// Distance bounds of every two segments, computed on first use.
+    pub(crate) pairs: &'a PairTable,
+    /// Locators 2 and 3 lie on multiples of this.
+    pub(crate) grid_step: i64,
+    /// Alternating plates take locators on dowel holes only.
+    pub(crate) pattern: Pattern,
+}
+
+impl SetupSearch<'_> {
     /// Whether `p` is a lattice offset allowed for locators 2 and 3 (grid step
     /// and, on alternating plates, dowel-hole parity).
     #[inline]
-    pub fn locator_point_allowed(&self, p: [i64; 2]) -> bool {
-        p[0].rem_euclid(self.setting.grid_step) == 0
-            && p[1].rem_euclid(self.setting.grid_step) == 0
-            && (self.setting.pattern == Pattern::Square || (p[0] + p[1]).rem_euclid(2) == 0)
+    pub(crate) fn locator_point_allowed(&self, p: [i64; 2]) -> bool {
+        p[0].rem_euclid(self.grid_step) == 0
+            && p[1].rem_euclid(self.grid_step) == 0
+            && (self.pattern == Pattern::Square || (p[0] + p[1]).rem_euclid(2) == 0)
+    }
+
+    /// Every pair's distance bounds, `a * n + b`.
+    #[inline]
+    pub(crate) fn pair_table(&self) -> &[PairBounds] {
+        self.pairs.of(self.segments)
+    }
+
+    /// Distance bounds of segments `a` and `b`.
+    #[inline]
+    fn pair(&self, a: usize, b: usize) -> PairBounds {
+        self.pair_table()[a * self.segments.len() + b]
     }
 
     /// Setups of one combination with the given `L2`, `L3` (`L1` = origin),
     /// with no pruning: the building block that pruned and brute-force
     /// enumerations share. Returns the number of pose solutions computed
     /// (kept or not), for the pruning statistics.
-    pub fn setups_for_locators(
+    pub(crate) fn setups_for_locators(
         &self,
         combo: [usize; 3],
         l2: [i64; 2],
@@ -179,18 +209,9 @@ impl PreparedPart {
     }
 
     /// Every setup of one combination, pruned by annuli and the swept
-    /// region of [`crate::locator_sweep`].
-    pub fn setups_of_combination(
-        &self,
-        combo: [usize; 3],
-        visit: impl FnMut(&Setup),
-    ) -> SearchStats {
-        self.setups_of_combination_in(combo, &mut SetupScratch::default(), visit)
-    }
-
-    /// [`Self::setups_of_combination`] with buffers and pivot points kept
+    /// region of [`crate::sweeps`], with buffers and pivot points kept
     /// from the combinations this thread did before.
-    pub fn setups_of_combination_in(
+    pub(crate) fn setups_of_combination_in(
         &self,
         combo: [usize; 3],
         scratch: &mut SetupScratch,
@@ -277,7 +298,7 @@ impl PreparedPart {
         visit: &mut impl FnMut(&Setup),
     ) {
         let [p, q, r] = pivot.roles.map(|k| combo[k]);
-        let g = self.setting.grid_step;
+        let g = self.grid_step;
         let SetupScratch { sweep, pivots } = scratch;
         for (d, pt) in pivots.points(p, q, |out| self.pivot_points(&pivot.sweep, p, q, out)) {
             let d = *d;
@@ -310,7 +331,7 @@ impl PreparedPart {
     /// locator can be, up to quarter turns, once the first is at the
     /// origin.
     fn quadrant_points(&self, pair: PairBounds, mut visit: impl FnMut([i64; 2])) {
-        let g = self.setting.grid_step;
+        let g = self.grid_step;
         let (lo2, hi2) = annulus_sq(pair);
         let imax = pair.dmax.floor() as i64 + 1;
         let mut i = g;
@@ -379,7 +400,7 @@ impl PreparedPart {
     ) {
         let [a, b, c] = combo;
         let (ac, bc) = (self.pair(a, c), self.pair(b, c));
-        let g = self.setting.grid_step;
+        let g = self.grid_step;
         self.quadrant_points(self.pair(a, b), |l2| {
             annulus_points(l2, ac, bc, g, |l3| {
                 self.solve_triple(combo, l2, l3, Allowed::ALL, stats, visit)
@@ -611,9 +632,9 @@ pub fn lattice_point(p: [i64; 2]) -> V2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::arc::GrownArc;
+    use crate::geometry::arc::GrownArc;
     use crate::geometry::rot;
-    use crate::segments::{distance_range, LineFeature};
+    use crate::segments::LineFeature;
 
     /// The segment from `a` to `b`.
     fn line(a: V2, b: V2) -> Segment {
@@ -646,12 +667,7 @@ mod tests {
 
     /// The distance bounds of every two of three segments.
     fn pairs(s: [&Segment; 3]) -> [[PairBounds; 3]; 3] {
-        s.map(|a| {
-            s.map(|b| {
-                let (dmin, dmax) = distance_range(a, b);
-                PairBounds { dmin, dmax }
-            })
-        })
+        s.map(|a| s.map(|b| PairBounds::between(a, b)))
     }
 
     /// `L1` at the origin, `L2 = d`, `L3 = e`.

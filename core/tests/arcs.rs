@@ -7,10 +7,8 @@
 
 mod support;
 
-use fixplan_core::input::Pattern;
-use fixplan_core::outline::{ccw_of_cw_outline, Vertex};
-use fixplan_core::segments::SegmentKind;
-use fixplan_core::{Fixture, PreparedPart};
+use fixplan_core::parts::ccw_of_cw_outline;
+use fixplan_core::{Fixture, Pattern, PreparedPart, SegmentKind, Vertex};
 use proptest::prelude::*;
 use support::*;
 
@@ -93,7 +91,7 @@ fn arc_outline_strategy() -> impl Strategy<Value = (Vec<[f64; 3]>, bool, f64)> {
             let vs: Vec<Vertex> = v.iter().map(|&x| x.into()).collect();
             v.len() >= 3
                 && v.iter().any(|x| x[2] != 0.0)
-                && fixplan_core::outline::validate_outline(&vs).is_ok()
+                && fixplan_core::parts::validate_outline(&vs).is_ok()
         })
 }
 
@@ -207,7 +205,7 @@ fn rigid_motion_and_clockwise_listing_leave_the_fixtures() {
 fn borderline_setups(p: &PreparedPart) -> u64 {
     let mut n = 0;
     let count = p.segments().len();
-    for (_, c) in fixplan_core::combinations::combinations_in(count, 0..u64::MAX) {
+    for (_, c) in fixplan_core::parts::combinations_in(count, 0..u64::MAX) {
         p.setups_of_combination(c, |s| n += u64::from(s.margin < 1e-6));
     }
     n
@@ -256,7 +254,7 @@ fn matched(a: &[Fixture], b: &[Fixture], dtheta: f64) -> (usize, usize) {
 fn fine_flattening_converges_to_the_exact_arcs() {
     let shape = [[0., 0., 0.], [4.5, 0., 1.], [4.5, 3., 0.], [0., 3., 0.]];
     let vs: Vec<Vertex> = shape.iter().map(|&x| x.into()).collect();
-    let flat = fixplan_core::outline::Outline::new(&vs)
+    let flat = fixplan_core::parts::Outline::new(&vs)
         .unwrap()
         .flatten(2e-4);
     let flat: Vec<[f64; 2]> = flat.iter().map(|p| [p.x, p.y]).collect();

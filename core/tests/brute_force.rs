@@ -4,7 +4,7 @@
 
 mod support;
 
-use fixplan_core::input::Pattern;
+use fixplan_core::Pattern;
 use proptest::prelude::*;
 use support::*;
 
@@ -66,7 +66,7 @@ fn polygon_strategy() -> impl Strategy<Value = (Vec<[f64; 2]>, bool, bool, f64)>
         })
         .prop_map(|(a, r, alt, acc, ang)| (star([0.3, -0.2], &a, &r), alt, acc, ang))
         .prop_filter("a valid polygon of at least 4 vertices", |(p, ..)| {
-            p.len() >= 4 && fixplan_core::polygon::validate_polygon(p).is_ok()
+            p.len() >= 4 && fixplan_core::parts::validate_polygon(p).is_ok()
         })
 }
 

@@ -3,11 +3,10 @@
 //! residual computed without the solver's elimination, and hand-made
 //! tangencies, continua and shared angles.
 
-use fixplan_core::contact_pose::{
-    scaled_jacobian_det, solve_contact_poses, Circle, Contact, ContactPose,
+use fixplan_core::parts::{
+    rot, rot_t, scaled_jacobian_det, solve_contact_poses, solve_poses, v2, Circle, Contact,
+    ContactPose, Line, V2,
 };
-use fixplan_core::geometry::{rot, rot_t, v2, V2};
-use fixplan_core::pose::{solve_poses, Line};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 

@@ -3,7 +3,7 @@
 //! speed, not to disagree.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
-use fixplan_core::geometry::{polygon_clearance, polygon_disk_clearance, v2, V2};
+use fixplan_core::parts::{polygon_clearance, polygon_disk_clearance, v2, V2};
 use parry2d_f64::math::{Pose, Vector};
 use parry2d_f64::query;
 use parry2d_f64::shape::{Ball, ConvexPolygon};
@@ -14,7 +14,7 @@ fn hull(points: &[(f64, f64)]) -> Option<(ConvexPolygon, Vec<V2>)> {
     let poly = ConvexPolygon::from_convex_hull(&pts)?;
     let ours: Vec<V2> = poly.points().iter().map(|p| v2(p.x, p.y)).collect();
     // parry returns the hull counter-clockwise, as our polygons are.
-    (ours.len() >= 3 && fixplan_core::geometry::signed_area(&ours) > 1e-6).then_some((poly, ours))
+    (ours.len() >= 3 && fixplan_core::parts::signed_area(&ours) > 1e-6).then_some((poly, ours))
 }
 
 fn points() -> impl Strategy<Value = Vec<(f64, f64)>> {

@@ -4,12 +4,9 @@
 
 mod support;
 
-use fixplan_core::combinations::combination_count;
-use fixplan_core::geometry::cross;
-use fixplan_core::input::Pattern;
-use fixplan_core::metric::fibonacci_sphere;
-use fixplan_core::segments::Feature;
-use fixplan_core::{merge, Fixture};
+use fixplan_core::combination_count;
+use fixplan_core::parts::{cross, fibonacci_sphere, Feature};
+use fixplan_core::{merge, Fixture, Pattern};
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
@@ -198,8 +195,8 @@ fn metric_closed_form_equals_direct_min_max() {
     let mut checked = 0;
     for shape in [l_shape(), notched()] {
         let p = prep(&part(&shape, &[]), &kit(Pattern::Square), &params(90.0, 1));
-        let (c, j) = fixplan_core::geometry::centroid_and_polar_moment(p.outline().points());
-        let rho = (j / fixplan_core::geometry::signed_area(p.outline().points())).sqrt();
+        let (c, j) = fixplan_core::parts::centroid_and_polar_moment(p.outline().points());
+        let rho = (j / fixplan_core::parts::signed_area(p.outline().points())).sqrt();
         let dirs = fibonacci_sphere(256);
         for f in p.enumerate_all().fixtures.iter().step_by(7) {
             let (pose, pts, segs) = fixture_contacts(f);
@@ -312,8 +309,7 @@ fn absurdly_large_parts_are_invalid_not_a_hang() {
 
 #[test]
 fn every_fixture_rederives_bit_for_bit_from_its_setup_and_clamp() {
-    use fixplan_core::admissibility::Scratch;
-    use fixplan_core::clamp::Accumulator;
+    use fixplan_core::parts::{Accumulator, Scratch};
     let p = prep(
         &part(&notched(), &[]),
         &kit(Pattern::Alternating),

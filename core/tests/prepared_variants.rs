@@ -5,8 +5,7 @@
 
 mod support;
 
-use fixplan_core::input::{Kit, Params, Pattern, Units};
-use fixplan_core::{prepare, Part, PrepareError, PreparedPart};
+use fixplan_core::{prepare, Kit, Params, Part, Pattern, PrepareError, PreparedPart, Units};
 use support::*;
 
 /// Square and alternating plates, with and without an access region.

@@ -7,8 +7,7 @@
 
 mod support;
 
-use fixplan_core::input::{Kit, Params, Pattern};
-use fixplan_core::{merge, solve, Part, PartialResult, PreparedPart, Units};
+use fixplan_core::{merge, solve, Kit, Params, Part, PartialResult, Pattern, PreparedPart, Units};
 use proptest::prelude::*;
 use support::*;
 

@@ -11,7 +11,7 @@ use fixplan_catalog::{
     PolygonRole,
 };
 use fixplan_coordinator::output::messages::{TOPIC_FIXTURES, TOPIC_SCENE};
-use fixplan_core::polygon::PolygonError;
+use fixplan_core::parts::PolygonError;
 use fixplan_core::{Case, Part, Units};
 use std::path::{Path, PathBuf};
 

@@ -8,8 +8,7 @@ use fixplan_coordinator::output::{PartRecord, ResultsFile};
 use fixplan_coordinator::run::backend::Backend;
 use fixplan_coordinator::run::{run_catalog, RunOptions};
 use fixplan_coordinator::view::{render::render, show::show};
-use fixplan_core::outline::Vertex;
-use fixplan_core::{Part, Status, Units};
+use fixplan_core::{Part, Status, Units, Vertex};
 use std::path::{Path, PathBuf};
 
 use fixplan_coordinator::run::run_parts;

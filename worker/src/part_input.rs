@@ -5,8 +5,8 @@
 
 use crate::protocol::Digest;
 use fixplan_core::{
-    outline::Vertex, prepare, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, PrepareError,
-    PreparedPart, Units,
+    prepare, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, PrepareError, PreparedPart,
+    Units, Vertex,
 };
 use serde::{Deserialize, Serialize};
 use sha2::{Digest as _, Sha256};

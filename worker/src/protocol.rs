@@ -357,7 +357,7 @@ pub fn refusal_for(err: &DecodeError) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fixplan_core::report::Counts;
+    use fixplan_core::Counts;
 
     #[test]
     fn round_trip_and_version() {

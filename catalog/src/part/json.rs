@@ -11,8 +11,7 @@
 use super::outline::flatten_vertices;
 use super::raw::{PolygonRole, RawPart, ReadOptions};
 use crate::units::LengthUnit;
-use fixplan_core::outline::Vertex;
-use fixplan_core::{Part, Units};
+use fixplan_core::{Part, Units, Vertex};
 use serde_json::Value;
 
 /// Why a JSON file does not give a part's polygons.

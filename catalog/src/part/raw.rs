@@ -4,8 +4,7 @@
 //! can all use these types without using each other.
 
 use crate::units::LengthUnit;
-use fixplan_core::outline::Vertex;
-use fixplan_core::Units;
+use fixplan_core::{Units, Vertex};
 use std::fmt;
 use std::path::Path;
 

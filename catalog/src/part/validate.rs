@@ -6,16 +6,15 @@
 //! shape: a dropped duplicate vertex leaves its bulge to the edge that
 //! survives, and a vertex is merged away only between two straight edges.
 //! Anything else that SPEC 1 and 8.1 forbid is left for
-//! [`fixplan_core::outline::validate_outline`] (the outline, arcs
-//! included) and [`fixplan_core::polygon::validate_polygon`] (access
+//! [`fixplan_core::parts::validate_outline`] (the outline, arcs
+//! included) and [`fixplan_core::parts::validate_polygon`] (access
 //! constraints, which stay polygons) to report, so the catalogue and the
 //! solver never disagree about what a valid outline is.
 
 use super::outline::{dist, fmt_pt, scale_of, P};
 use super::raw::{PolygonRole, RawPart};
-use fixplan_core::outline::{validate_outline, OutlineError, Vertex};
-use fixplan_core::polygon::{validate_polygon, PolygonError};
-use fixplan_core::{Part, Units};
+use fixplan_core::parts::{validate_outline, validate_polygon, OutlineError, PolygonError};
+use fixplan_core::{Part, Units, Vertex};
 
 /// Why a polygon of a part cannot be used, naming the polygon so a part
 /// with several access constraints says which one is wrong.

@@ -8,8 +8,7 @@
 //! fixtures with less work (scored, mount searches, setups floored).
 
 use anyhow::{Context, Result};
-use fixplan_core::enumerate::Profile;
-use fixplan_core::{prepare, Case, Kit, Params, Part, PartialResult, PreparedPart, Units};
+use fixplan_core::{prepare, Case, Kit, Params, Part, PartialResult, PreparedPart, Profile, Units};
 use std::path::{Path, PathBuf};
 
 /// One part to measure.

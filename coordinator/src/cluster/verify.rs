@@ -5,9 +5,7 @@
 //! enumerated again and the clamp placed again), which recomputes form
 //! closure, admissibility and score; the fixture must come out identical.
 
-use fixplan_core::admissibility::Scratch;
-use fixplan_core::clamp::Accumulator;
-use fixplan_core::combinations::combination_at;
+use fixplan_core::parts::{combination_at, Accumulator, Scratch};
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
 use fixplan_worker::finish::Finisher;
 use fixplan_worker::part_input::{short_hex, PartInput};
@@ -295,7 +293,7 @@ pub fn check_shape(
     res: &PartialResult,
 ) -> Result<(), CheckError> {
     let n = res.counts.segments;
-    let count = fixplan_core::combinations::combination_count(n as usize);
+    let count = fixplan_core::combination_count(n as usize);
     let want = range.end.min(count).saturating_sub(range.start);
     if res.range != *range || res.counts.combinations != want {
         return Err(CheckError::WrongCover {

@@ -3,8 +3,7 @@
 //! and the Foxglove scene both draw.
 
 use super::outline::{extent_points, moved};
-use fixplan_core::outline::Vertex;
-use fixplan_core::{FixtureReport, Kit, Pattern, Point};
+use fixplan_core::{FixtureReport, Kit, Pattern, Point, Vertex};
 
 /// A circle: centre and radius.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -8,8 +8,8 @@
 //! outline without arcs each function gives exactly the vertex positions,
 //! so polygon pictures and scenes keep their bytes.
 
-use fixplan_core::outline::{edges_of, Edge, Vertex};
-use fixplan_core::Point;
+use fixplan_core::parts::{edges_of, Edge};
+use fixplan_core::{Point, Vertex};
 
 /// Whether any edge of `outline` is drawn as an arc (a bulge on a
 /// zero-length or non-finite chord is drawn as a straight edge, as core

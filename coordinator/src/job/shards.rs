@@ -41,7 +41,7 @@ pub fn shard_size(target: u64, combinations: u64, segments: usize) -> u64 {
 /// access regions can split some), as `(combinations, segments)`.
 pub fn estimate(input: &fixplan_worker::part_input::PartInput) -> (u64, usize) {
     let n = input.part.outline.len() + input.part.access.iter().map(Vec::len).sum::<usize>();
-    (fixplan_core::combinations::combination_count(n), n)
+    (fixplan_core::combination_count(n), n)
 }
 
 /// Batches per expected worker thread: assignments group small shards up

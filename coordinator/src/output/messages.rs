@@ -7,8 +7,7 @@
 use crate::job::SearchInfo;
 pub use crate::job::Timing;
 use fixplan_catalog::{Catalog, CatalogPart};
-use fixplan_core::outline::Vertex;
-use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units};
+use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units, Vertex};
 use schemars::JsonSchema;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -305,11 +304,10 @@ impl PartMessage for FixturesMsg {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fixplan_core::report::{
-        ClampReport, ContactReport, FixtureReport, PlacementReport, PoseReport,
+    use fixplan_core::{
+        Clamp, ClampReport, ContactReport, FixtureReport, HoleKind, MountHole, Pattern,
+        PlacementReport, PoseReport, SegmentKind,
     };
-    use fixplan_core::segments::SegmentKind;
-    use fixplan_core::{Clamp, HoleKind, MountHole, Pattern};
 
     fn json<T: Serialize>(m: &T) -> String {
         serde_json::to_string(m).expect("json")

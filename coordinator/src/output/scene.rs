@@ -13,8 +13,7 @@ use crate::drawing::draw::{
 };
 use crate::drawing::outline::{extent_points, flattened};
 use crate::output::messages::NS_PER_PART;
-use fixplan_core::outline::Vertex;
-use fixplan_core::{FixtureReport, Kit, Point, Units};
+use fixplan_core::{FixtureReport, Kit, Point, Units, Vertex};
 use serde::Serialize;
 use std::cell::RefCell;
 

@@ -131,7 +131,7 @@ pub fn run_parts(
     opts: &RunOptions,
     parts: std::ops::Range<usize>,
 ) -> Result<Totals> {
-    fixplan_core::prepare::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
+    fixplan_core::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
     opts.search.validate()?;
     let run_msg = run_message(catalog, spec, opts);
     let n = parts.len();

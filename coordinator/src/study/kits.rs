@@ -29,8 +29,7 @@ pub fn study_kits(names: &[String], sweep: Option<&str>, units: Units) -> Result
     let mut bases = Vec::new();
     for n in names {
         let spec = load_kit(n, units)?;
-        fixplan_core::prepare::validate_kit(&spec.kit)
-            .with_context(|| format!("kit {}", spec.name))?;
+        fixplan_core::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
         out.push(StudyKit {
             base: spec.name.clone(),
             sweep: None,

@@ -20,8 +20,7 @@
 //! Cartesian product of its clauses (the first clause varies slowest).
 
 use fixplan_catalog::KitSpec;
-use fixplan_core::prepare::{validate_kit, validate_params};
-use fixplan_core::Units;
+use fixplan_core::{validate_kit, validate_params, Units};
 use std::fmt;
 use thiserror::Error;
 

@@ -11,8 +11,8 @@ use crate::drawing::draw::{bounds, fixture_drawing, plate_holes, plate_outline, 
 use crate::drawing::outline::{extent_points, has_arcs, vertex_points};
 use crate::output::messages::RunMsg;
 use crate::output::reader::PartRecord;
-use fixplan_core::outline::{edges_of, Edge, Vertex};
-use fixplan_core::{FixtureReport, Kit, Point, Status};
+use fixplan_core::parts::{edges_of, Edge};
+use fixplan_core::{FixtureReport, Kit, Point, Status, Vertex};
 use std::fmt::Write as _;
 
 const WIDTH: f64 = 760.0;

@@ -4,9 +4,8 @@
 use crate::output::messages::{FixturesMsg, TOPIC_FIXTURES};
 use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
 use anyhow::Result;
-use fixplan_core::outline::edges_of;
-use fixplan_core::segments::SegmentKind;
-use fixplan_core::{FixtureReport, Status};
+use fixplan_core::parts::edges_of;
+use fixplan_core::{FixtureReport, SegmentKind, Status};
 use std::io::Write;
 use std::path::Path;
 

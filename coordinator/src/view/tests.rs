@@ -9,9 +9,7 @@ use crate::drawing::draw::fixture_drawing;
 use crate::output::messages::{CatalogInfo, FixturesMsg, PartMsg, RunMsg};
 use crate::output::reader::PartRecord;
 use crate::output::scene::{scene_update, PartScene};
-use fixplan_core::outline::Vertex;
-use fixplan_core::segments::SegmentKind;
-use fixplan_core::{solve, Params, Part, Point, SolveResult, Status, Units};
+use fixplan_core::{solve, Params, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex};
 use serde_json::Value;
 
 const CENTRE: Point = [60.0, 20.0];

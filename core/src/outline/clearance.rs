@@ -6,7 +6,7 @@
 //! `min_clearance = 0` allows touching and forbids overlap.
 
 use super::{Edge, Outline};
-use crate::arc::{segment_circle, CircArc};
+use crate::geometry::arc::{segment_circle, CircArc};
 use crate::geometry::{
     boundary_distance2, cross, point_in_polygon, proper_crossing, v2, Aabb, EPS, V2,
 };

@@ -3,7 +3,7 @@
 //! locator radius, smooth joints, and the normalisation of a clockwise list.
 
 use super::vertex::Vertex;
-use crate::arc::{
+use crate::geometry::arc::{
     arc_arc_closest, point_arc_closest, point_segment_closest, segment_arc_closest,
     segment_segment_closest, CircArc, Closest, GrownArc,
 };

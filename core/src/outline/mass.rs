@@ -2,7 +2,7 @@
 
 use super::edge::{edges_of, Edge};
 use super::vertex::Vertex;
-use crate::arc::segment_moments;
+use crate::geometry::arc::segment_moments;
 use crate::geometry::{centroid_and_polar_moment, cross, signed_area, v2, V2};
 
 /// What SPEC 6's metric needs from a part: `A`, `c` and `J` (so that
@@ -32,7 +32,7 @@ impl MassProperties {
 /// edge into its chord (the polygon formulas) and the closed loop arc +
 /// reversed chord, which bounds the arc's circular segment counter-
 /// clockwise when the bulge is positive: each segment's area, first and
-/// second moments ([`segment_moments`]) are added for `b > 0` and
+/// second moments (`segment_moments`) are added for `b > 0` and
 /// subtracted for `b < 0`, then moved to the common origin (parallel axes).
 pub fn mass_properties(vertices: &[Vertex]) -> MassProperties {
     if vertices.iter().any(Vertex::is_arc) {

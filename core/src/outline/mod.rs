@@ -1,7 +1,7 @@
 //! Part outlines made of line segments and circular arcs (SPEC 8.1).
 //!
 //! A polygon is the special case with every bulge zero, and for it every
-//! function here gives exactly what [`crate::polygon`] and
+//! function here gives exactly what [`crate::geometry::polygon`] and
 //! [`crate::geometry`] give (same errors, same floating-point numbers), so
 //! arc-free parts keep their results when the enumeration moves to
 //! outlines.
@@ -21,12 +21,12 @@ mod vertex;
 #[cfg(test)]
 mod tests;
 
-pub use edge::{ccw_of_cw_outline, edges_of, tangents_smooth, Edge, GrownEdge, SMOOTH_JOINT_TOL};
+pub use edge::{ccw_of_cw_outline, edges_of, tangents_smooth, Edge, GrownEdge};
 pub use mass::{mass_properties, MassProperties};
 pub use validate::{validate_outline, OutlineError};
 pub use vertex::Vertex;
 
-use crate::arc::{CircArc, Closest};
+use crate::geometry::arc::{CircArc, Closest};
 use crate::geometry::{point_in_polygon, V2};
 
 /// A validated outline, counter-clockwise, with its edges.

@@ -3,10 +3,10 @@
 
 use super::mass::general;
 use super::*;
+use crate::geometry::polygon::{validate_polygon, PolygonError};
 use crate::geometry::{
     boundary_distance2, centroid_and_polar_moment, point_in_polygon, signed_area, v2, Aabb,
 };
-use crate::polygon::{validate_polygon, PolygonError};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 

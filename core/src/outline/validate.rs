@@ -10,9 +10,9 @@
 use super::edge::{ccw_of_cw_outline, edges_of, Edge};
 use super::mass::general;
 use super::vertex::Vertex;
-use crate::arc::{same_circle, CircArc};
+use crate::geometry::arc::{same_circle, CircArc};
+use crate::geometry::polygon::{validate_polygon, PolygonError};
 use crate::geometry::{point_segment_dist2, V2};
-use crate::polygon::{validate_polygon, PolygonError};
 use thiserror::Error;
 
 /// Crossing tolerance relative to the outline's extent.

@@ -11,7 +11,7 @@
 
 use super::line::complement;
 use super::segment::{Feature, LineFeature, Segment};
-use crate::arc::{circle_circle, GrownArc};
+use crate::geometry::arc::{circle_circle, GrownArc};
 use crate::geometry::{boundary_distance2, cross, point_in_polygon, v2, EPS, V2};
 use crate::outline::{Edge, GrownEdge, Outline};
 

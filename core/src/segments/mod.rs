@@ -10,9 +10,12 @@
 
 mod curved;
 mod line;
+mod pairs;
 mod segment;
 
-pub use segment::{arc_inward_normal, distance_range, Feature, LineFeature, Segment, SegmentKind};
+pub use pairs::PairBounds;
+pub(crate) use pairs::PairTable;
+pub use segment::{arc_inward_normal, Feature, LineFeature, Segment, SegmentKind};
 
 use crate::geometry::V2;
 use crate::outline::Outline;

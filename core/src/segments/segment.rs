@@ -2,10 +2,10 @@
 //! its contact parameter, inward normals and distance bounds (SPEC 2, 8.2,
 //! 8.3).
 
-use crate::arc::{arc_arc_closest, segment_arc_closest, CircArc, GrownArc};
-use crate::contact_pose::{Circle, Contact};
+use crate::geometry::arc::{arc_arc_closest, segment_arc_closest, CircArc, GrownArc};
 use crate::geometry::{segment_segment_dist2, EPS, V2};
-use crate::pose::Line;
+use crate::poses::contact_pose::{Circle, Contact};
+use crate::poses::pose::Line;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -2,16 +2,13 @@
 //! enumerator that the pruned enumeration must equal.
 #![allow(dead_code)]
 
-use fixplan_core::admissibility::Scratch;
-use fixplan_core::clamp::Accumulator;
-use fixplan_core::combinations::combinations_in;
-use fixplan_core::form_closure::{positively_spanning, wrench};
-use fixplan_core::geometry::{v2, V2};
-use fixplan_core::input::{Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, Units};
-use fixplan_core::pose::Pose;
-use fixplan_core::segments::Feature;
-use fixplan_core::Fixture;
-use fixplan_core::{prepare, PartialResult, PreparedPart};
+use fixplan_core::parts::{
+    combinations_in, positively_spanning, v2, wrench, Accumulator, Feature, Pose, Scratch, V2,
+};
+use fixplan_core::{
+    prepare, Clamp, Fixture, HoleKind, Kit, MountHole, Params, Part, PartialResult, Pattern,
+    PreparedPart, Units,
+};
 use nalgebra::Vector3;
 
 /// The paper-like kit in lattice units (spacing 1): 0.25 locators, toggle clamp.
@@ -68,7 +65,7 @@ pub fn shape_strategy() -> impl proptest::strategy::Strategy<Value = Vec<[f64; 2
         })
         .prop_map(|(a, r)| star([0.0, 0.0], &a, &r))
         .prop_filter("a valid polygon of at least 4 vertices", |p| {
-            p.len() >= 4 && fixplan_core::polygon::validate_polygon(p).is_ok()
+            p.len() >= 4 && fixplan_core::parts::validate_polygon(p).is_ok()
         })
 }
 
@@ -228,7 +225,7 @@ pub fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
     }
     assert!(positively_spanning(&w, 1e-12), "not in form closure: {f:?}");
     // The clamp tip pushes within the allowed angle.
-    let d = fixplan_core::geometry::rot90(f.rotation, v2(1.0, 0.0));
+    let d = fixplan_core::parts::rot90(f.rotation, v2(1.0, 0.0));
     assert!(d.dot(&normals[3]) >= p.cos_max_angle() - 1e-9);
     // Locators are distinct lattice points, L1 at the origin, L2 in Q.
     assert_eq!(f.locators[0], [0, 0]);

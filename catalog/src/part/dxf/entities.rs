@@ -11,7 +11,7 @@ use super::super::outline::{
 use super::super::raw::LimitExceeded;
 use super::spline::{self, SplineProblem};
 use dxf::entities::EntityType;
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 
 /// Entities are drawn in their object coordinate system; for the usual
 /// extrusion (0, 0, 1) that is the world, for (0, 0, -1) (mirrored

@@ -37,8 +37,7 @@ use super::raw::{RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use dxf::enums::Units as DxfUnits;
 use dxf::Drawing;
-use fixplan_core::outline::Vertex;
-use fixplan_core::Units;
+use fixplan_core::{Units, Vertex};
 use walk::{Found, Layer, Walk};
 
 /// `$INSUNITS` as a length unit; `None` when the drawing says "unitless"

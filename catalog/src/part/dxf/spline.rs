@@ -11,7 +11,7 @@
 
 use super::super::outline::P;
 use super::super::raw::LimitExceeded;
-use fixplan_core::geometry::{point_segment_dist2, v2};
+use fixplan_core::parts::{point_segment_dist2, v2};
 
 /// Highest degree read; CAD tools write 1 to 3 (5 at most in some).
 const MAX_DEGREE: usize = 11;

@@ -3,7 +3,7 @@
 //! nested blocks.
 
 use super::super::outline::{flatten_vertices, Affine, P};
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 
 /// The map of an INSERT (and of one cell of a MINSERT array): the block's
 /// base point to the origin, scaled, moved by the cell's offset along the

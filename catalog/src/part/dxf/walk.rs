@@ -11,7 +11,7 @@ use super::error::DxfError;
 use super::transform;
 use dxf::entities::{Entity, EntityType, Insert};
 use dxf::{Block, Drawing};
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 use std::collections::{HashMap, HashSet};
 
 pub(super) fn is_access_layer(layer: &str) -> bool {
@@ -372,7 +372,7 @@ impl<'a> Walk<'a> {
         };
         let fwd: Vec<_> = pts.iter().map(q).collect();
         let back: Vec<_> = if closed {
-            fixplan_core::outline::ccw_of_cw_outline(pts)
+            fixplan_core::parts::ccw_of_cw_outline(pts)
                 .iter()
                 .map(q)
                 .collect()

@@ -1,8 +1,7 @@
 //! Writing a part as a DXF file any CAD program opens.
 
 use super::super::outline::straight;
-use fixplan_core::outline::Vertex;
-use fixplan_core::{Part, Units};
+use fixplan_core::{Part, Units, Vertex};
 
 /// Writes a part as an AutoCAD 2000 (AC1015) DXF: one closed LWPOLYLINE on
 /// layer `PART` for the outline (arcs as bulges, group code 42) and one on

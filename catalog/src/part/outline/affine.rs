@@ -4,7 +4,7 @@
 //! whether circles stay circles and turning arcs round under a mirror
 //! are decided the same way whatever the file.
 
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 
 /// Affine map `(x, y) -> (a x + c y + e, b x + d y + f)`, SVG's order.
 #[derive(Debug, Clone, Copy, PartialEq)]

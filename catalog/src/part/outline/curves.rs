@@ -1,7 +1,7 @@
 //! Numbers for messages, and circular arcs as the readers make them:
 //! exact bulge vertices, or chords within a tolerance.
 
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 
 pub(crate) type P = [f64; 2];
 

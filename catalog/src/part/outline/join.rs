@@ -3,7 +3,7 @@
 //! would not close so that a message can tell a gap from a stray line.
 
 use super::curves::{dist, P};
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 use std::collections::HashMap;
 
 /// A piece read backwards: the points reversed, each bulge negated and
@@ -226,7 +226,7 @@ mod tests {
     use super::super::curves::{bulge_points, circle_loop, exact_arc, exact_circle, straight};
     use super::super::region::{contains, loop_area};
     use super::*;
-    use fixplan_core::geometry::v2;
+    use fixplan_core::parts::v2;
 
     #[test]
     fn chord_error_is_respected() {

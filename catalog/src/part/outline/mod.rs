@@ -3,7 +3,7 @@
 //! references ([`affine`]), joining pieces into loops, arcs kept
 //! ([`join`]), the true region of a loop ([`region`]), and choosing the
 //! outline among the loops ([`pick`]). Points are plain `[f64; 2]` as
-//! files hold them; outlines are core's [`Vertex`](fixplan_core::outline::Vertex)
+//! files hold them; outlines are core's [`Vertex`](fixplan_core::Vertex)
 //! lists (a point and the bulge of the edge leaving it).
 
 mod affine;

@@ -8,9 +8,8 @@ use super::curves::{fmt_pt, P};
 use super::join::pt;
 use super::region::{aabb_within, contains, loop_aabb, loop_area, loop_inside};
 use crate::part::raw::RawPart;
-use fixplan_core::geometry::{v2, Aabb};
-use fixplan_core::outline::Vertex;
-use fixplan_core::Units;
+use fixplan_core::parts::{v2, Aabb};
+use fixplan_core::{Units, Vertex};
 
 /// Why the loops of a drawing do not make one part.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -196,7 +195,7 @@ pub(crate) fn pick_outlines(
     Ok(parts)
 }
 
-fn box_distance(b: &Aabb, q: fixplan_core::geometry::V2) -> f64 {
+fn box_distance(b: &Aabb, q: fixplan_core::parts::V2) -> f64 {
     let dx = (b.min.x - q.x).max(q.x - b.max.x).max(0.0);
     let dy = (b.min.y - q.y).max(q.y - b.max.y).max(0.0);
     dx.hypot(dy)

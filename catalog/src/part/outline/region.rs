@@ -3,8 +3,8 @@
 //! chords, because a hole centred on a round end of a part lies exactly on
 //! the chord of that end, where a chord polygon and an arc segment disagree.
 
-use fixplan_core::geometry::{signed_area, v2, Aabb, V2};
-use fixplan_core::outline::{edges_of, mass_properties, Edge, Vertex};
+use fixplan_core::parts::{edges_of, mass_properties, signed_area, v2, Aabb, Edge, V2};
+use fixplan_core::Vertex;
 
 /// Unsigned area of the true region (arcs included: a circle is two
 /// vertices) for choosing the largest loop; an overflowing loop counts as

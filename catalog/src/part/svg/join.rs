@@ -10,7 +10,7 @@ use crate::part::outline::{
     dist, fmt_pt, join_pieces, nearest_other_end, positions, OpenChain, Piece, P,
 };
 use crate::part::raw::RawPart;
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 
 /// A free end closer than this share of its chain's size to another free
 /// end is called a gap; farther, the chain is an open line.

@@ -65,8 +65,7 @@ pub use transform::TransformError;
 
 use super::outline::{arc_pieces, pick_outline, pick_outlines, positions, Affine, Piece, P};
 use super::raw::{RawPart, ReadOptions};
-use fixplan_core::outline::Vertex;
-use fixplan_core::{Part, Units};
+use fixplan_core::{Part, Units, Vertex};
 use lexer::Lexer;
 use limits::Budget;
 use path::{parse_path, Sub};

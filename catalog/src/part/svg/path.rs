@@ -6,7 +6,7 @@
 use super::lexer::Lexer;
 use super::limits::{Budget, Exceeded};
 use crate::part::outline::{arc_pieces, MAX_ARC_PIECES, P};
-use fixplan_core::outline::Vertex;
+use fixplan_core::Vertex;
 
 /// Why path data cannot be read.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]

@@ -239,7 +239,7 @@ fn hold(st: &mut State, s: &Settings, p: usize, r: ShardDone, shard_range: &Rang
     if open {
         // The running top-k only serves the checks of the shards to come.
         let lists = vec![std::mem::take(&mut part.top), result.fixtures.clone()];
-        part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k());
+        part.top = fixplan_core::merge_ranked(lists, part.top_k());
     }
     part.partials.push(ShardResult {
         shard: r.shard_id,

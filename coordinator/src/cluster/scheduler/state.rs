@@ -284,7 +284,7 @@ impl State {
         let first = self.shards.len() as u64;
         // The last shard of a part may be open ([`WHOLE`], or cut from an
         // estimate): it costs the estimate's rest.
-        let estimate = fixplan_core::combinations::combination_count(part.segments);
+        let estimate = fixplan_core::combination_count(part.segments);
         for r in part.ranges.iter().cloned() {
             let combinations = r.end.min(estimate).saturating_sub(r.start);
             let cost = crate::job::shards::cost(combinations, part.segments);

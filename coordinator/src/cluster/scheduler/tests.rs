@@ -536,7 +536,7 @@ fn cut_parts_from(
 /// [`Tag`] finishes them (checking what the task carries on the way).
 /// [`cut_parts_from`] the right estimate.
 fn cut_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
-    cut_parts_from(n, verify, fixplan_core::combinations::combination_count(4))
+    cut_parts_from(n, verify, fixplan_core::combination_count(4))
 }
 
 fn honest_cut(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
@@ -603,7 +603,7 @@ fn cut_parts_are_finished_by_a_worker_from_their_merged_result() {
 /// embedded run's either way.
 #[test]
 fn cut_parts_merge_the_same_whatever_their_estimate() {
-    let count = fixplan_core::combinations::combination_count(4);
+    let count = fixplan_core::combination_count(4);
     for estimate in [4, count / 2, count * 3] {
         let (c, rx) = cut_parts_from(2, VerifyPolicy::All, estimate);
         join(&c, "w");

@@ -156,7 +156,7 @@ fn redo_work_of(st: &mut State, worker: &str) {
             .iter()
             .map(|h| h.result.fixtures.clone())
             .collect();
-        part.top = fixplan_core::ranking::merge_ranked(lists, part.top_k());
+        part.top = fixplan_core::merge_ranked(lists, part.top_k());
         let stop = part.stop;
         for id in part.shard_ids.clone() {
             let sh = &st.shards[id as usize];

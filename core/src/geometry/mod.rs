@@ -1,9 +1,16 @@
-//! Small exact-as-floats planar primitives shared by every stage.
+//! Planar geometry shared by every stage: the small exact-as-floats
+//! primitives here (points, rotations, distances, boxes, polygon
+//! clearance), and in submodules sets of angles, circular arcs and the
+//! validation of input polygons.
 //!
 //! Hand-written rather than taken from parry2d because the enumeration needs
 //! SPEC's `eps` semantics at each decision (strict = "by more than eps") and
 //! allocation-free calls in the innermost loops; the test suite cross-checks
 //! these against parry2d.
+
+pub(crate) mod angle_set;
+pub(crate) mod arc;
+pub(crate) mod polygon;
 
 use nalgebra::Vector2;
 

@@ -1,7 +1,7 @@
 //! Fixtures, their canonical order, and top-k that merges the same however
 //! the work was split (SPEC section 6, "Ranking").
 
-use crate::plate::Placement;
+use crate::checks::plate::Placement;
 use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -31,7 +31,7 @@ pub struct Fixture {
     pub contact: [f64; 2],
     /// Inward normals at locators 1-3 and the clamp.
     pub normals: [[f64; 2]; 4],
-    /// Some decision was within [`crate::geometry::BORDERLINE`] of its
+    /// Some decision was within `BORDERLINE` (1e-6) of its
     /// boundary: another implementation may rightly disagree on it.
     pub borderline: bool,
     /// Where it goes on the physical plate.

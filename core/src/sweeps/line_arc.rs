@@ -21,7 +21,7 @@
 //! pieces are narrow.
 
 use super::pieces::{LinePiece, Quad, ThirdPiece, MAX_CHORDS, QUAD_SLACK, S_SLACK};
-use crate::angle_set::{rem_tau, AngleSet};
+use crate::geometry::angle_set::{rem_tau, AngleSet};
 use crate::geometry::{cross, rot, V2};
 use crate::segments::{Feature, Segment};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};

@@ -1,7 +1,7 @@
 //! The part poses that put three given locators on three grown-edge lines
 //! (SPEC section 3): `A cos(theta) + B sin(theta) = C` and back-substitution.
 
-use crate::angle_set::wrap_angle;
+use crate::geometry::angle_set::wrap_angle;
 use crate::geometry::{cross, rot, V2};
 
 /// A rigid placement of the part: plate point = `R(theta) p + t`.

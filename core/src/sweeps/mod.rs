@@ -21,7 +21,7 @@ mod pieces;
 
 pub use line_arc::{ArcPoint, LineArcSweep};
 
-use crate::angle_set::AngleSet;
+use crate::geometry::angle_set::AngleSet;
 use crate::geometry::{cross, rot, EPS, V2};
 use crate::segments::Segment;
 use line_arc::ArcPiece;
@@ -596,7 +596,7 @@ mod tests {
         let (sin, cos) = theta.sin_cos();
         let l2 = rot(cos, sin, p[1] - p[0]);
         let l3 = rot(cos, sin, p[2] - p[0]);
-        let dmax_ac = crate::segments::distance_range(segs[0], segs[2]).1;
+        let dmax_ac = crate::segments::PairBounds::between(segs[0], segs[2]).dmax;
         let swept = segs.map(SweptSegment::of);
         let Some(sweep) = Sweep::new([&swept[0], &swept[1], &swept[2]], same_ab, dmax_ac) else {
             return false; // nearly parallel: the caller scans annuli
@@ -610,7 +610,7 @@ mod tests {
         ) {
             return false;
         }
-        let t = crate::angle_set::wrap_angle(theta);
+        let t = crate::geometry::angle_set::wrap_angle(theta);
         let Some(pt) = sweep.pivot_point(l2) else {
             panic!("angle {t} not in an empty angle set");
         };
@@ -657,7 +657,7 @@ mod tests {
             // An arc (convex or concave, up to almost a full turn),
             // contacts on a piece of it.
             let arc_seg = |k: usize, sweep: f64| {
-                let arc = crate::arc::GrownArc {
+                let arc = crate::geometry::arc::GrownArc {
                     center: v2(o[k].0, o[k].1),
                     radius: lens[k] / 2.0,
                     start_angle: dirs[k],

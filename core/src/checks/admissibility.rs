@@ -6,7 +6,8 @@
 use crate::geometry::{
     polygon_clearance_below, polygon_disk_clearance, rot90, rot90i, v2, Aabb, BORDERLINE, EPS, V2,
 };
-use crate::prepare::{ClampGeom, PreparedPart};
+use crate::input::setting::ClampGeom;
+use crate::outline::Outline;
 use crate::setups::{lattice_point, Setup};
 
 /// Where the time goes, when asked (`fixplan bench`); nanoseconds.
@@ -28,6 +29,24 @@ impl Timing {
         self.admissibility_ns += o.admissibility_ns;
         self.metric_ns += o.metric_ns;
     }
+}
+
+/// What a clamp must keep clear of, in lattice units and the part frame:
+/// the part, its access regions and the locators, and the clamp itself.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Obstacles<'a> {
+    /// The part's CCW outline.
+    pub(crate) outline: &'a Outline,
+    /// Bounding box of the outline, arcs included.
+    pub(crate) outline_box: &'a Aabb,
+    /// The access regions, CCW.
+    pub(crate) access: &'a [Vec<V2>],
+    /// Locator radius.
+    pub(crate) locator_radius: f64,
+    /// The clamp's body, plunger and mount holes.
+    pub(crate) clamp: &'a ClampGeom,
+    /// Smallest clearance allowed.
+    pub(crate) min_clearance: f64,
 }
 
 /// Nanoseconds since `t`, when timing.
@@ -63,7 +82,7 @@ impl Scratch {
         self.posed = false;
     }
 
-    fn ensure_posed(&mut self, prep: &PreparedPart, setup: &Setup) {
+    fn ensure_posed(&mut self, obstacles: &Obstacles, setup: &Setup) {
         if self.posed {
             return;
         }
@@ -72,14 +91,14 @@ impl Scratch {
         self.part_box = None;
         // A part with arcs is checked in its own frame (see
         // `curved_part_clearance`): only polygons are posed here.
-        if !prep.outline.has_arcs() {
-            let pts = prep.outline.points();
+        if !obstacles.outline.has_arcs() {
+            let pts = obstacles.outline.points();
             self.part.extend(pts.iter().map(|&p| pose.apply(p)));
             self.part_box = Some(Aabb::of(&self.part));
         }
-        self.access.resize(prep.access.len(), Vec::new());
+        self.access.resize(obstacles.access.len(), Vec::new());
         self.access_box.clear();
-        for (dst, src) in self.access.iter_mut().zip(&prep.access) {
+        for (dst, src) in self.access.iter_mut().zip(obstacles.access) {
             dst.clear();
             dst.extend(src.iter().map(|&p| pose.apply(p)));
             self.access_box.push(Aabb::of(dst));
@@ -92,28 +111,28 @@ impl Scratch {
     /// `None` when one is closer than `min_clearance` or overlaps.
     pub(crate) fn clamp_clear(
         &mut self,
-        prep: &PreparedPart,
+        obstacles: &Obstacles,
         setup: &Setup,
         k: u8,
         m: [i64; 2],
         t: f64,
     ) -> Option<f64> {
-        self.ensure_posed(prep, setup);
+        self.ensure_posed(obstacles, setup);
         let mv = lattice_point(m);
-        let c = &prep.setting.clamp;
+        let c = obstacles.clamp;
         self.body.clear();
         self.body.extend(c.body.iter().map(|&p| rot90(k, p) + mv));
         self.plunger.clear();
         self.plunger
             .extend(c.plunger.iter().map(|&p| rot90(k, p + v2(t, 0.0)) + mv));
-        let need = prep.setting.min_clearance;
+        let need = obstacles.min_clearance;
         let locs = setup.locators.map(lattice_point);
         let mut margin = f64::INFINITY;
-        let curved = prep.outline.has_arcs();
+        let curved = obstacles.outline.has_arcs();
         for poly in [&self.body, &self.plunger] {
             let bb = Aabb::of(poly);
             if curved {
-                let d = curved_part_clearance(prep, &setup.pose, poly, &mut self.local, need)?;
+                let d = curved_part_clearance(obstacles, &setup.pose, poly, &mut self.local, need)?;
                 margin = margin.min(d);
             }
             let part = if curved {
@@ -121,10 +140,10 @@ impl Scratch {
             } else {
                 Some((&self.part, self.part_box.as_ref()?))
             };
-            let obstacles = part
+            let regions = part
                 .into_iter()
                 .chain(self.access.iter().zip(self.access_box.iter()));
-            for (obst, obox) in obstacles {
+            for (obst, obox) in regions {
                 let gap = bb.gap(obox);
                 if gap - need > BORDERLINE {
                     margin = margin.min(gap - need);
@@ -137,7 +156,7 @@ impl Scratch {
                 margin = margin.min((d - need).abs());
             }
             for l in &locs {
-                let d = polygon_disk_clearance(poly, *l, prep.r)?;
+                let d = polygon_disk_clearance(poly, *l, obstacles.locator_radius)?;
                 if d < need - EPS {
                     return None;
                 }
@@ -171,19 +190,19 @@ impl Scratch {
 /// than the part onto the plate: distances do not change under a rigid
 /// motion, and the few polygon vertices are cheaper to move than the arcs.
 fn curved_part_clearance(
-    prep: &PreparedPart,
-    pose: &crate::pose::Pose,
+    obstacles: &Obstacles,
+    pose: &crate::poses::pose::Pose,
     poly: &[V2],
     local: &mut Vec<V2>,
     need: f64,
 ) -> Option<f64> {
     local.clear();
     local.extend(poly.iter().map(|&p| pose.inverse_apply(p)));
-    let gap = Aabb::of(local).gap(&prep.outline_box);
+    let gap = Aabb::of(local).gap(obstacles.outline_box);
     if gap - need > BORDERLINE {
         return Some(gap - need);
     }
-    let d = prep.outline.polygon_clearance(local)?;
+    let d = obstacles.outline.polygon_clearance(local)?;
     if d < need - EPS {
         return None;
     }

@@ -1,6 +1,6 @@
 //! The part poses that put three locators on three grown features, each a
 //! line or an arc's circle (SPEC 8.4): the generalisation of
-//! [`crate::pose::solve_poses`] that arcs need.
+//! [`crate::poses::pose::solve_poses`] that arcs need.
 //!
 //! With `p_k = R(theta)^T L_k - w`, a line gives an equation linear in `w`
 //! and a circle `|w|^2 +` terms linear in `w`. After moving both frames so
@@ -29,9 +29,9 @@
 
 mod trig;
 
-use crate::angle_set::{rem_tau, wrap_angle};
+use crate::geometry::angle_set::{rem_tau, wrap_angle};
 use crate::geometry::{cross, rot, rot_t, v2, BORDERLINE, EPS, V2};
-use crate::pose::{solve_poses, Line, Pose};
+use crate::poses::pose::{solve_poses, Line, Pose};
 use nalgebra::{Matrix3, Vector3};
 use trig::{circ_dist, Angles, Trig, COS16, SAMPLES, SIN16};
 

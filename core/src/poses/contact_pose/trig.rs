@@ -9,7 +9,7 @@
 //! Subdivision with Taylor bounds has neither problem, reports the near-zero
 //! minimum of a near-tangent configuration directly, and allocates nothing.
 
-use crate::angle_set::rem_tau;
+use crate::geometry::angle_set::rem_tau;
 use std::f64::consts::{FRAC_1_SQRT_2, TAU};
 
 /// Highest harmonic kept: the eliminant of SPEC 8.4 has degree <= 4.

@@ -202,7 +202,9 @@ fn tangency_measure_is_the_scaled_wrench_determinant() {
                 }
             };
             locs[k] = rot(c, s, p + w);
-            wrenches[k] = crate::form_closure::wrench(locs[k], -rot(c, s, u));
+            // Contact k's wrench `(f, L_k x f)`, `f` the inward normal.
+            let f = -rot(c, s, u);
+            wrenches[k] = Vector3::new(f.x, f.y, cross(locs[k], f));
         }
         let det_w = Matrix3::from_columns(&wrenches).determinant();
         let scale: f64 = wrenches.iter().map(|x| x.norm()).product();

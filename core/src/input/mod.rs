@@ -4,6 +4,9 @@
 //! enumeration: everything is in the catalogue's length unit here; the
 //! enumeration converts to lattice units itself (see [`crate::prepare()`]).
 
+pub(crate) mod setting;
+pub(crate) mod validate;
+
 use crate::outline::Vertex;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};

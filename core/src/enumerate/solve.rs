@@ -1,11 +1,11 @@
 //! One part end to end, and the conversion of lattice-unit fixtures into the
 //! reported form (catalogue unit, degrees, plate placement).
 
-use crate::enumerate::PartialResult;
+use crate::enumerate::prepare::{prepare, PreparedPart};
+use crate::enumerate::shards::PartialResult;
 use crate::input::{Case, Kit, Params, Part, Units};
-use crate::prepare::{prepare, PreparedPart};
-use crate::ranking::Fixture;
-use crate::report::{
+use crate::results::ranking::Fixture;
+use crate::results::report::{
     ClampReport, ContactReport, FixtureReport, PlacementReport, PoseReport, SolveResult, Status,
 };
 
@@ -43,7 +43,7 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
         },
         error: None,
         counts: Some(res.counts),
-        segment_kinds: prep.segments.iter().map(|s| s.kind()).collect(),
+        segment_kinds: prep.segments().iter().map(|s| s.kind()).collect(),
         fixtures,
     }
 }
@@ -51,7 +51,7 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
 /// One fixture in the reported form: lattice lengths times the spacing,
 /// radians to degrees, and the clamp's holes placed on the plate.
 pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureReport {
-    let l = prep.spacing;
+    let l = prep.spacing();
     let sc = |p: [f64; 2]| [p[0] * l, p[1] * l];
     let mut contacts: Vec<ContactReport> = (0..3)
         .map(|i| ContactReport {
@@ -64,9 +64,7 @@ pub fn fixture_report(prep: &PreparedPart, f: &Fixture, rank: usize) -> FixtureR
         normal: f.normals[3],
     });
     let clamp_holes = prep
-        .setting
-        .clamp
-        .holes
+        .clamp_holes()
         .iter()
         .map(|h| {
             let p = crate::geometry::rot90i(f.rotation, h.offset);

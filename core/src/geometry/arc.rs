@@ -10,7 +10,7 @@
 //! Tolerances are absolute lengths passed by the caller: validation needs a
 //! tolerance relative to the part's size, distances need none.
 
-use crate::angle_set::rem_tau;
+use crate::geometry::angle_set::rem_tau;
 use crate::geometry::{cross, point_segment_dist2, segments_intersect, v2, Aabb, V2};
 use std::f64::consts::PI;
 
@@ -346,11 +346,6 @@ impl Hits {
     /// The points found.
     pub fn as_slice(&self) -> &[V2] {
         &self.pts[..self.n]
-    }
-
-    /// Whether there are none.
-    pub fn is_empty(&self) -> bool {
-        self.n == 0
     }
 
     fn filter(self, keep: impl Fn(V2) -> bool) -> Hits {

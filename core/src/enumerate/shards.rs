@@ -3,13 +3,12 @@
 //! same bytes as one run, because counts add and the ranking is a total
 //! order on fixtures that are each computed from their own inputs only.
 
-use crate::admissibility::{Scratch, Timing};
-use crate::clamp::{Accumulator, Work};
-use crate::combinations::{combination_count, combinations_in};
-use crate::prepare::PreparedPart;
-use crate::ranking::{merge_ranked, Fixture};
-use crate::report::Counts;
-use crate::setups::{SearchStats, SetupScratch};
+use crate::checks::admissibility::{Scratch, Timing};
+use crate::clamp::{Accumulator, ClampSearch, Work};
+use crate::enumerate::combinations::{combination_count, combinations_in};
+use crate::results::ranking::{merge_ranked, Fixture};
+use crate::results::report::Counts;
+use crate::setups::{SearchStats, SetupScratch, SetupSearch};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -54,41 +53,68 @@ impl Profile {
 /// the merge is cheap.
 const CHUNK: u64 = 32;
 
-impl PreparedPart {
-    /// Size of the combination space, the range shards are cut from.
-    pub fn combination_count(&self) -> u64 {
-        combination_count(self.segments.len())
+/// The stages one piece of enumeration runs, borrowed from a prepared
+/// part: the setup search of each combination, then the clamp search of
+/// each setup.
+#[derive(Clone, Copy)]
+pub(crate) struct Stages<'a> {
+    /// Locator setups of a combination.
+    pub(crate) setups: SetupSearch<'a>,
+    /// Clamp candidates, mounts and scores of a setup.
+    pub(crate) clamp: ClampSearch<'a>,
+}
+
+impl Stages<'_> {
+    /// Size of the combination space.
+    fn combination_count(&self) -> u64 {
+        combination_count(self.setups.segments.len())
     }
 
-    /// Enumerates the combinations with indices in `range` on this thread.
-    pub fn enumerate_range_serial(&self, range: Range<u64>) -> PartialResult {
-        self.enumerate_range_profiled(range, false).0
+    /// Whether results count admissible fixtures (not in top-k mode).
+    fn counts_exact(&self) -> bool {
+        !self.clamp.setting.prune_to_top_k
     }
 
-    /// Like [`Self::enumerate_range_serial`], also saying where the work
-    /// went; `timed` adds clock reads to the inner loop.
-    pub fn enumerate_range_profiled(
-        &self,
-        range: Range<u64>,
-        timed: bool,
-    ) -> (PartialResult, Profile) {
-        let (res, profile, _) = self.enumerate_range_inner(range, timed, None);
-        (res, profile)
+    /// Where a piece of work collects its fixtures: in top-k mode it skips
+    /// the mount search of candidates that cannot enter its own top-k.
+    /// Each piece then still holds the exact top-k of its range, and the
+    /// top-k of a union is the top-k of the pieces' top-ks, so any split
+    /// merges to the full enumeration's top-k.
+    fn accumulator(&self) -> Accumulator {
+        let setting = self.clamp.setting;
+        if setting.prune_to_top_k {
+            Accumulator::top_k_mode(setting.top_k)
+        } else {
+            Accumulator::new(setting.top_k)
+        }
     }
 
-    /// Enumerates `range` in order and stops after the first combination
-    /// that admits a fixture scoring `good_enough` or better; returns the
-    /// result of the combinations done and that combination's index.
-    pub fn enumerate_range_until(
-        &self,
-        range: Range<u64>,
-        good_enough: f64,
-    ) -> (PartialResult, Option<u64>) {
-        let (res, _, hit) = self.enumerate_range_inner(range, false, Some(good_enough));
-        (res, hit)
+    /// `range` (clipped to the part) cut into rayon tasks of [`CHUNK`]
+    /// combinations: fixed cuts, so no result depends on the thread count.
+    /// In top-k mode a piece's result is its range's exact top-k whatever
+    /// the cuts, so the pieces are made as few as the threads allow: each
+    /// starts with an empty top-k that lets every candidate through, and
+    /// small pieces would search mounts for most of them.
+    fn chunks(&self, range: &Range<u64>) -> Vec<Range<u64>> {
+        let end = range.end.min(self.combination_count()).max(range.start);
+        let size = if self.clamp.setting.prune_to_top_k {
+            let pieces = 4 * rayon::current_num_threads() as u64;
+            (end - range.start).div_ceil(pieces).max(CHUNK)
+        } else {
+            CHUNK
+        };
+        (range.start..end)
+            .step_by(size as usize)
+            .map(|s| s..(s + size).min(end))
+            .collect()
     }
 
-    fn enumerate_range_inner(
+    /// Enumerates `range` in order on this thread, stopping after the
+    /// first combination that admits a fixture scoring `good_enough` or
+    /// better; `timed` adds clock reads to the inner loop. Returns the
+    /// result of the combinations done, where the work went and the
+    /// index of the combination that stopped it.
+    pub(crate) fn enumerate_serial(
         &self,
         range: Range<u64>,
         timed: bool,
@@ -100,15 +126,17 @@ impl PreparedPart {
         scratch.timing = timed.then(Timing::default);
         let mut setup_scratch = SetupScratch::default();
         let mut search = SearchStats::default();
-        let n = self.segments.len();
+        let n = self.setups.segments.len();
         let end = range.end.min(self.combination_count());
         let mut hit = None;
         let mut done_to = end;
         for (index, combo) in combinations_in(n, range.start..end) {
             acc.counts.combinations += 1;
-            let s = self.setups_of_combination_in(combo, &mut setup_scratch, |s| {
-                self.process_setup(s, &mut acc, &mut scratch)
-            });
+            let s = self
+                .setups
+                .setups_of_combination_in(combo, &mut setup_scratch, |s| {
+                    self.clamp.process_setup(s, &mut acc, &mut scratch)
+                });
             search.add(&s);
             if good_enough.is_some_and(|g| acc.best_score <= g) {
                 hit = Some(index);
@@ -135,39 +163,26 @@ impl PreparedPart {
         (res, profile, hit)
     }
 
-    /// Where a piece of work collects its fixtures: in top-k mode it skips
-    /// the mount search of candidates that cannot enter its own top-k.
-    /// Each piece then still holds the exact top-k of its range, and the
-    /// top-k of a union is the top-k of the pieces' top-ks, so any split
-    /// merges to the full enumeration's top-k.
-    fn accumulator(&self) -> Accumulator {
-        if self.setting.prune_to_top_k {
-            Accumulator::top_k_mode(self.setting.top_k)
-        } else {
-            Accumulator::new(self.setting.top_k)
-        }
-    }
-
     /// Enumerates `range` on the rayon pool (same result as serial).
-    pub fn enumerate_range(&self, range: Range<u64>) -> PartialResult {
+    pub(crate) fn enumerate_parallel(&self, range: Range<u64>) -> PartialResult {
         let chunks = self.chunks(&range);
         let parts: Vec<PartialResult> = chunks
             .into_par_iter()
-            .map(|r| self.enumerate_range_serial(r))
+            .map(|r| self.enumerate_serial(r, false, None).0)
             .collect();
-        let mut out = merge(self.setting.top_k, parts);
+        let mut out = merge(self.clamp.setting.top_k, parts);
         out.range = range;
-        out.counts.segments = self.segments.len() as u64;
+        out.counts.segments = self.setups.segments.len() as u64;
         out.counts.exact = self.counts_exact();
         out
     }
 
-    /// `--good-enough`: the enumeration of the shortest prefix of `range`
-    /// (in combination order) that admits a fixture scoring `good_enough`
-    /// or better, in parallel. The prefix, hence the result, does not depend
-    /// on threads or chunking: chunks run concurrently, the first hit in
-    /// index order wins and later chunks are dropped. Returns the hit index.
-    pub fn enumerate_until(
+    /// The enumeration of the shortest prefix of `range` (in combination
+    /// order) that admits a fixture scoring `good_enough` or better, in
+    /// parallel. The prefix, hence the result, does not depend on threads
+    /// or chunking: chunks run concurrently, the first hit in index order
+    /// wins and later chunks are dropped. Returns the hit index.
+    pub(crate) fn enumerate_parallel_until(
         &self,
         range: Range<u64>,
         good_enough: f64,
@@ -182,7 +197,7 @@ impl PreparedPart {
                 if r.start > first_hit.load(Ordering::Relaxed) {
                     return None;
                 }
-                let (res, hit) = self.enumerate_range_until(r, good_enough);
+                let (res, _, hit) = self.enumerate_serial(r, false, Some(good_enough));
                 if let Some(h) = hit {
                     first_hit.fetch_min(h, Ordering::Relaxed);
                 }
@@ -195,36 +210,11 @@ impl PreparedPart {
             .map(|p| p.0)
             .filter(|p| stop.is_none_or(|s| p.range.start <= s))
             .collect();
-        let mut out = merge(self.setting.top_k, kept);
+        let mut out = merge(self.clamp.setting.top_k, kept);
         out.range = range.start..stop.map_or(range.end, |s| s + 1);
-        out.counts.segments = self.segments.len() as u64;
+        out.counts.segments = self.setups.segments.len() as u64;
         out.counts.exact = self.counts_exact();
         (out, stop)
-    }
-
-    /// `range` (clipped to the part) cut into rayon tasks of [`CHUNK`]
-    /// combinations: fixed cuts, so no result depends on the thread count.
-    /// In top-k mode a piece's result is its range's exact top-k whatever
-    /// the cuts, so the pieces are made as few as the threads allow: each
-    /// starts with an empty top-k that lets every candidate through, and
-    /// small pieces would search mounts for most of them.
-    fn chunks(&self, range: &Range<u64>) -> Vec<Range<u64>> {
-        let end = range.end.min(self.combination_count()).max(range.start);
-        let size = if self.setting.prune_to_top_k {
-            let pieces = 4 * rayon::current_num_threads() as u64;
-            (end - range.start).div_ceil(pieces).max(CHUNK)
-        } else {
-            CHUNK
-        };
-        (range.start..end)
-            .step_by(size as usize)
-            .map(|s| s..(s + size).min(end))
-            .collect()
-    }
-
-    /// The whole part.
-    pub fn enumerate_all(&self) -> PartialResult {
-        self.enumerate_range(0..self.combination_count())
     }
 }
 
