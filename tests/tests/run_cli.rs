@@ -4,6 +4,7 @@
 //! (Rust reader here, Python's `mcap` package when it is installed).
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
+use fixplan_coordinator::output::fields::{KitField, ParamsField, StatusName};
 use fixplan_coordinator::output::messages::*;
 use fixplan_coordinator::output::ResultsFile;
 use fixplan_tests::ok;
@@ -209,12 +210,12 @@ fn export_matches_solve_for_each_part() {
         assert_eq!(line["part"], p.id.as_str());
         let mut expected = line.clone();
         expected.as_object_mut().unwrap().remove("part");
-        if p.status == fixplan_core::Status::Invalid {
+        if p.status == StatusName::Invalid {
             assert!(line["error"].as_str().unwrap().contains(&p.id), "{line}");
             continue;
         }
-        let case = serde_json::json!({"units": p.units, "part": p.outline, "access": p.access,
-            "kit": c.run.kit, "params": c.run.params});
+        let case = serde_json::json!({"units": p.units, "part": p.outline(), "access": p.access(),
+            "kit": c.run.kit(), "params": c.run.params()});
         let case_path = dir.path().join(format!("{}.json", p.id));
         std::fs::write(&case_path, case.to_string()).unwrap();
         let solved = ok(fixplan().arg("solve").arg(&case_path).output().unwrap());
@@ -519,9 +520,9 @@ fn run_metadata_names_kit_and_catalogue() {
     assert_eq!(m["catalog_name"], c.run.catalog.name);
     assert_eq!(m["catalog_units"], "mm");
     assert_eq!(m["catalog_parts"], "5");
-    let kit: fixplan_core::Kit = serde_json::from_str(&m["kit"]).unwrap();
+    let kit: KitField = serde_json::from_str(&m["kit"]).unwrap();
     assert_eq!(kit, c.run.kit);
-    let params: fixplan_core::Params = serde_json::from_str(&m["params"]).unwrap();
+    let params: ParamsField = serde_json::from_str(&m["params"]).unwrap();
     assert_eq!(params.top_k, 4);
 }
 
@@ -797,16 +798,21 @@ fn an_invalid_part_shows_what_was_read() {
             return true;
         }
         seen += 1;
-        assert_eq!(part.status, fixplan_core::Status::Invalid);
+        assert_eq!(part.status, StatusName::Invalid);
         assert_eq!(
-            part.outline,
+            part.outline(),
             fixplan_core::Part::polygon(&[[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]])
                 .outline
         );
         let error = part.error.clone().unwrap();
         assert!(error.starts_with("bowtie: "), "{error}");
         let scene: Value = serde_json::from_slice(m.get(TOPIC_SCENE).unwrap()).unwrap();
-        let part_entity = &scene["entities"][0];
+        // The plate is drawn (its edge and holes), then the part.
+        let plate = &scene["entities"][0];
+        assert_eq!(plate["id"], "plate");
+        assert_eq!(plate["lines"][0]["points"].as_array().unwrap().len(), 4);
+        assert!(!plate["cylinders"].as_array().unwrap().is_empty());
+        let part_entity = &scene["entities"][1];
         assert_eq!(part_entity["texts"][0]["text"], error.as_str());
         assert_eq!(
             part_entity["lines"][0]["points"].as_array().unwrap().len(),

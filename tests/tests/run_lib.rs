@@ -70,17 +70,17 @@ fn invalid_parts_carry_their_message() {
     let ids: Vec<_> = recs.iter().map(|r| r.part.id.clone()).collect();
     assert_eq!(ids, ["rect", "ell", "bowtie", "broken", "tiny", "hex"]);
     let bow = &recs[2];
-    assert_eq!(bow.part.status, Status::Invalid);
+    assert_eq!(Status::from(bow.part.status), Status::Invalid);
     let msg = bow.part.error.clone().unwrap();
     assert!(msg.starts_with("bowtie: "), "{msg}");
     assert!(msg.contains("cross"), "{msg}");
     assert_eq!(
-        recs[3].fixtures.result.error.as_deref(),
+        recs[3].fixtures.error.as_deref(),
         Some("broken: outline: edge 0 crosses edge 2 at (25, 25) mm")
     );
-    assert_eq!(recs[4].part.status, Status::NoFixture);
-    assert_eq!(recs[0].part.status, Status::Ok);
-    assert_eq!(recs[0].fixtures.result.fixtures.len(), 5);
+    assert_eq!(Status::from(recs[4].part.status), Status::NoFixture);
+    assert_eq!(Status::from(recs[0].part.status), Status::Ok);
+    assert_eq!(recs[0].fixtures.fixtures.len(), 5);
 }
 
 /// A 60 x 40 plate whose right end is an arc of this bulge: 1 a half

@@ -4,8 +4,9 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::kit::write_kit_toml;
+use fixplan_coordinator::output::messages::StepField;
 use fixplan_coordinator::study::{read_mcap, StudyKitMsg};
-use fixplan_core::Units;
+use fixplan_core::{Counts, FixtureReport, Kit, Params, Units};
 use fixplan_tests::ok;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -119,12 +120,12 @@ fn p90(s: &[f64]) -> Option<f64> {
 /// Runs `fixplan run` with a study kit written as a kit file (top_k 10, not
 /// the study's 1) and checks the study's numbers for that kit.
 fn check_against_run(dir: &Path, catalog: &Path, k: &StudyKitMsg, quantities: &[f64]) {
-    let mut params = k.params.clone();
+    let mut params = Params::from(&k.params);
     params.top_k = 10;
     let kit_file = dir.join(format!("kit-{}.toml", k.index));
     std::fs::write(
         &kit_file,
-        write_kit_toml(&k.name, &k.kit, &params, Units::Mm),
+        write_kit_toml(&k.name, &Kit::from(&k.kit), &params, Units::Mm),
     )
     .unwrap();
     let out = dir.join(format!("run-{}.mcap", k.index));
@@ -154,7 +155,7 @@ fn check_against_run(dir: &Path, catalog: &Path, k: &StudyKitMsg, quantities: &[
             k.name,
             row.id
         );
-        let counts = serde_json::to_value(row.counts).unwrap();
+        let counts = serde_json::to_value(row.counts.as_ref().map(Counts::from)).unwrap();
         assert_eq!(
             line.get("counts").cloned().unwrap_or(Value::Null),
             counts,
@@ -438,17 +439,21 @@ fn coarse_to_fine_steps_are_nested_and_the_finest_is_a_plain_run() {
         let mut prev_adm = 0;
         for (w, st) in refine.iter().enumerate() {
             let e = &exports[w][i];
-            assert_eq!(st["grid_step"], steps[w]);
-            assert_eq!(st["counts"], e["counts"], "{id} step {}", steps[w]);
+            // The step as the part message writes it, in the export's form.
+            let step: StepField = serde_json::from_value(st.clone()).unwrap();
+            assert_eq!(step.grid_step, steps[w]);
+            let counts = serde_json::to_value(Counts::from(&step.counts)).unwrap();
+            assert_eq!(counts, e["counts"], "{id} step {}", steps[w]);
             let adm = e["counts"]["admissible"].as_u64().unwrap();
-            assert_eq!(st["added"].as_u64().unwrap(), adm - prev_adm);
+            assert_eq!(step.added, Some(adm - prev_adm));
             prev_adm = adm;
+            let best = step.best.as_ref().map(FixtureReport::from);
             match e["fixtures"].get(0) {
                 Some(f) => {
-                    assert_eq!(&st["best"], f);
+                    assert_eq!(&serde_json::to_value(best).unwrap(), f);
                     assert_eq!(st["best_score"], f["score"]);
                 }
-                None => assert!(st["best"].is_null()),
+                None => assert!(best.is_none()),
             }
         }
     }

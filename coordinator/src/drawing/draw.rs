@@ -5,18 +5,20 @@
 use super::outline::{extent_points, moved};
 use fixplan_core::{FixtureReport, Kit, Pattern, Point, Vertex};
 
-/// A circle: centre and radius.
+/// A circle as drawn (a locator, the clamp tip, a hole): centre and
+/// radius.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Circle {
+pub struct DrawnCircle {
     /// Centre, plate frame.
-    pub c: Point,
+    pub centre: Point,
     /// Radius, catalogue unit.
-    pub r: f64,
+    pub radius: f64,
 }
 
-/// A contact: where the part is touched and the inward normal there.
+/// A contact as drawn: where the part is touched and the inward normal
+/// there.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Contact {
+pub struct ContactMark {
     /// Where the locator or clamp tip touches the part's edge.
     pub at: Point,
     /// Unit normal into the part: the direction the contact pushes.
@@ -46,15 +48,15 @@ pub struct FixtureDrawing {
     /// The access regions in the part's pose (nothing may cover them).
     pub access: Vec<Vec<Point>>,
     /// Locators 1-3, in the order the report lists them.
-    pub locators: [Circle; 3],
+    pub locators: [DrawnCircle; 3],
     /// The clamp body at its mount and rotation.
     pub clamp_body: Vec<Point>,
     /// The plunger, moved out by the clamp's extension.
     pub plunger: Vec<Point>,
     /// The plunger's tip, where the clamp touches the part.
-    pub tip: Circle,
+    pub tip: DrawnCircle,
     /// Locators 1-3 then the clamp.
-    pub contacts: Vec<Contact>,
+    pub contacts: Vec<ContactMark>,
     /// Holes used by the clamp mount.
     pub clamp_holes: Vec<Point>,
 }
@@ -116,9 +118,9 @@ pub fn fixture_drawing(
     let k = f.clamp.rotation_deg;
     let mount = [f.clamp.mount[0] as f64 * l, f.clamp.mount[1] as f64 * l];
     let clamp_pt = |p: &Point, t: f64| place(add(mount, rot90(k, [p[0] + t, p[1]])));
-    let locators = f.locators.map(|p| Circle {
-        c: place([p[0] as f64 * l, p[1] as f64 * l]),
-        r,
+    let locators = f.locators.map(|p| DrawnCircle {
+        centre: place([p[0] as f64 * l, p[1] as f64 * l]),
+        radius: r,
     });
     let contacts = f
         .contacts
@@ -126,7 +128,7 @@ pub fn fixture_drawing(
         .map(|c| {
             let n = place_dir(c.normal);
             let centre = place(c.point);
-            Contact {
+            ContactMark {
                 at: [centre[0] + r * n[0], centre[1] + r * n[1]],
                 normal: n,
             }
@@ -146,9 +148,9 @@ pub fn fixture_drawing(
             .iter()
             .map(|p| clamp_pt(p, f.clamp.extension))
             .collect(),
-        tip: Circle {
-            c: place(f.clamp.contact),
-            r,
+        tip: DrawnCircle {
+            centre: place(f.clamp.contact),
+            radius: r,
         },
         contacts,
         clamp_holes: f
@@ -185,8 +187,9 @@ impl FixtureDrawing {
             pts.extend(a.iter().copied());
         }
         for c in self.locators.iter().chain(std::iter::once(&self.tip)) {
-            pts.push([c.c[0] - c.r, c.c[1] - c.r]);
-            pts.push([c.c[0] + c.r, c.c[1] + c.r]);
+            let [x, y] = c.centre;
+            pts.push([x - c.radius, y - c.radius]);
+            pts.push([x + c.radius, y + c.radius]);
         }
         bounds(&pts).unwrap_or([[0.0, 0.0], [1.0, 1.0]])
     }

@@ -3,11 +3,22 @@
 //! carries which message is [`super::channels`]; the JSON Schemas are
 //! generated from these types ([`super::schemas`]); the layout is
 //! documented in the README ("The results file (MCAP)").
+//!
+//! The messages are the file's own types, not core's: each is built by an
+//! explicit conversion from the solved part ([`PartMessage::of`]) out of
+//! the fields of [`super::fields`] and [`super::fixture_fields`], so a
+//! rename in core changes neither a file nor the wire, and every schema
+//! is one the viewers' JSON-schema parser reads.
 
-use crate::job::SearchInfo;
+use super::fields::{
+    CountsField, KitField, ParamsField, PolygonField, SegmentKindName, StatusName, UnitsName,
+    VertexField, WrenchField,
+};
+use super::fixture_fields::FixtureField;
 pub use crate::job::Timing;
+use crate::job::{SearchInfo, StepSummary};
 use fixplan_catalog::{Catalog, CatalogPart};
-use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units, Vertex};
+use fixplan_core::{Kit, Params, Point, SolveResult, Units, Vertex};
 use schemars::JsonSchema;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -82,6 +93,7 @@ pub struct PartContent<'a> {
 
 /// `/fixplan/run`: what was run, once at the start of the file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct RunMsg {
     /// `fixplan`.
     pub tool: String,
@@ -93,10 +105,10 @@ pub struct RunMsg {
     /// The kit's name (built-in) or file.
     pub kit_name: String,
     /// The kit, in the catalogue's unit.
-    pub kit: Kit,
+    pub kit: KitField,
     /// Parameters of the run (the kit's, with `--top-k` applied); a part's
     /// own `top_k` / `wrenches` in the catalogue override them.
-    pub params: Params,
+    pub params: ParamsField,
     /// `--grid-steps` (coarse to fine; `params.grid_step` is the finest).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub grid_steps: Option<Vec<u32>>,
@@ -107,13 +119,14 @@ pub struct RunMsg {
 
 /// The catalogue a run or study read: enough to tell two runs apart.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct CatalogInfo {
     /// The manifest's name (or the directory's).
     pub name: String,
     /// Where it was read from, as given on the command line.
     pub source: String,
     /// The catalogue's unit: every length of the file is in it.
-    pub units: Units,
+    pub units: UnitsName,
     /// Parts in the catalogue, valid or not.
     pub parts: usize,
     /// `sha256:` of the catalogue content (ids, outlines, access, overrides).
@@ -126,7 +139,7 @@ impl CatalogInfo {
         CatalogInfo {
             name: catalog.name.clone(),
             source: source.display().to_string(),
-            units: catalog.units,
+            units: catalog.units.into(),
             parts: catalog.parts.len(),
             digest: catalog_digest(catalog),
         }
@@ -135,30 +148,43 @@ impl CatalogInfo {
 
 /// `sha256:` of the catalogue's content, independent of where it lives:
 /// what tells `--resume` that a file was written from the same parts.
-/// Each entry is hashed as one JSON line, written into a reused buffer
-/// (building JSON values first cost the coordinator more per part than
-/// copying its results; writing each token into the hash cost more than
-/// hashing the line).
+/// Each entry is hashed as one JSON line of the file's own field types
+/// (so a rename in core leaves it alone), written into a reused buffer.
 pub fn catalog_digest(c: &Catalog) -> String {
+    /// A part's geometry as hashed.
+    #[derive(Serialize)]
+    struct Shape {
+        outline: Vec<VertexField>,
+        access: Vec<PolygonField>,
+    }
     /// One catalogue entry as hashed.
     #[derive(Serialize)]
     struct Entry<'a> {
         id: &'a str,
-        part: Result<&'a fixplan_core::Part, String>,
+        part: Result<Shape, String>,
         quantity: f64,
         top_k: Option<usize>,
-        wrenches: &'a Option<Vec<[f64; 3]>>,
+        wrenches: Option<Vec<WrenchField>>,
     }
     let mut h = Sha256::new();
-    h.update(format!("units={:?}\n", c.units));
+    h.update(format!("units={}\n", UnitsName::from(c.units).text()));
     let mut line = Vec::with_capacity(4096);
     for p in &c.parts {
         let entry = Entry {
             id: &p.id,
-            part: p.part.as_ref().map_err(|e| e.to_string()),
+            part: match &p.part {
+                Ok(part) => Ok(Shape {
+                    outline: part.outline.iter().map(VertexField::from).collect(),
+                    access: part.access.iter().map(PolygonField::from).collect(),
+                }),
+                Err(e) => Err(e.to_string()),
+            },
             quantity: p.quantity,
             top_k: p.top_k,
-            wrenches: &p.wrenches,
+            wrenches: p
+                .wrenches
+                .as_ref()
+                .map(|ws| ws.iter().map(WrenchField::from).collect()),
         };
         // Writing into a hash cannot fail; a part that cannot be written
         // as JSON (never) is hashed by its error.
@@ -188,49 +214,134 @@ impl RunMsg {
         a.catalog.source = self.catalog.source.clone();
         &a == self
     }
+
+    /// The run's kit, as core takes it.
+    pub fn kit(&self) -> Kit {
+        Kit::from(&self.kit)
+    }
+
+    /// The run's parameters, as core takes them.
+    pub fn params(&self) -> Params {
+        Params::from(&self.params)
+    }
+
+    /// The catalogue's unit.
+    pub fn units(&self) -> Units {
+        self.catalog.units.into()
+    }
+}
+
+/// Wall-clock timings: the only fields that differ between runs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TimingField {
+    /// Validating and preparing the part, milliseconds.
+    pub prepare_ms: f64,
+    /// Enumerating its shards (all grid steps), milliseconds.
+    pub enumerate_ms: f64,
+    /// Shards it was cut into.
+    pub shards: usize,
+}
+
+impl From<&Timing> for TimingField {
+    fn from(t: &Timing) -> TimingField {
+        TimingField {
+            prepare_ms: t.prepare_ms,
+            enumerate_ms: t.enumerate_ms,
+            shards: t.shards,
+        }
+    }
+}
+
+/// One grid step of a `--grid-steps` part.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StepField {
+    /// The step: locators 2 and 3 at multiples of it from locator 1.
+    pub grid_step: u32,
+    /// What the enumeration went through at this step.
+    pub counts: CountsField,
+    /// Fixtures kept (top-k) at this step.
+    pub fixtures: usize,
+    /// Score of the best fixture at this step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub best_score: Option<f64>,
+    /// The best fixture at this step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub best: Option<FixtureField>,
+    /// Admissible fixtures this step added to the previous one; absent in
+    /// top-k mode, which does not count them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub added: Option<u64>,
+    /// How much this step lowered the best score; absent for the first
+    /// step or when either step holds nothing.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub improved_by: Option<f64>,
+    /// `--good-enough`: the combination index where this step stopped.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped_at: Option<u64>,
+    /// Wall time of this step, milliseconds.
+    pub enumerate_ms: f64,
+}
+
+impl From<&StepSummary> for StepField {
+    fn from(s: &StepSummary) -> StepField {
+        StepField {
+            grid_step: s.grid_step,
+            counts: CountsField::from(&s.counts),
+            fixtures: s.fixtures,
+            best_score: s.best_score,
+            best: s.best.as_ref().map(FixtureField::from),
+            added: s.added,
+            improved_by: s.improved_by,
+            stopped_at: s.stopped_at,
+            enumerate_ms: s.enumerate_ms,
+        }
+    }
 }
 
 /// `/fixplan/part`: one per part, in catalogue order.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct PartMsg {
     /// Position in the catalogue (0-based).
     pub index: usize,
     /// Catalogue id.
     pub id: String,
     /// The part's file, if it has one (inline outlines have none).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
     /// `ok`, `no_fixture` or `invalid`.
-    pub status: Status,
+    pub status: StatusName,
     /// Why the part is invalid, naming the part and the place.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
     /// Repairs made while reading the part.
     #[serde(default)]
     pub warnings: Vec<String>,
     /// The catalogue's unit.
-    pub units: Units,
+    pub units: UnitsName,
     /// Parts per year, for kit studies.
     pub quantity: f64,
     /// Part frame, catalogue units, as given (empty if it could not be read).
-    pub outline: Vec<Vertex>,
+    pub outline: Vec<VertexField>,
     /// Access regions (part frame, catalogue units).
     #[serde(default)]
-    pub access: Vec<Vec<Point>>,
-    /// SPEC section 4 counts; absent for an invalid part.
-    #[serde(default)]
-    pub counts: Option<Counts>,
+    pub access: Vec<PolygonField>,
+    /// What the enumeration went through; absent for an invalid part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub counts: Option<CountsField>,
     /// Fixtures kept in the ranking (top-k).
     pub fixtures: usize,
-    /// Score of the best fixture (lower is better).
-    #[serde(default)]
+    /// Score of the best fixture (lower is better); absent without one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub best_score: Option<f64>,
     /// Wall-clock timings (the only fields that differ between runs).
-    pub timing: Timing,
+    pub timing: TimingField,
     /// `--grid-steps`: one summary per grid step, coarse to fine (counts,
     /// best fixture, what the step added). Absent in plain runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub refine: Option<Vec<crate::job::StepSummary>>,
+    pub refine: Option<Vec<StepField>>,
     /// `"good_enough"` when `--good-enough` stopped the part early.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
@@ -255,34 +366,67 @@ impl PartMessage for PartMsg {
             index: p.index,
             id: p.entry.id.clone(),
             file: p.entry.file.as_ref().map(|f| f.display().to_string()),
-            status: result.status,
+            status: result.status.into(),
             error: result.error.clone(),
             warnings: p.entry.warnings.clone(),
-            units: p.units,
+            units: p.units.into(),
             quantity: p.entry.quantity,
-            outline: p.outline.to_vec(),
-            access: p.access.to_vec(),
-            counts: result.counts,
+            outline: p.outline.iter().map(VertexField::from).collect(),
+            access: p.access.iter().map(PolygonField::from).collect(),
+            counts: result.counts.as_ref().map(CountsField::from),
             fixtures: result.fixtures.len(),
             best_score: result.fixtures.first().map(|f| f.score),
-            timing: p.timing,
-            refine: search.steps.clone(),
+            timing: TimingField::from(&p.timing),
+            refine: (search.steps.as_ref()).map(|s| s.iter().map(StepField::from).collect()),
             stopped: search.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
             stopped_at: search.stopped_at,
         }
     }
 }
 
-/// `/fixplan/fixtures`: `{"part": ID, ...}` plus the result format of SPEC
-/// Appendix A (with contacts and plate placement per fixture). Exactly one
-/// line of `fixplan export --json`.
+impl PartMsg {
+    /// The outline, as core takes it.
+    pub fn outline(&self) -> Vec<Vertex> {
+        self.outline.iter().map(Vertex::from).collect()
+    }
+
+    /// The access regions, as core takes them.
+    pub fn access(&self) -> Vec<Vec<Point>> {
+        let region = |r: &PolygonField| r.points.iter().map(Point::from).collect();
+        self.access.iter().map(region).collect()
+    }
+
+    /// The catalogue's unit.
+    pub fn units(&self) -> Units {
+        self.units.into()
+    }
+}
+
+/// `/fixplan/fixtures`: the part's status, counts and ranked fixtures
+/// (with contacts and plate placement per fixture). `fixplan export
+/// --json` turns it back into SPEC Appendix A's result format
+/// ([`FixturesMsg::export_line`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct FixturesMsg {
     /// Catalogue id of the part.
     pub part: String,
-    /// Status, counts and ranked fixtures.
-    #[serde(flatten)]
-    pub result: SolveResult,
+    /// Outcome.
+    pub status: StatusName,
+    /// Why the part is invalid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// Counts; absent for an invalid part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub counts: Option<CountsField>,
+    /// The kind of every segment, in segment order, so that a fixture's
+    /// segment indices say whether it touches lines or arcs; empty for an
+    /// invalid part.
+    #[serde(default)]
+    pub segment_kinds: Vec<SegmentKindName>,
+    /// The top-k, best first.
+    #[serde(default)]
+    pub fixtures: Vec<FixtureField>,
 }
 
 impl Message for FixturesMsg {
@@ -292,21 +436,85 @@ impl Message for FixturesMsg {
 
 impl PartMessage for FixturesMsg {
     fn of(p: &PartContent) -> FixturesMsg {
+        FixturesMsg::of_result(&p.entry.id, p.result)
+    }
+}
+
+/// Why a fixtures message could not be read exactly.
+#[derive(Debug, thiserror::Error)]
+pub enum ExactReadError {
+    /// The message is not UTF-8.
+    #[error("not UTF-8: {0}")]
+    Utf8(#[from] std::str::Utf8Error),
+    /// The message is not a fixtures message.
+    #[error("{0}")]
+    Json(#[from] json5::Error),
+}
+
+/// One line of `fixplan export --json`: `{"part": ID, ...}` then the
+/// result in SPEC Appendix A's format, which is core's.
+#[derive(Serialize)]
+struct ExportLine<'a> {
+    part: &'a str,
+    #[serde(flatten)]
+    result: &'a SolveResult,
+}
+
+impl FixturesMsg {
+    /// The message of part `id`'s result.
+    pub fn of_result(id: &str, r: &SolveResult) -> FixturesMsg {
         FixturesMsg {
-            part: p.entry.id.clone(),
-            result: p.result.clone(),
+            part: id.to_string(),
+            status: r.status.into(),
+            error: r.error.clone(),
+            counts: r.counts.as_ref().map(CountsField::from),
+            segment_kinds: r.segment_kinds.iter().map(|&k| k.into()).collect(),
+            fixtures: r.fixtures.iter().map(FixtureField::from).collect(),
         }
+    }
+
+    /// The result, as core makes it.
+    pub fn result(&self) -> SolveResult {
+        SolveResult {
+            status: self.status.into(),
+            error: self.error.clone(),
+            counts: self.counts.as_ref().map(Into::into),
+            segment_kinds: self.segment_kinds.iter().map(|&k| k.into()).collect(),
+            fixtures: self.fixtures.iter().map(Into::into).collect(),
+        }
+    }
+
+    /// The message from its JSON `bytes`, every float exactly the f64 that
+    /// was written (integers exactly up to 2^53): what [`FixturesMsg::export_line`] needs to give
+    /// back core's bytes. serde_json's default number parse may land one
+    /// ulp off a 17-digit number; json5's parser (JSON is JSON5) parses
+    /// numbers with std's correctly rounded parse.
+    pub fn from_json_exact(bytes: &[u8]) -> Result<FixturesMsg, ExactReadError> {
+        let text = std::str::from_utf8(bytes)?;
+        Ok(json5::from_str(text)?)
+    }
+
+    /// The part's line of `fixplan export --json` (without the newline):
+    /// SPEC Appendix A's result, `{"part": ID, "status": ...}`.
+    pub fn export_line(&self) -> serde_json::Result<Vec<u8>> {
+        serde_json::to_vec(&ExportLine {
+            part: &self.part,
+            result: &self.result(),
+        })
     }
 }
 
 /// The JSON of each message, pinned from literals: field names, order and
 /// forms are the file format, which nothing outside this module may move.
+/// Each message is made from core's types by its conversion, as a run
+/// makes it, and converted back where a reader needs core's types.
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::job::StepSummary;
     use fixplan_core::{
-        Clamp, ClampReport, ContactReport, FixtureReport, HoleKind, MountHole, Pattern,
-        PlacementReport, PoseReport, SegmentKind,
+        Clamp, ClampReport, ContactReport, Counts, FixtureReport, HoleKind, MountHole, Part,
+        Pattern, PlacementReport, PoseReport, SegmentKind, Status,
     };
 
     fn json<T: Serialize>(m: &T) -> String {
@@ -325,115 +533,34 @@ mod tests {
         }
     }
 
-    #[test]
-    fn the_run_message_keeps_its_json() {
-        let run = RunMsg {
-            tool: "fixplan".into(),
-            version: "0.0.0".into(),
-            catalog: CatalogInfo {
-                name: "cat".into(),
-                source: "dir".into(),
-                units: Units::In,
-                parts: 2,
-                digest: "sha256:00".into(),
+    fn kit() -> Kit {
+        Kit {
+            spacing: 25.0,
+            cols: 4,
+            rows: 3,
+            pattern: Pattern::Alternating,
+            locator_radius: 5.5,
+            clamp: Clamp {
+                mount_holes: vec![
+                    MountHole {
+                        offset: [0, 0],
+                        kind: HoleKind::Any,
+                    },
+                    MountHole {
+                        offset: [1, 0],
+                        kind: HoleKind::Tapped,
+                    },
+                ],
+                axis_offset: 1.5,
+                travel: [2.0, 9.25],
+                body: vec![[0.0, 0.0], [1.0, 0.5]],
+                plunger: vec![[0.0, -0.5]],
             },
-            kit_name: "kit".into(),
-            kit: Kit {
-                spacing: 25.0,
-                cols: 4,
-                rows: 3,
-                pattern: Pattern::Alternating,
-                locator_radius: 5.5,
-                clamp: Clamp {
-                    mount_holes: vec![
-                        MountHole {
-                            offset: [0, 0],
-                            kind: HoleKind::Any,
-                        },
-                        MountHole {
-                            offset: [1, 0],
-                            kind: HoleKind::Tapped,
-                        },
-                    ],
-                    axis_offset: 1.5,
-                    travel: [2.0, 9.25],
-                    body: vec![[0.0, 0.0], [1.0, 0.5]],
-                    plunger: vec![[0.0, -0.5]],
-                },
-            },
-            params: Params {
-                max_clamp_angle_deg: 45.0,
-                edge_trim: Some(0.5),
-                min_clearance: None,
-                grid_step: 2,
-                top_k: 10,
-                full_counts: false,
-                wrenches: Some(vec![[1.0, 0.0, -2.0]]),
-            },
-            grid_steps: Some(vec![4, 2]),
-            good_enough: None,
-        };
-        assert_eq!(
-            json(&run),
-            r#"{"tool":"fixplan","version":"0.0.0","catalog":{"name":"cat","source":"dir","units":"in","parts":2,"digest":"sha256:00"},"kit_name":"kit","kit":{"spacing":25.0,"cols":4,"rows":3,"pattern":"alternating","locator_radius":5.5,"clamp":{"mount_holes":[[0,0,"any"],[1,0,"tapped"]],"axis_offset":1.5,"travel":[2.0,9.25],"body":[[0.0,0.0],[1.0,0.5]],"plunger":[[0.0,-0.5]]}},"params":{"max_clamp_angle_deg":45.0,"edge_trim":0.5,"min_clearance":null,"grid_step":2,"top_k":10,"full_counts":false,"wrenches":[[1.0,0.0,-2.0]]},"grid_steps":[4,2]}"#
-        );
+        }
     }
 
-    #[test]
-    fn the_part_message_keeps_its_json() {
-        let part = PartMsg {
-            index: 3,
-            id: "p".into(),
-            file: Some("p.dxf".into()),
-            status: Status::Ok,
-            error: None,
-            warnings: vec!["w".into()],
-            units: Units::Mm,
-            quantity: 2.5,
-            outline: vec![
-                Vertex::new(0.0, 0.0, 0.0),
-                Vertex::new(10.0, 0.0, 0.5),
-                Vertex::new(0.0, 5.0, 0.0),
-            ],
-            access: vec![vec![[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]]],
-            counts: Some(Counts {
-                segments: 3,
-                combinations: 10,
-                setups: 4,
-                candidates: 2,
-                admissible: 0,
-                exact: false,
-            }),
-            fixtures: 1,
-            best_score: Some(0.25),
-            timing: Timing {
-                prepare_ms: 0.5,
-                enumerate_ms: 1.0,
-                shards: 2,
-            },
-            refine: Some(vec![crate::job::StepSummary {
-                grid_step: 2,
-                counts: exact_counts(),
-                fixtures: 1,
-                best_score: Some(0.25),
-                best: None,
-                added: Some(1),
-                improved_by: None,
-                stopped_at: None,
-                enumerate_ms: 1.0,
-            }]),
-            stopped: Some(STOPPED_GOOD_ENOUGH.into()),
-            stopped_at: Some(7),
-        };
-        assert_eq!(
-            json(&part),
-            r#"{"index":3,"id":"p","file":"p.dxf","status":"ok","error":null,"warnings":["w"],"units":"mm","quantity":2.5,"outline":[[0.0,0.0],[10.0,0.0,0.5],[0.0,5.0]],"access":[[[1.0,1.0],[2.0,1.0],[1.0,2.0]]],"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"counts_exact":false},"fixtures":1,"best_score":0.25,"timing":{"prepare_ms":0.5,"enumerate_ms":1.0,"shards":2},"refine":[{"grid_step":2,"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1},"fixtures":1,"best_score":0.25,"best":null,"added":1,"improved_by":null,"enumerate_ms":1.0}],"stopped":"good_enough","stopped_at":7}"#
-        );
-    }
-
-    #[test]
-    fn the_fixtures_message_keeps_its_json() {
-        let fixture = FixtureReport {
+    fn fixture() -> FixtureReport {
+        FixtureReport {
             rank: 1,
             score: 0.25,
             segments: [0, 1, 2],
@@ -460,27 +587,179 @@ mod tests {
                 locators: [[1, 1], [3, 1], [1, 2]],
                 clamp_holes: vec![[4, 2], [5, 2]],
             },
+        }
+    }
+
+    /// Numbers of 17 significant digits, which serde_json's default parse
+    /// may miss by an ulp, come back as the f64s written: export gives
+    /// back core's bytes.
+    #[test]
+    fn fixtures_are_read_back_exactly() {
+        let mut f = fixture();
+        f.clamp.contact = [0.0, 92.99240966070201];
+        f.score = 1.1407774087193523;
+        f.pose.x = -55.54457980741133;
+        f.contacts[0].normal = [0.6328716297238466, 0.774256740552307];
+        let result = SolveResult {
+            status: Status::Ok,
+            error: Some("\u{e9}\"\\\n".into()),
+            counts: Some(exact_counts()),
+            segment_kinds: vec![SegmentKind::Arc],
+            fixtures: vec![f],
         };
-        let fixtures = FixturesMsg {
-            part: "p".into(),
-            result: SolveResult {
-                status: Status::Ok,
-                error: None,
-                counts: Some(exact_counts()),
-                segment_kinds: vec![SegmentKind::Line, SegmentKind::Arc, SegmentKind::Line],
-                fixtures: vec![fixture],
+        let written = FixturesMsg::of_result("p\u{1f600}", &result);
+        let read = FixturesMsg::from_json_exact(json(&written).as_bytes()).unwrap();
+        assert_eq!(read, written);
+        assert_eq!(read.result(), result);
+        let line = read.export_line().unwrap();
+        let core = serde_json::to_vec(&ExportLine {
+            part: "p\u{1f600}",
+            result: &result,
+        })
+        .unwrap();
+        assert_eq!(
+            String::from_utf8(line).unwrap(),
+            String::from_utf8(core).unwrap()
+        );
+    }
+
+    #[test]
+    fn the_run_message_keeps_its_json() {
+        let params = Params {
+            max_clamp_angle_deg: 45.0,
+            edge_trim: Some(0.5),
+            min_clearance: None,
+            grid_step: 2,
+            top_k: 10,
+            full_counts: false,
+            wrenches: Some(vec![[1.0, 0.0, -2.0]]),
+        };
+        let run = RunMsg {
+            tool: "fixplan".into(),
+            version: "0.0.0".into(),
+            catalog: CatalogInfo {
+                name: "cat".into(),
+                source: "dir".into(),
+                units: Units::In.into(),
+                parts: 2,
+                digest: "sha256:00".into(),
             },
+            kit_name: "kit".into(),
+            kit: (&kit()).into(),
+            params: (&params).into(),
+            grid_steps: Some(vec![4, 2]),
+            good_enough: None,
         };
+        assert_eq!(
+            json(&run),
+            r#"{"tool":"fixplan","version":"0.0.0","catalog":{"name":"cat","source":"dir","units":"in","parts":2,"digest":"sha256:00"},"kit_name":"kit","kit":{"spacing":25.0,"cols":4,"rows":3,"pattern":"alternating","locator_radius":5.5,"clamp":{"mount_holes":[{"i":0,"j":0,"kind":"any"},{"i":1,"j":0,"kind":"tapped"}],"axis_offset":1.5,"travel":{"min":2.0,"max":9.25},"body":[{"x":0.0,"y":0.0},{"x":1.0,"y":0.5}],"plunger":[{"x":0.0,"y":-0.5}]}},"params":{"max_clamp_angle_deg":45.0,"edge_trim":0.5,"grid_step":2,"top_k":10,"full_counts":false,"wrenches":[{"force_x":1.0,"force_y":0.0,"torque":-2.0}]},"grid_steps":[4,2]}"#
+        );
+        assert_eq!(
+            (run.kit(), run.params(), run.units()),
+            (kit(), params, Units::In)
+        );
+        let read: RunMsg = serde_json::from_str(&json(&run)).unwrap();
+        assert_eq!(read, run);
+    }
+
+    #[test]
+    fn the_part_message_keeps_its_json() {
+        let outline = vec![
+            Vertex::new(0.0, 0.0, 0.0),
+            Vertex::new(10.0, 0.0, 0.5),
+            Vertex::new(0.0, 5.0, 0.0),
+        ];
+        let access = vec![vec![[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]]];
+        let entry = CatalogPart {
+            id: "p".into(),
+            file: Some("p.dxf".into()),
+            part: Ok(Part {
+                outline: outline.clone(),
+                access: access.clone(),
+            }),
+            warnings: vec!["w".into()],
+            quantity: 2.5,
+            top_k: None,
+            wrenches: None,
+        };
+        let mut counts = exact_counts();
+        (counts.admissible, counts.exact) = (0, false);
+        let result = SolveResult {
+            status: Status::Ok,
+            error: None,
+            counts: Some(counts),
+            segment_kinds: vec![SegmentKind::Line; 3],
+            fixtures: vec![fixture()],
+        };
+        let search = SearchInfo {
+            steps: Some(vec![StepSummary {
+                grid_step: 2,
+                counts: exact_counts(),
+                fixtures: 1,
+                best_score: Some(0.25),
+                best: None,
+                added: Some(1),
+                improved_by: None,
+                stopped_at: None,
+                enumerate_ms: 1.0,
+            }]),
+            stopped_at: Some(7),
+            shards: 2,
+        };
+        let part = PartMsg::of(&PartContent {
+            index: 3,
+            entry: &entry,
+            units: Units::Mm,
+            kit: &kit(),
+            outline: &outline,
+            access: &access,
+            result: &result,
+            timing: Timing {
+                prepare_ms: 0.5,
+                enumerate_ms: 1.0,
+                shards: 2,
+            },
+            search: &search,
+        });
+        assert_eq!(
+            json(&part),
+            r#"{"index":3,"id":"p","file":"p.dxf","status":"ok","warnings":["w"],"units":"mm","quantity":2.5,"outline":[{"x":0.0,"y":0.0},{"x":10.0,"y":0.0,"bulge":0.5},{"x":0.0,"y":5.0}],"access":[{"points":[{"x":1.0,"y":1.0},{"x":2.0,"y":1.0},{"x":1.0,"y":2.0}]}],"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"exact":false},"fixtures":1,"best_score":0.25,"timing":{"prepare_ms":0.5,"enumerate_ms":1.0,"shards":2},"refine":[{"grid_step":2,"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1,"exact":true},"fixtures":1,"best_score":0.25,"added":1,"enumerate_ms":1.0}],"stopped":"good_enough","stopped_at":7}"#
+        );
+        assert_eq!((part.outline(), part.access()), (outline, access));
+        let read: PartMsg = serde_json::from_str(&json(&part)).unwrap();
+        assert_eq!(read, part);
+    }
+
+    /// The fixtures message, and the line `fixplan export --json` makes of
+    /// it: SPEC Appendix A's result, byte for byte what it always was.
+    #[test]
+    fn the_fixtures_message_keeps_its_json_and_exports_appendix_a() {
+        let result = SolveResult {
+            status: Status::Ok,
+            error: None,
+            counts: Some(exact_counts()),
+            segment_kinds: vec![SegmentKind::Line, SegmentKind::Arc, SegmentKind::Line],
+            fixtures: vec![fixture()],
+        };
+        let fixtures = FixturesMsg::of_result("p", &result);
         assert_eq!(
             json(&fixtures),
+            r#"{"part":"p","status":"ok","counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1,"exact":true},"segment_kinds":["line","arc","line"],"fixtures":[{"rank":1,"score":0.25,"segments":[0,1,2],"locators":[{"i":0,"j":0},{"i":2,"j":0},{"i":0,"j":1}],"pose":{"x":1.0,"y":2.0,"theta_deg":90.0},"clamp":{"segment":1,"rotation_deg":180,"mount":{"i":3,"j":1},"extension":4.5,"contact":{"x":5.0,"y":6.0}},"borderline":false,"contacts":[{"point":{"x":1.0,"y":0.0},"normal":{"x":0.0,"y":1.0}}],"placement":{"rotation_deg":90,"locators":[{"i":1,"j":1},{"i":3,"j":1},{"i":1,"j":2}],"clamp_holes":[{"i":4,"j":2},{"i":5,"j":2}]}}]}"#
+        );
+        assert_eq!(fixtures.result(), result);
+        assert_eq!(
+            String::from_utf8(fixtures.export_line().unwrap()).unwrap(),
             r#"{"part":"p","status":"ok","counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1},"segment_kinds":["line","arc","line"],"fixtures":[{"rank":1,"score":0.25,"segments":[0,1,2],"locators":[[0,0],[2,0],[0,1]],"pose":{"x":1.0,"y":2.0,"theta_deg":90.0},"clamp":{"segment":1,"rotation_deg":180,"mount":[3,1],"extension":4.5,"contact":[5.0,6.0]},"borderline":false,"contacts":[{"point":[1.0,0.0],"normal":[0.0,1.0]}],"placement":{"rotation_deg":90,"locators":[[1,1],[3,1],[1,2]],"clamp_holes":[[4,2],[5,2]]}}]}"#
         );
-        let invalid = FixturesMsg {
-            part: "q".into(),
-            result: SolveResult::invalid("q: open outline"),
-        };
+        let read = FixturesMsg::from_json_exact(json(&fixtures).as_bytes()).unwrap();
+        assert_eq!(read, fixtures);
+        let invalid = FixturesMsg::of_result("q", &SolveResult::invalid("q: open outline"));
         assert_eq!(
             json(&invalid),
+            r#"{"part":"q","status":"invalid","error":"q: open outline","segment_kinds":[],"fixtures":[]}"#
+        );
+        assert_eq!(
+            String::from_utf8(invalid.export_line().unwrap()).unwrap(),
             r#"{"part":"q","status":"invalid","error":"q: open outline","fixtures":[]}"#
         );
     }

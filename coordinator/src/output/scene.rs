@@ -9,9 +9,9 @@
 //! the order a `Value` map wrote them in, so the bytes did not change.
 
 use crate::drawing::draw::{
-    bounds, fixture_drawing, plate_holes, plate_outline, Circle, FixtureDrawing, Hole,
+    bounds, fixture_drawing, plate_holes, plate_outline, DrawnCircle, FixtureDrawing, Hole,
 };
-use crate::drawing::outline::{extent_points, flattened};
+use crate::drawing::outline::{extent_points, flattened, moved};
 use crate::output::messages::NS_PER_PART;
 use fixplan_core::{FixtureReport, Kit, Point, Units, Vertex};
 use serde::Serialize;
@@ -186,12 +186,12 @@ impl Scene {
         self.loop_line(&flattened(outline, self.chord_error), thickness, color)
     }
 
-    fn disk(&self, c: &Circle, height: f64, color: Color) -> Cylinder {
-        let d = 2.0 * c.r * self.m;
+    fn disk(&self, c: &DrawnCircle, height: f64, color: Color) -> Cylinder {
+        let d = 2.0 * c.radius * self.m;
         Cylinder {
             bottom_scale: 1.0,
             color,
-            pose: identity_pose(c.c[0] * self.m, c.c[1] * self.m, height / 2.0),
+            pose: identity_pose(c.centre[0] * self.m, c.centre[1] * self.m, height / 2.0),
             size: Vec3 {
                 x: d,
                 y: d,
@@ -261,23 +261,36 @@ const PART: Color = color(0.2, 0.6, 1.0, 1.0);
 const ACCESS: Color = color(1.0, 0.55, 0.0, 1.0);
 
 impl Scene {
-    /// Without a fixture: the part's outline and access regions in the part
-    /// frame with a "no fixture" label; empty plate and fixture entities
-    /// clear the previous part's.
+    /// Without a fixture: the plate, as with one, and on it the part's
+    /// outline and access regions centred on the plate (the part frame
+    /// has no place on the plate) with the caption saying why there is no
+    /// fixture; an empty fixture entity clears the previous part's.
     fn unplaced(
         &self,
+        kit: &Kit,
         caption: &str,
         outline: &[Vertex],
         access: &[Vec<Point>],
     ) -> Vec<Entity<'static>> {
-        let lines = std::iter::once(self.outline_line(outline, 3.0, PART))
+        let plate = plate_outline(kit);
+        let middle = |b: Option<[Point; 2]>| {
+            b.map(|[lo, hi]| [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0])
+        };
+        let to = middle(bounds(&plate)).unwrap_or([0.0, 0.0]);
+        let from = middle(bounds(&extent_points(outline))).unwrap_or(to);
+        let shift = |p: &Point| [p[0] - from[0] + to[0], p[1] - from[1] + to[1]];
+        let outline = moved(outline, shift);
+        let access: Vec<Vec<Point>> = access
+            .iter()
+            .map(|a| a.iter().map(shift).collect())
+            .collect();
+        let lines = std::iter::once(self.outline_line(&outline, 3.0, PART))
             .chain(access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)))
             .collect();
-        let at = bounds(&extent_points(outline))
-            .map(|b| b[1])
-            .unwrap_or([0.0, 0.0]);
-        let texts = vec![self.text(at, caption.to_string())];
+        let extent = bounds(&extent_points(&outline)).unwrap_or([to, to]);
+        let texts = vec![self.text(extent[1], caption.to_string())];
         vec![
+            self.plate(kit, extent),
             self.entity(
                 "part",
                 Shapes {
@@ -286,7 +299,6 @@ impl Scene {
                     ..Shapes::default()
                 },
             ),
-            self.entity("plate", Shapes::default()),
             self.entity("fixture", Shapes::default()),
         ]
     }
@@ -299,7 +311,14 @@ impl Scene {
         } else {
             color(0.35, 0.35, 0.4, 1.0)
         };
-        self.disk(&Circle { c: h.at, r: hole_r }, 0.0005, c)
+        self.disk(
+            &DrawnCircle {
+                centre: h.at,
+                radius: hole_r,
+            },
+            0.0005,
+            c,
+        )
     }
 
     /// The plate: its edge and the holes within 1.5 spacings of the
@@ -415,15 +434,15 @@ pub struct PartScene<'a> {
 }
 
 /// The scene of part `index`: with a fixture, the part posed on the plate
-/// with the best fixture; without, the outline alone in the part frame
-/// (for an invalid part, the outline as read) and `best`'s caption: no
-/// fixture, or the error. Arcs are drawn as chords within `1e-3` of the
+/// with the best fixture; without, the plate and the outline centred on
+/// it (for an invalid part, the outline as read) with `best`'s caption:
+/// no fixture, or the error. Arcs are drawn as chords within `1e-3` of the
 /// part's size (and 5 degrees of turn); contacts on arcs, as on lines, are
 /// arrows along the reported inward normal.
 pub fn scene_update(p: PartScene) -> SceneUpdate<'static> {
     let s = Scene::of(p.index, p.units, p.outline);
     let entities = match p.best {
-        Err(caption) => s.unplaced(caption, p.outline, p.access),
+        Err(caption) => s.unplaced(p.kit, caption, p.outline, p.access),
         Ok(f) => {
             let d = fixture_drawing(p.kit, p.outline, p.access, f);
             let extent = d.bounds();

@@ -126,7 +126,7 @@ pub fn run_metadata(run: &RunMsg) -> Result<Metadata, OutError> {
         ("params".to_string(), serde_json::to_string(&run.params)?),
         ("catalog_name".to_string(), c.name.clone()),
         ("catalog_source".to_string(), c.source.clone()),
-        ("catalog_units".to_string(), c.units.label().to_string()),
+        ("catalog_units".to_string(), c.units.text().to_string()),
         ("catalog_parts".to_string(), c.parts.to_string()),
         ("catalog_digest".to_string(), c.digest.clone()),
     ]);

@@ -26,6 +26,7 @@ use crate::output::messages::{CatalogInfo, RunMsg};
 use anyhow::{Context, Result};
 use backend::{Backend, PartDone, PartJob};
 use fixplan_catalog::{load_catalog_with, load_kit, ArcMode, Catalog, KitSpec, LoadOptions};
+use fixplan_core::Params;
 use outcome::{part_outcome, OutcomeError, PartOutcome};
 use progress::{progress_line, summary_table, Progress, Totals};
 use solve::solve_in_order_finishing;
@@ -92,23 +93,28 @@ pub fn load_and_run(opts: &RunOptions, load: &LoadOptions) -> Result<Totals> {
     run_catalog(&catalog, &spec, opts)
 }
 
-/// The `/fixplan/run` message of a run: the kit's parameters with
-/// `--top-k` applied, and the finest grid step as the run's step, so the
-/// fixtures channel holds the same bytes as a plain run at that step.
-fn run_message(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions) -> RunMsg {
+/// The parameters of a run: the kit's with `--top-k` applied, and the
+/// finest grid step as the run's step, so the fixtures channel holds the
+/// same bytes as a plain run at that step.
+fn run_params(spec: &KitSpec, opts: &RunOptions) -> Params {
     let mut params = spec.params.clone();
     if let Some(k) = opts.top_k {
         params.top_k = k;
     }
     params.full_counts |= opts.full_counts;
     params.grid_step = opts.search.final_step(params.grid_step);
+    params
+}
+
+/// The `/fixplan/run` message of a run with `params` ([`run_params`]).
+fn run_message(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions, params: &Params) -> RunMsg {
     RunMsg {
         tool: "fixplan".into(),
         version: env!("CARGO_PKG_VERSION").into(),
         catalog: CatalogInfo::of(catalog, &opts.catalog),
         kit_name: spec.name.clone(),
-        kit: spec.kit.clone(),
-        params,
+        kit: (&spec.kit).into(),
+        params: params.into(),
         grid_steps: opts.search.grid_steps.clone(),
         good_enough: opts.search.good_enough,
     }
@@ -133,7 +139,8 @@ pub fn run_parts(
 ) -> Result<Totals> {
     fixplan_core::validate_kit(&spec.kit).with_context(|| format!("kit {}", spec.name))?;
     opts.search.validate()?;
-    let run_msg = run_message(catalog, spec, opts);
+    let params = run_params(spec, opts);
+    let run_msg = run_message(catalog, spec, opts, &params);
     let n = parts.len();
     let mut progress = Progress::new(n, opts.quiet);
     progress.log(&format!(
@@ -153,7 +160,7 @@ pub fn run_parts(
     )?;
     let ctx = JobContext {
         kit: &spec.kit,
-        params: &run_msg.params,
+        params: &params,
         units: catalog.units,
         shard_size: opts.shard_size,
         search: &opts.search,

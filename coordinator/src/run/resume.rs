@@ -100,8 +100,9 @@ fn copy_finished(
             return false;
         }
         if let Ok(p) = m.decode::<PartMsg>() {
-            let admissible = super::outcome::admissible_found(p.status, p.counts);
-            progress.resumed(p.status, admissible, p.fixtures);
+            let (status, counts) = (p.status.into(), p.counts.as_ref().map(Into::into));
+            let admissible = super::outcome::admissible_found(status, counts);
+            progress.resumed(status, admissible, p.fixtures);
         }
         next += 1;
         true

@@ -3,9 +3,10 @@
 //! and their JSON Schemas. The table, the CSV, the chart and the MCAP file
 //! are all made from these.
 
+use crate::output::fields::{CountsField, KitField, ParamsField, StatusName};
 use crate::output::messages::CatalogInfo;
 use crate::output::schemas::schema_of;
-use fixplan_core::{Counts, Kit, Params, SolveResult, Status};
+use fixplan_core::SolveResult;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -20,19 +21,24 @@ pub const SCHEMA_STUDY_SUMMARY: &str = "fixplan.StudySummary";
 
 /// The result of one part with one kit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct StudyPartRow {
     /// The part's id in the catalogue, to find it in a run of that kit.
     pub id: String,
     /// Held, no fixture or invalid: what the coverage counts.
-    pub status: Status,
+    pub status: StatusName,
     /// Why the part is invalid, if it is.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
     /// Parts per year: weighs the part in `held_quantity_pct`.
     pub quantity: f64,
-    /// What the enumeration went through (the same on every plate).
-    pub counts: Option<Counts>,
-    /// Score of the best fixture, for the kit's score percentiles.
+    /// What the enumeration went through (the same on every plate);
+    /// absent for an invalid part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub counts: Option<CountsField>,
+    /// Score of the best fixture, for the kit's score percentiles; absent
+    /// without a fixture.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub best_score: Option<f64>,
     /// Wall time of prepare + enumeration (0 when shared).
     pub ms: f64,
@@ -46,10 +52,10 @@ impl StudyPartRow {
     pub fn solved(id: &str, quantity: f64, r: &SolveResult, ms: f64) -> StudyPartRow {
         StudyPartRow {
             id: id.to_string(),
-            status: r.status,
+            status: r.status.into(),
             error: r.error.clone(),
             quantity,
-            counts: r.counts,
+            counts: r.counts.as_ref().map(CountsField::from),
             best_score: r.fixtures.first().map(|f| f.score),
             ms,
             shared: None,
@@ -70,7 +76,7 @@ impl StudyPartRow {
     pub fn missing() -> StudyPartRow {
         StudyPartRow {
             id: String::new(),
-            status: Status::Invalid,
+            status: StatusName::Invalid,
             error: Some("internal error: no result".into()),
             quantity: 0.0,
             counts: None,
@@ -83,6 +89,7 @@ impl StudyPartRow {
 
 /// `/fixplan/study`: one message per kit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct StudyKitMsg {
     /// Position in the study (listed kits first, then sweep points): the
     /// message's sequence number and time.
@@ -92,11 +99,12 @@ pub struct StudyKitMsg {
     /// The listed kit it comes from, to group a sweep's points.
     pub base: String,
     /// The sweep point applied, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sweep: Option<String>,
     /// The kit as solved (catalogue units), to redo any of its parts.
-    pub kit: Kit,
+    pub kit: KitField,
     /// The parameters as solved (top-k included).
-    pub params: Params,
+    pub params: ParamsField,
     /// Parts in the catalogue.
     pub parts: usize,
     /// Parts with at least one fixture.
@@ -106,9 +114,12 @@ pub struct StudyKitMsg {
     /// Share of parts held weighted by `quantity` (parts per year), percent.
     pub held_quantity_pct: f64,
     /// Median best score over the parts held (mean of the two middle ones
-    /// for an even count).
+    /// for an even count); absent when none is held.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub median_score: Option<f64>,
-    /// 90th percentile (nearest rank) of the best score over the parts held.
+    /// 90th percentile (nearest rank) of the best score over the parts
+    /// held; absent when none is held.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub p90_score: Option<f64>,
     /// Parts the kit cannot hold.
     pub no_fixture: usize,
@@ -127,6 +138,7 @@ pub struct StudyKitMsg {
 
 /// `/fixplan/study_summary`: once, at the end.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct StudySummaryMsg {
     /// `fixplan`, for readers that meet the file alone.
     pub tool: String,
@@ -148,7 +160,8 @@ pub struct StudySummaryMsg {
     pub shared_larger_plate: usize,
     /// Distinct prepared geometries (embedded studies).
     pub prepares: usize,
-    /// Workers of a distributed study; `None` for an embedded one.
+    /// Workers of a distributed study; absent for an embedded one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub workers: Option<usize>,
     /// Wall time of the whole study, milliseconds.
     pub elapsed_ms: f64,

@@ -31,7 +31,8 @@
 
 use super::kits::StudyKit;
 use super::messages::StudyPartRow;
-use fixplan_core::{Kit, Params, Status, Units};
+use crate::output::fields::StatusName;
+use fixplan_core::{Kit, Params, Units};
 use std::collections::HashMap;
 
 /// Everything a kit's results depend on: two kits with the same key are
@@ -156,7 +157,7 @@ impl SharePlan {
             for part in 0..rows.0[k].len() {
                 let copy = self.maximal.iter().find_map(|&b| {
                     let r = rows.0[b][part].as_ref()?;
-                    (self.larger[k].contains(&b) && r.status == Status::NoFixture).then(|| {
+                    (self.larger[k].contains(&b) && r.status == StatusName::NoFixture).then(|| {
                         r.shared_as(format!(
                             "no fixture on the larger plate of {}",
                             kits[b].spec.name

@@ -3,9 +3,10 @@
 
 use super::kits::StudyKit;
 use super::messages::{StudyKitMsg, StudyPartRow, StudySummaryMsg};
+use crate::output::fields::StatusName;
 use crate::output::messages::CatalogInfo;
 use fixplan_catalog::Catalog;
-use fixplan_core::{Params, Status};
+use fixplan_core::Params;
 use std::path::Path;
 
 /// Median of sorted values (mean of the two middle ones for an even
@@ -41,19 +42,22 @@ pub fn kit_message(
     total_qty: f64,
 ) -> StudyKitMsg {
     let np = results.len();
-    let held: Vec<&StudyPartRow> = results.iter().filter(|r| r.status == Status::Ok).collect();
+    let held: Vec<&StudyPartRow> = results
+        .iter()
+        .filter(|r| r.status == StatusName::Ok)
+        .collect();
     let mut scores: Vec<f64> = held.iter().filter_map(|r| r.best_score).collect();
     scores.sort_by(f64::total_cmp);
     let held_qty: f64 = held.iter().map(|r| r.quantity).sum();
     let shared = results.iter().filter(|r| r.shared.is_some()).count();
-    let count = |s: Status| results.iter().filter(|r| r.status == s).count();
+    let count = |s: StatusName| results.iter().filter(|r| r.status == s).count();
     StudyKitMsg {
         index,
         name: sk.spec.name.clone(),
         base: sk.base.clone(),
         sweep: sk.sweep.clone(),
-        kit: sk.spec.kit.clone(),
-        params: params.clone(),
+        kit: (&sk.spec.kit).into(),
+        params: params.into(),
         parts: np,
         held: held.len(),
         held_pct: if np == 0 {
@@ -68,8 +72,8 @@ pub fn kit_message(
         },
         median_score: median(&scores),
         p90_score: nearest_rank(&scores, 90.0),
-        no_fixture: count(Status::NoFixture),
-        invalid: count(Status::Invalid),
+        no_fixture: count(StatusName::NoFixture),
+        invalid: count(StatusName::Invalid),
         time_ms: results.iter().map(|r| r.ms).sum(),
         enumerated: np - shared,
         shared,
@@ -115,7 +119,7 @@ pub fn summary(
     elapsed_ms: f64,
 ) -> StudySummaryMsg {
     let unheld = (0..catalog.parts.len())
-        .filter(|&i| msgs.iter().all(|m| m.results[i].status != Status::Ok))
+        .filter(|&i| msgs.iter().all(|m| m.results[i].status != StatusName::Ok))
         .map(|i| catalog.parts[i].id.clone())
         .collect();
     StudySummaryMsg {

@@ -12,7 +12,7 @@ use crate::drawing::outline::{extent_points, has_arcs, vertex_points};
 use crate::output::messages::RunMsg;
 use crate::output::reader::PartRecord;
 use fixplan_core::parts::{edges_of, Edge};
-use fixplan_core::{FixtureReport, Kit, Point, Status, Vertex};
+use fixplan_core::{Counts, FixtureReport, Kit, Point, Status, Vertex};
 use std::fmt::Write as _;
 
 const WIDTH: f64 = 760.0;
@@ -145,8 +145,9 @@ fn caption(out: &mut String, v: &View, lines: &[String]) {
 /// pose, clamp, locators and contact normals, and a caption with the
 /// numbers a machinist sets the fixture up by.
 pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
-    let kit = &run.kit;
-    let d: FixtureDrawing = fixture_drawing(kit, &rec.part.outline, &rec.part.access, f);
+    let kit = &run.kit();
+    let (outline, access) = (rec.part.outline(), rec.part.access());
+    let d: FixtureDrawing = fixture_drawing(kit, &outline, &access, f);
     let l = kit.spacing;
     let [lo, hi] = d.bounds();
     let b = [
@@ -216,8 +217,8 @@ fn draw_clamp(s: &mut String, v: &View, d: &FixtureDrawing, hole_r: f64) {
     );
     v.circle(
         s,
-        d.tip.c,
-        d.tip.r,
+        d.tip.centre,
+        d.tip.radius,
         r##"fill="#e8776f" stroke="#b0271f" stroke-width="1.5""##,
     );
     for h in &d.clamp_holes {
@@ -230,11 +231,11 @@ fn draw_locators(s: &mut String, v: &View, d: &FixtureDrawing) {
     for (i, c) in d.locators.iter().enumerate() {
         v.circle(
             s,
-            c.c,
-            c.r,
+            c.centre,
+            c.radius,
             r##"fill="#4a4f57" stroke="#1d2025" stroke-width="1.5""##,
         );
-        let (x, y) = v.p(c.c);
+        let (x, y) = v.p(c.centre);
         let _ = writeln!(
             s,
             r#"<text x="{x:.1}" y="{:.1}" font-size="12" fill="white" text-anchor="middle">L{}</text>"#,
@@ -266,7 +267,7 @@ fn draw_contacts(s: &mut String, v: &View, d: &FixtureDrawing, l: f64) {
 
 /// Rank and score; pose and clamp setting; the plate holes used.
 fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
-    let u = rec.part.units.label();
+    let u = rec.part.units.text();
     let holes = |h: &[[i64; 2]]| {
         h.iter()
             .map(|p| format!("({},{})", p[0], p[1]))
@@ -274,8 +275,8 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
             .join(" ")
     };
     // Top-k mode did not count the fixtures a rank is out of.
-    let of = (rec.fixtures.result.counts)
-        .map_or(Some(0), |c| c.admissible())
+    let of = (rec.part.counts.as_ref())
+        .map_or(Some(0), |c| Counts::from(c).admissible())
         .map_or(String::new(), |a| format!(" of {a}"));
     [
         format!(
@@ -305,8 +306,9 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
 /// The SVG of a part without a fixture: its outline and the reason.
 pub fn part_svg(rec: &PartRecord) -> String {
     let p = &rec.part;
-    let mut pts = extent_points(&p.outline);
-    for a in &p.access {
+    let (outline, access) = (p.outline(), p.access());
+    let mut pts = extent_points(&outline);
+    for a in &access {
         pts.extend(a.iter().copied());
     }
     // No outline (it could not be read): a caption alone.
@@ -324,28 +326,29 @@ pub fn part_svg(rec: &PartRecord) -> String {
         },
     };
     let mut s = header(&v);
-    if p.outline.len() >= 2 {
+    if outline.len() >= 2 {
         v.outline(
             &mut s,
-            &p.outline,
+            &outline,
             r##"fill="#cfe3f7" stroke="#1f5fa8" stroke-width="2""##,
         );
     }
-    for a in &p.access {
+    for a in &access {
         v.polygon(
             &mut s,
             a,
             r##"fill="url(#hatch)" stroke="#e07b00" stroke-width="1.5""##,
         );
     }
-    let why = match p.status {
+    let status = Status::from(p.status);
+    let why = match status {
         Status::NoFixture => "no fixture of this kit holds this part".to_string(),
         _ => p.error.clone().unwrap_or_default(),
     };
     caption(
         &mut s,
         &v,
-        &[format!("{} — {:?}", p.id, p.status).to_lowercase(), why],
+        &[format!("{} — {:?}", p.id, status).to_lowercase(), why],
     );
     s.push_str("</svg>\n");
     s

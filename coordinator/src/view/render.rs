@@ -3,11 +3,11 @@
 //! all parts.
 
 use super::picture::{fixture_svg, part_svg};
-use super::show::status_word;
 use super::svg::escape;
 use crate::output::messages::RunMsg;
 use crate::output::reader::{for_each_record, PartRecord};
 use anyhow::{Context, Result};
+use fixplan_core::Counts;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -65,13 +65,13 @@ fn render_part(
 ) -> Result<usize> {
     let p = &rec.part;
     let st = stem(p.index, &p.id);
-    let status = status_word(p.status);
+    let status = p.status.text();
     let _ = writeln!(
         html,
         "<div class=\"part\"><h2>{} <span class=\"{status}\">{status}</span></h2>",
         escape(&p.id)
     );
-    if let Some(c) = p.counts {
+    if let Some(c) = p.counts.as_ref().map(Counts::from) {
         let _ = writeln!(
             html,
             "<p>{} segments, {} setups, {} candidates, <b>{}</b> admissible fixtures; {} kept.</p>",
@@ -86,7 +86,7 @@ fn render_part(
         let _ = writeln!(html, "<p class=\"invalid\">{}</p>", escape(e));
     }
     let _ = write!(html, "<div class=\"fx\">");
-    let fx = &rec.fixtures.result.fixtures;
+    let fx = &rec.fixtures.result().fixtures;
     let mut n = 0;
     if fx.is_empty() {
         let name = format!("{st}.svg");

@@ -1,23 +1,14 @@
 //! `fixplan show` and `fixplan export`: a results file as terminal tables
 //! or as JSON lines.
 
-use crate::output::messages::{FixturesMsg, TOPIC_FIXTURES};
+use crate::output::messages::{FixturesMsg, Message};
 use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
 use anyhow::Result;
 use fixplan_core::parts::edges_of;
-use fixplan_core::{FixtureReport, SegmentKind, Status};
+use fixplan_core::{Counts, FixtureReport, SegmentKind, Vertex};
+
 use std::io::Write;
 use std::path::Path;
-
-/// A status as the results file's JSON writes it, so the tables and the
-/// gallery's CSS classes use the same words.
-pub fn status_word(s: Status) -> &'static str {
-    match s {
-        Status::Ok => "ok",
-        Status::NoFixture => "no_fixture",
-        Status::Invalid => "invalid",
-    }
-}
 
 fn warn_incomplete(path: &Path, complete: bool, truncated: &Option<String>) {
     if !complete {
@@ -51,16 +42,16 @@ pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) ->
 }
 
 /// The admissible count, or what a top-k mode result says instead of it.
-pub(super) fn admissible_word(c: &fixplan_core::Counts) -> String {
+pub(super) fn admissible_word(c: &Counts) -> String {
     c.admissible()
         .map_or("not counted (top-k mode)".into(), |a| a.to_string())
 }
 
 pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> Result<()> {
     let p = &rec.part;
-    let u = p.units.label();
-    write!(out, "== {} [{}]", p.id, status_word(p.status))?;
-    if let Some(c) = p.counts {
+    let u = p.units.text();
+    write!(out, "== {} [{}]", p.id, p.status.text())?;
+    if let Some(c) = p.counts.as_ref().map(Counts::from) {
         write!(
             out,
             "  segments {}  setups {}  candidates {}  admissible {}",
@@ -77,11 +68,12 @@ pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> R
     for w in &p.warnings {
         writeln!(out, "   warning: {w}")?;
     }
-    let arcs = ArcSegments::of(rec);
-    if let Some(line) = arcs.summary(rec) {
+    let result = rec.fixtures.result();
+    let arcs = ArcSegments::of(&result.segment_kinds);
+    if let Some(line) = arcs.summary(&p.outline(), result.segment_kinds.len()) {
         writeln!(out, "   {line}")?;
     }
-    let fx = &rec.fixtures.result.fixtures;
+    let fx = &result.fixtures;
     if fx.is_empty() {
         return Ok(());
     }
@@ -137,8 +129,7 @@ struct ArcSegments {
 }
 
 impl ArcSegments {
-    fn of(rec: &PartRecord) -> ArcSegments {
-        let kinds = &rec.fixtures.result.segment_kinds;
+    fn of(kinds: &[SegmentKind]) -> ArcSegments {
         let arc: Vec<bool> = kinds.iter().map(|k| *k == SegmentKind::Arc).collect();
         ArcSegments {
             arc: if arc.contains(&true) { arc } else { Vec::new() },
@@ -159,16 +150,15 @@ impl ArcSegments {
     }
 
     /// Which outline edges are arcs (from the outline as listed) and which
-    /// segments (from the results, when the file lists their kinds);
-    /// `None` for a polygon part.
-    fn summary(&self, rec: &PartRecord) -> Option<String> {
+    /// segments (from the results, when the file lists their `kinds`
+    /// segment kinds); `None` for a polygon part.
+    fn summary(&self, outline: &[Vertex], kinds: usize) -> Option<String> {
         let list = |ix: &[usize]| {
             ix.iter()
                 .map(usize::to_string)
                 .collect::<Vec<_>>()
                 .join(", ")
         };
-        let outline = &rec.part.outline;
         let edges: Vec<usize> = edges_of(outline)
             .iter()
             .enumerate()
@@ -178,7 +168,6 @@ impl ArcSegments {
         if edges.is_empty() && segments.is_empty() {
             return None;
         }
-        let kinds = rec.fixtures.result.segment_kinds.len();
         let of_segments = if !segments.is_empty() {
             format!("; segments {} of {kinds} (marked * below)", list(&segments))
         } else if kinds > 0 {
@@ -211,25 +200,31 @@ impl ArcSegments {
     }
 }
 
-/// Prints one JSON line per part: `{"part": ID, ...SPEC Appendix A result}`.
+/// Prints one JSON line per part: `{"part": ID, ...SPEC Appendix A result}`,
+/// converted back from the fixtures message ([`FixturesMsg::export_line`]).
 pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Result<()> {
     let file = ResultsFile::open(path)?;
     let mut err = None;
     let contents = file.for_each_part(|_, m| {
-        if let Some(p) = part {
-            match m.decode::<FixturesMsg>() {
-                Ok(f) if f.part != p => return true,
-                Ok(_) => {}
-                Err(e) => {
-                    err = Some(anyhow::anyhow!("part {}: {e}", m.index));
-                    return false;
-                }
+        let message = m.get(FixturesMsg::TOPIC).unwrap_or_default();
+        let fixtures = match FixturesMsg::from_json_exact(message) {
+            Ok(f) => f,
+            Err(e) => {
+                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                return false;
             }
+        };
+        if part.is_some_and(|p| p != fixtures.part) {
+            return true;
         }
-        let r = out
-            .write_all(m.get(TOPIC_FIXTURES).unwrap_or_default())
-            .and_then(|_| out.write_all(b"\n"));
-        if let Err(e) = r {
+        let line = match fixtures.export_line() {
+            Ok(line) => line,
+            Err(e) => {
+                err = Some(e.into());
+                return false;
+            }
+        };
+        if let Err(e) = out.write_all(&line).and_then(|_| out.write_all(b"\n")) {
             err = Some(e.into());
             return false;
         }

@@ -5,8 +5,10 @@
 
 use super::picture::{fixture_svg, part_svg};
 use super::show::print_part;
-use crate::drawing::draw::fixture_drawing;
-use crate::output::messages::{CatalogInfo, FixturesMsg, PartMsg, RunMsg};
+use crate::drawing::draw::{bounds, fixture_drawing, plate_outline};
+use crate::drawing::outline::extent_points;
+use crate::output::fields::{CountsField, UnitsName, VertexField};
+use crate::output::messages::{CatalogInfo, FixturesMsg, PartMsg, RunMsg, Timing, TimingField};
 use crate::output::reader::PartRecord;
 use crate::output::scene::{scene_update, PartScene};
 use fixplan_core::{solve, Params, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex};
@@ -34,13 +36,13 @@ fn run_msg() -> RunMsg {
         catalog: CatalogInfo {
             name: "arcs".into(),
             source: "mem".into(),
-            units: Units::Mm,
+            units: UnitsName::Mm,
             parts: 1,
             digest: String::new(),
         },
         kit_name: "metric-25".into(),
-        kit,
-        params: Params::default(),
+        kit: (&kit).into(),
+        params: (&Params::default()).into(),
         grid_steps: None,
         good_enough: None,
     }
@@ -52,31 +54,28 @@ fn record(run: &RunMsg, id: &str, outline: Vec<Vertex>) -> PartRecord {
         outline,
         access: Vec::new(),
     };
-    let result: SolveResult = solve(&part, &run.kit, &run.params, Units::Mm);
+    let result: SolveResult = solve(&part, &run.kit(), &run.params(), Units::Mm);
     PartRecord {
         part: PartMsg {
             index: 0,
             id: id.into(),
             file: None,
-            status: result.status,
+            status: result.status.into(),
             error: result.error.clone(),
             warnings: Vec::new(),
-            units: Units::Mm,
+            units: UnitsName::Mm,
             quantity: 1.0,
-            outline: part.outline,
+            outline: part.outline.iter().map(VertexField::from).collect(),
             access: Vec::new(),
-            counts: result.counts,
+            counts: result.counts.as_ref().map(CountsField::from),
             fixtures: result.fixtures.len(),
             best_score: result.fixtures.first().map(|f| f.score),
-            timing: Default::default(),
+            timing: TimingField::from(&Timing::default()),
             refine: None,
             stopped: None,
             stopped_at: None,
         },
-        fixtures: FixturesMsg {
-            part: id.into(),
-            result,
-        },
+        fixtures: FixturesMsg::of_result(id, &result),
     }
 }
 
@@ -117,7 +116,7 @@ fn part_path(svg: &str) -> &str {
 fn the_arc_part_has_fixtures_touching_its_arc() {
     let run = run_msg();
     let rec = record(&run, "half-round", arc_plate());
-    let r = &rec.fixtures.result;
+    let r = &rec.fixtures.result();
     assert_eq!(r.status, Status::Ok, "{r:?}");
     assert!(r.segment_kinds.contains(&SegmentKind::Arc));
     let on_arc = |s: usize| r.segment_kinds[s] == SegmentKind::Arc;
@@ -133,7 +132,8 @@ fn the_arc_part_has_fixtures_touching_its_arc() {
 fn pictures_draw_arcs_as_svg_arcs() {
     let run = run_msg();
     let rec = record(&run, "half-round", arc_plate());
-    let f = &rec.fixtures.result.fixtures[0];
+    let result = rec.fixtures.result();
+    let f = &result.fixtures[0];
     for svg in [part_svg(&rec), fixture_svg(&run, &rec, f)] {
         let d = part_path(&svg);
         assert!(d.starts_with('M') && d.ends_with(" Z"), "{d}");
@@ -173,10 +173,10 @@ fn pictures_draw_arcs_as_svg_arcs() {
 fn contacts_on_the_arc_touch_it_along_its_normal() {
     let run = run_msg();
     let rec = record(&run, "half-round", arc_plate());
-    let r = &rec.fixtures.result;
+    let r = &rec.fixtures.result();
     let mut on_arc = 0;
     for f in &r.fixtures {
-        let d = fixture_drawing(&run.kit, &rec.part.outline, &[], f);
+        let d = fixture_drawing(&run.kit(), &rec.part.outline(), &[], f);
         assert_eq!(d.part[1].bulge, 1.0);
         // Half circle: the posed centre is the midpoint of its ends.
         let (a, b) = (d.part[1], d.part[2]);
@@ -220,20 +220,32 @@ fn scene_outline(scene: &Value) -> Vec<Point> {
 fn the_scene_draws_arcs_as_fine_line_strips_on_the_circle() {
     let run = run_msg();
     let rec = record(&run, "half-round", arc_plate());
-    let f = &rec.fixtures.result.fixtures[0];
-    let outline = &rec.part.outline;
+    let result = rec.fixtures.result();
+    let f = &result.fixtures[0];
+    let outline = &rec.part.outline();
+    let kit = run.kit();
     let shown = |best| PartScene {
         index: 0,
         id: "half-round",
         units: Units::Mm,
-        kit: &run.kit,
+        kit: &kit,
         outline,
         access: &[],
         best,
     };
     let placed = scene_update(shown(Ok(f)));
     let alone = scene_update(shown(Err("none")));
-    let d = fixture_drawing(&run.kit, outline, &[], f);
+    // Without a fixture the part is drawn centred on the plate.
+    let middle = |b: [Point; 2]| [(b[0][0] + b[1][0]) / 2.0, (b[0][1] + b[1][1]) / 2.0];
+    let plate_middle = middle(bounds(&plate_outline(&kit)).unwrap());
+    let part_middle = middle(bounds(&extent_points(outline)).unwrap());
+    let shifted = |p: Point| {
+        [
+            p[0] + plate_middle[0] - part_middle[0],
+            p[1] + plate_middle[1] - part_middle[1],
+        ]
+    };
+    let d = fixture_drawing(&kit, outline, &[], f);
     let posed_centre = [
         (d.part[1].x + d.part[2].x) / 2.0,
         (d.part[1].y + d.part[2].y) / 2.0,
@@ -247,7 +259,7 @@ fn the_scene_draws_arcs_as_fine_line_strips_on_the_circle() {
                 (d.part[0].y + d.part[3].y) / 2.0,
             ],
         ),
-        (alone, CENTRE, [0.0, 20.0]),
+        (alone, shifted(CENTRE), shifted([0.0, 20.0])),
     ] {
         let pts = scene_outline(&serde_json::to_value(&scene).unwrap());
         // Four vertices and at least 36 chords on the half circle.
@@ -349,11 +361,13 @@ fn the_scene_json_is_the_serialised_scene_update() {
     use crate::output::scene::scene_json;
     let run = run_msg();
     let rec = record(&run, "half-round", arc_plate());
-    let f = &rec.fixtures.result.fixtures[0];
-    let outline = &rec.part.outline;
+    let result = rec.fixtures.result();
+    let f = &result.fixtures[0];
+    let outline = &rec.part.outline();
+    let kit = run.kit();
     let (inch, _) = fixplan_catalog::kit::builtin_kit("paper-inch").unwrap();
     for _warm in 0..2 {
-        for (units, kit) in [(Units::Mm, &run.kit), (Units::In, &inch)] {
+        for (units, kit) in [(Units::Mm, &kit), (Units::In, &inch)] {
             for best in [Ok(f), Err("half-round: no fixture")] {
                 let p = PartScene {
                     index: 7,
@@ -373,4 +387,54 @@ fn the_scene_json_is_the_serialised_scene_update() {
             }
         }
     }
+}
+
+/// A part without a fixture is drawn on its plate: the plate's edge and
+/// the holes around the part, the part's outline within the edge, and the
+/// caption; the fixture entity is empty (it clears the previous part's).
+#[test]
+fn a_scene_without_a_fixture_shows_the_plate() {
+    let run = run_msg();
+    let kit = run.kit();
+    let outline = arc_plate();
+    let scene = scene_update(PartScene {
+        index: 0,
+        id: "half-round",
+        units: Units::Mm,
+        kit: &kit,
+        outline: &outline,
+        access: &[],
+        best: Err("half-round: no fixture"),
+    });
+    let scene = serde_json::to_value(&scene).unwrap();
+    let entities = scene["entities"].as_array().unwrap();
+    let ids: Vec<&str> = entities.iter().map(|e| e["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, ["plate", "part", "fixture"]);
+    let metres = |p: &Value| [p["x"].as_f64().unwrap(), p["y"].as_f64().unwrap()];
+    let edge: Vec<Point> = (entities[0]["lines"][0]["points"].as_array().unwrap())
+        .iter()
+        .map(metres)
+        .collect();
+    let want: Vec<Point> = plate_outline(&kit)
+        .iter()
+        .map(|p| [p[0] / 1000.0, p[1] / 1000.0])
+        .collect();
+    assert_eq!(edge, want);
+    let holes = entities[0]["cylinders"].as_array().unwrap().len();
+    assert!(
+        holes > 0 && holes < (kit.cols * kit.rows) as usize,
+        "{holes}"
+    );
+    let [lo, hi] = bounds(&edge).unwrap();
+    let drawn = scene_outline(&scene);
+    assert!(drawn.len() > 4);
+    for p in drawn {
+        let p = [p[0] / 1000.0, p[1] / 1000.0];
+        assert!(
+            p[0] > lo[0] && p[0] < hi[0] && p[1] > lo[1] && p[1] < hi[1],
+            "{p:?}"
+        );
+    }
+    assert_eq!(entities[1]["texts"][0]["text"], "half-round: no fixture");
+    assert_eq!(entities[2]["lines"].as_array().unwrap().len(), 0);
 }

@@ -1,9 +1,9 @@
 //! Every message of an MCAP file validated, strictly, against the JSON
 //! Schema its channel embeds (and scene messages also against the vendored
-//! official `foxglove.SceneUpdate` schema), after checking that every
-//! object schema of each embedded schema has `properties`.
+//! official `foxglove.SceneUpdate` schema), after checking that the
+//! viewers' schema parser refuses no field of each embedded schema.
 
-use fixplan_coordinator::output::schemas::{objects_without_properties, FOXGLOVE_SCENE_UPDATE};
+use fixplan_coordinator::output::schemas::{viewer_refusals, FOXGLOVE_SCENE_UPDATE};
 use jsonschema::{Draft, Validator};
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -34,9 +34,9 @@ pub fn validate_every_message(bytes: &[u8]) -> BTreeMap<String, usize> {
         assert_eq!(ch.message_encoding, "json", "{}", ch.topic);
         let schema: Value = serde_json::from_slice(&s.data).expect("schema is JSON");
         assert_eq!(
-            objects_without_properties(&schema),
+            viewer_refusals(&schema),
             Vec::<String>::new(),
-            "{}: object schemas without properties",
+            "{}: fields the viewers' schema parser refuses",
             ch.topic
         );
         let validator = strict(&schema);

@@ -1,0 +1,175 @@
+//! A ranked fixture as the results file writes it: core's
+//! [`FixtureReport`] converted field by field, lattice holes as `{i, j}`
+//! and points as `{x, y}` (see [`super::fields`] for why), and back.
+
+use super::fields::{HoleField, PointField};
+use fixplan_core::{ClampReport, ContactReport, PlacementReport, PoseReport};
+use fixplan_core::FixtureReport;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Where the part sits, canonical plate frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PoseField {
+    /// Translation x.
+    pub x: f64,
+    /// Translation y.
+    pub y: f64,
+    /// Rotation, degrees in `[0, 360)`.
+    pub theta_deg: f64,
+}
+
+/// Where the clamp sits and pushes, canonical plate frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ClampPlacementField {
+    /// The segment its tip touches.
+    pub segment: usize,
+    /// Push direction: 0, 90, 180 or 270 degrees.
+    pub rotation_deg: u32,
+    /// Lattice point of mount hole 0.
+    pub mount: HoleField,
+    /// Plunger extension.
+    pub extension: f64,
+    /// Tip centre.
+    pub contact: PointField,
+}
+
+/// One contact: the locator's (or tip's) centre and the inward normal.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactField {
+    /// Centre of the locator or tip.
+    pub point: PointField,
+    /// Inward unit normal.
+    pub normal: PointField,
+}
+
+/// Where the modules go on the physical plate (`i` column, `j` row).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PlacementField {
+    /// Rotation applied to the canonical frame (0 or 90 degrees).
+    pub rotation_deg: u32,
+    /// Holes of locators 1-3.
+    pub locators: [HoleField; 3],
+    /// Holes of the clamp's mount holes, in the kit's order.
+    pub clamp_holes: Vec<HoleField>,
+}
+
+/// One ranked fixture.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FixtureField {
+    /// 1 for the best.
+    pub rank: usize,
+    /// The metric's value, lower is better.
+    pub score: f64,
+    /// Segments touched by locators 1-3.
+    pub segments: [usize; 3],
+    /// Locator lattice points, canonical frame (locator 1 at `{0, 0}`).
+    pub locators: [HoleField; 3],
+    /// Where the part sits.
+    pub pose: PoseField,
+    /// Where the clamp sits and pushes.
+    pub clamp: ClampPlacementField,
+    /// Within `1e-6` of a decision boundary.
+    pub borderline: bool,
+    /// Locators 1-3 then the clamp.
+    pub contacts: Vec<ContactField>,
+    /// Where the modules go on the physical plate.
+    pub placement: PlacementField,
+}
+
+fn holes3(holes: &[[i64; 2]; 3]) -> [HoleField; 3] {
+    holes.each_ref().map(HoleField::from)
+}
+
+fn lattice3(holes: &[HoleField; 3]) -> [[i64; 2]; 3] {
+    holes.each_ref().map(<[i64; 2]>::from)
+}
+
+impl From<&FixtureReport> for FixtureField {
+    fn from(f: &FixtureReport) -> FixtureField {
+        FixtureField {
+            rank: f.rank,
+            score: f.score,
+            segments: f.segments,
+            locators: holes3(&f.locators),
+            pose: PoseField {
+                x: f.pose.x,
+                y: f.pose.y,
+                theta_deg: f.pose.theta_deg,
+            },
+            clamp: ClampPlacementField {
+                segment: f.clamp.segment,
+                rotation_deg: f.clamp.rotation_deg,
+                mount: HoleField::from(&f.clamp.mount),
+                extension: f.clamp.extension,
+                contact: PointField::from(&f.clamp.contact),
+            },
+            borderline: f.borderline,
+            contacts: f
+                .contacts
+                .iter()
+                .map(|c| ContactField {
+                    point: PointField::from(&c.point),
+                    normal: PointField::from(&c.normal),
+                })
+                .collect(),
+            placement: PlacementField {
+                rotation_deg: f.placement.rotation_deg,
+                locators: holes3(&f.placement.locators),
+                clamp_holes: f
+                    .placement
+                    .clamp_holes
+                    .iter()
+                    .map(HoleField::from)
+                    .collect(),
+            },
+        }
+    }
+}
+
+impl From<&FixtureField> for FixtureReport {
+    fn from(f: &FixtureField) -> FixtureReport {
+        FixtureReport {
+            rank: f.rank,
+            score: f.score,
+            segments: f.segments,
+            locators: lattice3(&f.locators),
+            pose: PoseReport {
+                x: f.pose.x,
+                y: f.pose.y,
+                theta_deg: f.pose.theta_deg,
+            },
+            clamp: ClampReport {
+                segment: f.clamp.segment,
+                rotation_deg: f.clamp.rotation_deg,
+                mount: (&f.clamp.mount).into(),
+                extension: f.clamp.extension,
+                contact: (&f.clamp.contact).into(),
+            },
+            borderline: f.borderline,
+            contacts: f
+                .contacts
+                .iter()
+                .map(|c| ContactReport {
+                    point: (&c.point).into(),
+                    normal: (&c.normal).into(),
+                })
+                .collect(),
+            placement: PlacementReport {
+                rotation_deg: f.placement.rotation_deg,
+                locators: lattice3(&f.placement.locators),
+                clamp_holes: f
+                    .placement
+                    .clamp_holes
+                    .iter()
+                    .map(<[i64; 2]>::from)
+                    .collect(),
+            },
+        }
+    }
+}
