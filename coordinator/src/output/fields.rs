@@ -10,8 +10,8 @@
 //! objects rather than arrays of arrays, names as strings whose schema
 //! lists the values in a `pattern` (that parser refuses string `oneOf`s).
 
-use fixplan_core::Vertex;
 use fixplan_core::SegmentKind;
+use fixplan_core::Vertex;
 use fixplan_core::{
     Clamp, Counts, HoleKind, Kit, MountHole, Params, Pattern, Point, Status, Units,
 };

@@ -3,8 +3,8 @@
 //! and points as `{x, y}` (see [`super::fields`] for why), and back.
 
 use super::fields::{HoleField, PointField};
-use fixplan_core::{ClampReport, ContactReport, PlacementReport, PoseReport};
 use fixplan_core::FixtureReport;
+use fixplan_core::{ClampReport, ContactReport, PlacementReport, PoseReport};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
