@@ -5,7 +5,7 @@
 //! documented in the README ("The results file (MCAP)").
 
 use crate::job::SearchInfo;
-pub use crate::job::Timing;
+pub use crate::job::SolveTiming;
 use fixplan_catalog::{Catalog, CatalogPart};
 use fixplan_core::outline::Vertex;
 use fixplan_core::{Counts, Kit, Params, Point, SolveResult, Status, Units};
@@ -76,7 +76,7 @@ pub struct PartContent<'a> {
     /// The part's result.
     pub result: &'a SolveResult,
     /// How long it took.
-    pub timing: Timing,
+    pub timing: SolveTiming,
     /// `--grid-steps` summaries and the `--good-enough` stop.
     pub search: &'a SearchInfo,
 }
@@ -227,7 +227,7 @@ pub struct PartMsg {
     #[serde(default)]
     pub best_score: Option<f64>,
     /// Wall-clock timings (the only fields that differ between runs).
-    pub timing: Timing,
+    pub timing: SolveTiming,
     /// `--grid-steps`: one summary per grid step, coarse to fine (counts,
     /// best fixture, what the step added). Absent in plain runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -408,7 +408,7 @@ mod tests {
             }),
             fixtures: 1,
             best_score: Some(0.25),
-            timing: Timing {
+            timing: SolveTiming {
                 prepare_ms: 0.5,
                 enumerate_ms: 1.0,
                 shards: 2,
