@@ -18,7 +18,7 @@ use tracing::warn;
 
 /// A task's outcome as the scheduler checks it: whose, for which part,
 /// how long it took.
-struct Header {
+struct OutcomeHead {
     shard_id: u64,
     digest: Digest,
     micros: u64,
@@ -81,7 +81,7 @@ pub(super) fn take_result(
 ) -> Result<(), NotTaken> {
     st.stats.results += 1;
     let p = task_of(st, done.shard_id, worker)?;
-    let head = Header {
+    let head = OutcomeHead {
         shard_id: done.shard_id,
         digest: done.digest,
         micros: done.micros,
@@ -115,7 +115,7 @@ pub(super) fn take_result(
 fn take_enumeration(
     st: &mut State,
     settings: &Settings,
-    head: &Header,
+    head: &OutcomeHead,
     mut enumeration: Enumeration,
     worker: &str,
     (p, shard_range): (usize, Range<u64>),
@@ -171,7 +171,7 @@ fn take_enumeration(
 fn take_finishing(
     st: &mut State,
     settings: &Settings,
-    head: &Header,
+    head: &OutcomeHead,
     finished: Option<Bytes>,
     worker: &str,
     slot: usize,
@@ -213,7 +213,7 @@ fn take_finishing(
 fn check_finishing(
     part: &mut PartSlot,
     settings: &Settings,
-    head: &Header,
+    head: &OutcomeHead,
     finished: Option<&Bytes>,
     merged: Option<&MergedCut>,
     deep: bool,
@@ -262,7 +262,7 @@ fn task_of(st: &mut State, id: u64, worker: &str) -> Result<usize, NotTaken> {
 fn check(
     part: &mut PartSlot,
     settings: &Settings,
-    head: &Header,
+    head: &OutcomeHead,
     enumeration: &Enumeration,
     (shard_range, range): (&Range<u64>, &Range<u64>),
     deep: bool,
@@ -306,7 +306,7 @@ fn check(
 /// worker is banned.
 fn reject(
     st: &mut State,
-    task: &Header,
+    task: &OutcomeHead,
     slot: usize,
     what: &dyn std::fmt::Display,
     worker: &str,
@@ -327,7 +327,7 @@ fn reject(
 
 /// Counts a result that passed its checks, and marks its shard done by
 /// `worker` (whose work is redone if it is caught later).
-fn accept(st: &mut State, task: &Header, worker: &str, checked: usize, deep: bool) {
+fn accept(st: &mut State, task: &OutcomeHead, worker: &str, checked: usize, deep: bool) {
     st.stats.fixtures_rederived += checked as u64;
     st.stats.results_rederived += u64::from(deep);
     st.stats.worker_micros += task.micros;
@@ -345,7 +345,7 @@ fn hold(
     st: &mut State,
     settings: &Settings,
     slot: usize,
-    head: &Header,
+    head: &OutcomeHead,
     enumeration: Enumeration,
     shard_range: &Range<u64>,
 ) {
