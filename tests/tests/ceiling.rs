@@ -6,11 +6,11 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_coordinator::bench::ceiling::{run_once, CeilingArgs};
+use fixplan_coordinator::bench::replay::Replay;
 use fixplan_coordinator::cluster::{TransportChoice, VerifyPolicy};
 use fixplan_coordinator::run::backend::Backend;
 use fixplan_coordinator::run::{run_catalog, RunOptions};
 use fixplan_tests::{catalog, channels};
-use fixplan_worker::replay::Replay;
 use std::path::PathBuf;
 use std::sync::Arc;
 

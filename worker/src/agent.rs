@@ -6,73 +6,17 @@ use crate::finish::Finisher;
 use crate::host::{host_id, unique_name};
 use crate::in_flight::InFlight;
 use crate::iox::IoxClient;
-use crate::part_input::{PartInput, WireInputError};
 use crate::protocol::{
-    encode_as, Assign, DataPath, Digest, Frame, Join, Msg, Next, Outcome, ShardDone, ShardFailed,
-    TransportChoice, PROTOCOL_VERSION,
+    encode_as, Assign, DataPath, Digest, Frame, Join, Msg, Next, TransportChoice, PROTOCOL_VERSION,
 };
-use crate::replay::Replay;
+use crate::task::{CachedPart, Plain, Runner};
 use crate::zenoh_link::{open, request, Keys, LinkError, ZenohOptions};
-use fixplan_core::{PartialResult, PreparedPart};
-use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use thiserror::Error;
 use tracing::{info, warn};
 use zenoh::Wait;
-
-/// Misbehaviours for tests of the coordinator's checks.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Fault {
-    /// Halve the score of the best fixture of every result.
-    CorruptScore,
-    /// Finish parts (whole or cut) with a made-up timing: honest results,
-    /// finished parts that are not what they make.
-    ForgeFinished,
-    /// Take this much longer over every shard (a slow machine: the run
-    /// lasts as long whatever the size of its assignments, which tests
-    /// that upset a worker mid-run rely on).
-    SlowMs(u64),
-}
-
-/// A `--fault` value that names no [`Fault`].
-#[derive(Debug, Clone, PartialEq, Eq, Error)]
-pub enum FaultError {
-    /// None of `corrupt-score`, `forge-finished`, `slow:MS`.
-    #[error("unknown fault {0:?} (corrupt-score, forge-finished, slow:MS)")]
-    Unknown(String),
-    /// `slow:` without a number of milliseconds.
-    #[error("{text}: {source}")]
-    SlowMs {
-        /// The value given.
-        text: String,
-        /// Why it is not a number.
-        source: std::num::ParseIntError,
-    },
-}
-
-impl std::str::FromStr for Fault {
-    type Err = FaultError;
-    fn from_str(s: &str) -> Result<Self, FaultError> {
-        if s == "corrupt-score" {
-            return Ok(Fault::CorruptScore);
-        }
-        if s == "forge-finished" {
-            return Ok(Fault::ForgeFinished);
-        }
-        if let Some(ms) = s.strip_prefix("slow:") {
-            return ms
-                .parse()
-                .map(Fault::SlowMs)
-                .map_err(|source| FaultError::SlowMs {
-                    text: s.to_string(),
-                    source,
-                });
-        }
-        Err(FaultError::Unknown(s.to_string()))
-    }
-}
 
 /// What `fixplan worker` was told on its command line.
 #[derive(Debug, Clone)]
@@ -92,21 +36,14 @@ pub struct WorkerOptions {
     pub name: Option<String>,
     /// Protocol version to claim (tests of the version check).
     pub protocol_version: u16,
-    /// Misbehave on purpose (tests of the coordinator's checks).
-    pub fault: Option<Fault>,
-    /// Answer shards seen before from this cache, at once, and record the
-    /// others (`fixplan bench-coordinator`: the coordinator measured alone).
-    pub replay: Option<Arc<Replay>>,
-    /// Finishes whole parts here ([`crate::finish`]): the `fixplan`
+    /// How tasks are run: [`Plain`], or the binary's own around it
+    /// (faults for tests of the coordinator's checks, replayed results
+    /// for `fixplan bench-coordinator`).
+    pub runner: Arc<dyn Runner>,
+    /// Finishes parts here ([`crate::finish`]): the `fixplan`
     /// binary's, so the coordinator only copies their bytes. Without one,
     /// the coordinator finishes every part itself.
     pub finisher: Option<Arc<dyn Finisher>>,
-}
-
-impl std::fmt::Debug for dyn Finisher {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("Finisher")
-    }
 }
 
 impl Default for WorkerOptions {
@@ -119,8 +56,7 @@ impl Default for WorkerOptions {
             stay: false,
             name: None,
             protocol_version: PROTOCOL_VERSION,
-            fault: None,
-            replay: None,
+            runner: Arc::new(Plain),
             finisher: None,
         }
     }
@@ -168,36 +104,6 @@ impl WorkerSummary {
     }
 }
 
-/// A part's input and the part prepared, or why there is none, shared by
-/// the shards of the part.
-type Prepared = Arc<Result<(PartInput, PreparedPart), WireInputError>>;
-
-/// A part as its shards find it on a worker: the input its first shard
-/// brought, prepared once, by whichever of its shards runs first, on the
-/// pool (preparing on the agent's thread made it a serial stage before
-/// every shard: about 30-50 us a part, a limit for many threads on small
-/// parts).
-struct PartSlot {
-    digest: Digest,
-    input: Option<bytes::Bytes>,
-    prepared: std::sync::OnceLock<Prepared>,
-}
-
-impl PartSlot {
-    /// The part prepared (the first call prepares it; concurrent ones
-    /// wait for it).
-    fn get(&self) -> Prepared {
-        self.prepared
-            .get_or_init(|| {
-                Arc::new(PartInput::prepare_wire_kept(
-                    &self.digest,
-                    self.input.as_deref(),
-                ))
-            })
-            .clone()
-    }
-}
-
 enum DataLink {
     Zenoh,
     Iox(Box<IoxClient>),
@@ -211,146 +117,8 @@ struct Agent {
     keys: Keys,
     session: zenoh::Session,
     pool: rayon::ThreadPool,
-    cache: HashMap<Digest, Arc<PartSlot>>,
+    cache: HashMap<Digest, Arc<CachedPart>>,
     summary: WorkerSummary,
-}
-
-/// What becomes of one assignment ([`shard_outcome`] or
-/// [`cut_part_outcome`]), with the worker's fault and finisher.
-type OutcomeOf = fn(
-    Option<Fault>,
-    Option<&dyn Finisher>,
-    Assign,
-    &Result<(PartInput, PreparedPart), WireInputError>,
-) -> Outcome;
-
-/// One shard of an assignment, enumerated (on the calling rayon pool),
-/// and finished when it is a whole part the coordinator asked to have
-/// finished.
-fn shard_outcome(
-    fault: Option<Fault>,
-    finisher: Option<&dyn Finisher>,
-    a: Assign,
-    prepared: &Result<(PartInput, PreparedPart), WireInputError>,
-) -> Outcome {
-    let failed = |message: String| {
-        Outcome::Failed(ShardFailed {
-            shard_id: a.shard_id,
-            message,
-        })
-    };
-    if let Some(Fault::SlowMs(ms)) = fault {
-        std::thread::sleep(Duration::from_millis(ms));
-    }
-    let (input, prep) = match prepared {
-        Ok((input, prep)) => (input, prep),
-        Err(e) => return failed(e.to_string()),
-    };
-    let t0 = Instant::now();
-    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        crate::run_shard_until(prep, a.range.clone(), a.good_enough)
-    }));
-    match out {
-        Ok((mut result, hit)) => {
-            if fault == Some(Fault::CorruptScore) {
-                if let Some(f) = result.fixtures.first_mut() {
-                    f.score *= 0.5;
-                }
-            }
-            let micros = t0.elapsed().as_micros() as u64;
-            // The forger finishes with another timing than it reports.
-            let forged = micros + u64::from(fault == Some(Fault::ForgeFinished)) * 1_000_000;
-            let finished = match (finisher, &a.finish) {
-                (Some(f), Some(context)) if hit.is_none() => {
-                    finished(f, input, prep, &result, forged, context)
-                }
-                _ => None,
-            };
-            Outcome::Done(Box::new(ShardDone {
-                shard_id: a.shard_id,
-                digest: a.digest,
-                micros,
-                result,
-                hit,
-                finished,
-            }))
-        }
-        Err(p) => failed(format!(
-            "internal error in the enumeration: {}",
-            crate::panic_text(p)
-        )),
-    }
-}
-
-/// A cut part finished from its merged result: the finished bytes and an
-/// empty result (the coordinator holds the merged one), or no bytes if
-/// this worker has no finisher or could not finish it (the coordinator
-/// then does).
-fn cut_part_outcome(
-    fault: Option<Fault>,
-    finisher: Option<&dyn Finisher>,
-    a: Assign,
-    prepared: &Result<(PartInput, PreparedPart), WireInputError>,
-) -> Outcome {
-    let (input, prep) = match prepared {
-        Ok((input, prep)) => (input, prep),
-        Err(e) => {
-            return Outcome::Failed(ShardFailed {
-                shard_id: a.shard_id,
-                message: e.to_string(),
-            })
-        }
-    };
-    let t0 = Instant::now();
-    let finished = match (finisher, &a.finish, &a.finish_from) {
-        (Some(f), Some(context), Some(from)) => {
-            // The forger finishes with another timing than it was sent.
-            let forged = from.micros + u64::from(fault == Some(Fault::ForgeFinished)) * 1_000_000;
-            finished(f, input, prep, &from.result, forged, context)
-        }
-        _ => None,
-    };
-    Outcome::Done(Box::new(ShardDone {
-        shard_id: a.shard_id,
-        digest: a.digest,
-        micros: t0.elapsed().as_micros() as u64,
-        result: PartialResult {
-            range: 0..0,
-            counts: Default::default(),
-            fixtures: Vec::new(),
-        },
-        hit: None,
-        finished,
-    }))
-}
-
-/// A whole part finished by `f`, or `None` (logged) if it could not be:
-/// the coordinator then finishes it from the result.
-fn finished(
-    f: &dyn Finisher,
-    input: &PartInput,
-    prep: &PreparedPart,
-    result: &PartialResult,
-    micros: u64,
-    context: &[u8],
-) -> Option<Vec<u8>> {
-    let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        f.finish(input, prep, result, micros, context)
-    }));
-    match out {
-        Ok(Ok(bytes)) => Some(bytes),
-        Ok(Err(e)) => {
-            warn!("could not finish a part here ({e}): the coordinator will");
-            None
-        }
-        Err(p) => {
-            warn!(
-                "finishing a part panicked ({}): the coordinator will finish it",
-                crate::panic_text(p)
-            );
-            None
-        }
-    }
 }
 
 /// A worker told to wait while shards of its own still run waits this
@@ -388,131 +156,21 @@ impl Agent {
         )
     }
 
-    /// The slot of `a`'s part: the cached one, or a new one holding the
+    /// The part of task `a`: the cached one, or a new one holding the
     /// input `a` brought.
-    fn slot(&mut self, a: &Assign) -> Arc<PartSlot> {
-        // A batch may hold several shards of one part: the first carries
+    fn part(&mut self, assign: &Assign) -> Arc<CachedPart> {
+        // A batch may hold several tasks of one part: the first carries
         // the input, the cache serves the rest.
-        if let Some(p) = self.cache.get(&a.digest) {
+        if let Some(p) = self.cache.get(&assign.digest) {
             return p.clone();
         }
-        let slot = Arc::new(PartSlot {
-            digest: a.digest,
-            input: a.input.clone(),
-            prepared: std::sync::OnceLock::new(),
-        });
+        let part = Arc::new(CachedPart::new(assign.digest, assign.input.clone()));
         self.summary.parts_prepared += 1;
-        // Only cache what the coordinator sent: a missing input is retried.
-        if a.input.is_some() {
-            self.cache.insert(a.digest, slot.clone());
+        // Only cache what the coordinator sent: assign missing input is retried.
+        if assign.input.is_some() {
+            self.cache.insert(assign.digest, part.clone());
         }
-        slot
-    }
-
-    /// `a`'s part prepared, here and now.
-    fn prepared(&mut self, a: &Assign) -> Prepared {
-        self.slot(a).get()
-    }
-
-    /// A simulated worker's assignment: what the replay cache knows at
-    /// once, the rest computed side by side on the pool (each shard
-    /// inside its own `catch_unwind`, so one panicking part fails alone)
-    /// and recorded.
-    fn replayed_batch(&mut self, replay: &Replay, batch: Vec<Assign>) -> Vec<Outcome> {
-        // Finishing a cut part enumerates nothing: it is done apart.
-        let (to_finish, shards): (Vec<Assign>, Vec<Assign>) =
-            batch.into_iter().partition(|a| a.finish_from.is_some());
-        let mut out = self.replayed(replay, to_finish, Self::finished_cut);
-        out.extend(self.replayed(replay, shards, Self::enumerated));
-        out
-    }
-
-    /// Cut parts finished from their merged results
-    /// ([`Assign::finish_from`]), side by side on the pool.
-    fn finished_cut(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
-        self.on_pool(batch, cut_part_outcome)
-    }
-
-    /// [`Agent::replayed_batch`] of one kind: the assignments it knows at
-    /// once, the others done by `compute` ([`Agent::enumerated`] for
-    /// shards, [`Agent::finished_cut`] for finishings) and recorded.
-    fn replayed(
-        &mut self,
-        replay: &Replay,
-        batch: Vec<Assign>,
-        compute: fn(&mut Self, Vec<Assign>) -> Vec<Outcome>,
-    ) -> Vec<Outcome> {
-        let mut out: Vec<Option<Outcome>> = batch.iter().map(|a| replay.get(a)).collect();
-        let (mut todo, mut at) = (Vec::new(), Vec::new());
-        for (i, mut a) in batch.into_iter().enumerate() {
-            if out[i].is_none() {
-                a.input = a.input.take().or_else(|| replay.input_for(&a));
-                if let Some(o) = self.refinished(replay, &a) {
-                    out[i] = Some(replay.put(&a, o));
-                    continue;
-                }
-                todo.push(a);
-                at.push(i);
-            }
-        }
-        if !todo.is_empty() {
-            let asked = todo.clone();
-            for ((a, o), i) in asked.iter().zip(compute(self, todo)).zip(at) {
-                out[i] = Some(replay.put(a, o));
-            }
-        }
-        out.into_iter().flatten().collect()
-    }
-
-    /// A shard enumerated before under another finish context, finished
-    /// for `a` (a part listed many times is enumerated once).
-    fn refinished(&mut self, replay: &Replay, a: &Assign) -> Option<Outcome> {
-        if a.finish_from.is_some() {
-            // A finishing enumerates nothing to finish again.
-            return None;
-        }
-        let (finisher, context) = (self.opts.finisher.clone()?, a.finish.as_ref()?);
-        let Outcome::Done(mut done) = replay.enumerated(a)? else {
-            return None;
-        };
-        let prepared = self.prepared(a);
-        let (input, prep) = prepared.as_ref().as_ref().ok()?;
-        done.finished = finished(
-            finisher.as_ref(),
-            input,
-            prep,
-            &done.result,
-            done.micros,
-            context,
-        );
-        Some(Outcome::Done(done))
-    }
-
-    /// Enumerates the shards of `batch` side by side on the pool.
-    fn enumerated(&mut self, batch: Vec<Assign>) -> Vec<Outcome> {
-        self.on_pool(batch, shard_outcome)
-    }
-
-    /// The `outcome` of each assignment of `batch` with its part prepared,
-    /// side by side on the pool.
-    fn on_pool(&mut self, batch: Vec<Assign>, outcome: OutcomeOf) -> Vec<Outcome> {
-        if batch.is_empty() {
-            return Vec::new();
-        }
-        let jobs: Vec<_> = batch
-            .into_iter()
-            .map(|a| {
-                let prep = self.prepared(&a);
-                (a, prep)
-            })
-            .collect();
-        let fault = self.opts.fault;
-        let finisher = self.opts.finisher.as_deref();
-        self.pool.install(|| {
-            jobs.into_par_iter()
-                .map(|(a, prep)| outcome(fault, finisher, a, &prep))
-                .collect::<Vec<_>>()
-        })
+        part
     }
 
     /// Works for one coordinator until it says Done (true) or goes silent
@@ -599,25 +257,13 @@ impl Agent {
         }
     }
 
-    /// Puts an assignment on the pool, shard by shard (replayed ones are
-    /// known at once).
+    /// Puts an assignment on the pool, task by task.
     fn start(&mut self, batch: Vec<Assign>, flight: &mut InFlight) {
-        if let Some(replay) = self.opts.replay.clone() {
-            let outcomes = self.replayed_batch(&replay, batch);
-            flight.add_ready(outcomes);
-            return;
-        }
         for a in batch {
-            let slot = self.slot(&a);
-            // Finishing a cut part enumerates nothing.
-            let outcome: OutcomeOf = if a.finish_from.is_some() {
-                cut_part_outcome
-            } else {
-                shard_outcome
-            };
-            let (fault, finisher) = (self.opts.fault, self.opts.finisher.clone());
+            let part = self.part(&a);
+            let (runner, finisher) = (self.opts.runner.clone(), self.opts.finisher.clone());
             flight.spawn(&self.pool, a.shard_id, move || {
-                outcome(fault, finisher.as_deref(), a, &slot.get())
+                runner.run(&a, &part, finisher.as_deref())
             });
         }
     }
@@ -766,32 +412,7 @@ pub fn run_worker(opts: WorkerOptions) -> Result<WorkerSummary, WorkerError> {
 
 #[cfg(test)]
 mod tests {
-    use super::{PartSlot, WorkerSummary};
-    use crate::part_input::{digest, sample_input};
-    use std::sync::{Arc, OnceLock};
-
-    #[test]
-    fn shards_running_at_once_prepare_their_part_once() {
-        let bytes = sample_input().encode().unwrap();
-        let slot = Arc::new(PartSlot {
-            digest: digest(&bytes),
-            input: Some(bytes.into()),
-            prepared: OnceLock::new(),
-        });
-        let got: Vec<_> = std::thread::scope(|s| {
-            let handles: Vec<_> = (0..4).map(|_| s.spawn(|| slot.get())).collect();
-            handles.into_iter().map(|h| h.join().unwrap()).collect()
-        });
-        assert!(got[0].is_ok());
-        assert!(got.iter().all(|p| Arc::ptr_eq(p, &got[0])));
-        // A part whose input never came fails its shards by name.
-        let missing = PartSlot {
-            digest: [0; 32],
-            input: None,
-            prepared: OnceLock::new(),
-        };
-        assert!(missing.get().is_err());
-    }
+    use super::WorkerSummary;
 
     #[test]
     fn busy_percent_is_a_share_of_the_offered_time() {

@@ -104,8 +104,9 @@ pub fn check_listen(
 }
 
 /// The strings of a JSON list (none for anything else).
-fn strings(v: &serde_json::Value) -> Vec<String> {
-    v.as_array()
+fn strings(value: &serde_json::Value) -> Vec<String> {
+    value
+        .as_array()
         .map(|a| {
             a.iter()
                 .filter_map(|e| e.as_str().map(str::to_owned))
@@ -116,9 +117,10 @@ fn strings(v: &serde_json::Value) -> Vec<String> {
 
 /// The endpoints a configuration listens on in its mode (zenoh's default
 /// mode is `peer`; a mode-dependent value lists them per mode).
-fn listen_endpoints(c: &zenoh::Config) -> Vec<String> {
+fn listen_endpoints(config: &zenoh::Config) -> Vec<String> {
     let json = |k: &str| {
-        c.get_json(k)
+        config
+            .get_json(k)
             .ok()
             .and_then(|s| serde_json::from_str::<serde_json::Value>(&s).ok())
     };
@@ -136,11 +138,11 @@ fn listen_endpoints(c: &zenoh::Config) -> Vec<String> {
 
 /// [`check_listen`] on a zenoh configuration's listen endpoints, with
 /// its `transport/link/tls/enable_mtls`.
-pub fn check_config(c: &zenoh::Config, insecure: bool) -> Result<Vec<String>, Exposed> {
-    let mtls = c
+pub fn check_config(config: &zenoh::Config, insecure: bool) -> Result<Vec<String>, Exposed> {
+    let mtls = config
         .get_json("transport/link/tls/enable_mtls")
         .is_ok_and(|v| v.trim() == "true");
-    check_listen(&listen_endpoints(c), mtls, insecure)
+    check_listen(&listen_endpoints(config), mtls, insecure)
 }
 
 #[cfg(test)]

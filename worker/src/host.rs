@@ -11,14 +11,6 @@ fn read_trim(path: &str) -> String {
         .unwrap_or_default()
 }
 
-/// This host's cores, or 1 when the system will not say: the default
-/// thread count of every pool.
-pub fn cores() -> usize {
-    std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(1)
-}
-
 /// The host name, or `host` when it cannot be read.
 pub fn hostname() -> String {
     let h = read_trim("/proc/sys/kernel/hostname");
@@ -47,8 +39,8 @@ pub fn host_id() -> String {
 }
 
 /// Characters allowed in a key-expression chunk and an iceoryx2 name.
-pub fn sanitize(s: &str) -> String {
-    s.chars()
+pub fn sanitize(text: &str) -> String {
+    text.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
                 c

@@ -8,7 +8,7 @@
 //! coordinator which shards it still holds (protocol 7,
 //! [`crate::protocol::Msg::Report`]).
 
-use crate::protocol::{Outcome, ShardFailed};
+use crate::protocol::{Outcome, TaskError, TaskFailed};
 use std::collections::HashSet;
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::time::{Duration, Instant};
@@ -33,8 +33,8 @@ pub struct InFlight {
 }
 
 /// Microseconds since `t`.
-fn micros_since(t: Instant) -> u64 {
-    u64::try_from(t.elapsed().as_micros()).unwrap_or(u64::MAX)
+fn micros_since(start: Instant) -> u64 {
+    u64::try_from(start.elapsed().as_micros()).unwrap_or(u64::MAX)
 }
 
 impl InFlight {
@@ -68,9 +68,9 @@ impl InFlight {
             let t = Instant::now();
             let out =
                 std::panic::catch_unwind(std::panic::AssertUnwindSafe(job)).unwrap_or_else(|p| {
-                    Outcome::Failed(ShardFailed {
+                    Outcome::Failed(TaskFailed {
                         shard_id: id,
-                        message: format!("internal error: {}", crate::panic_text(p)),
+                        error: TaskError::Crashed(crate::panic_text(p)),
                     })
                 });
             let micros = micros_since(t);
@@ -133,7 +133,6 @@ impl InFlight {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::ShardFailed;
 
     fn pool(threads: usize) -> rayon::ThreadPool {
         rayon::ThreadPoolBuilder::new()
@@ -143,9 +142,9 @@ mod tests {
     }
 
     fn failed(id: u64) -> Outcome {
-        Outcome::Failed(ShardFailed {
+        Outcome::Failed(TaskFailed {
             shard_id: id,
-            message: String::new(),
+            error: TaskError::MissingInput,
         })
     }
 
@@ -194,7 +193,7 @@ mod tests {
         match &out[..] {
             [Outcome::Failed(a), Outcome::Failed(b)] => {
                 assert_eq!((a.shard_id, b.shard_id), (7, 8));
-                assert!(a.message.contains("boom"), "{}", a.message);
+                assert_eq!(a.error, TaskError::Crashed("boom".into()));
             }
             other => panic!("{other:?}"),
         }

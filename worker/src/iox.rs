@@ -76,8 +76,8 @@ fn node(prefix: &str) -> Result<Node<Ipc>, LinkError> {
         .map_err(err("node"))
 }
 
-fn name(s: &str) -> Result<ServiceName, LinkError> {
-    ServiceName::new(s).map_err(err("service name"))
+fn name(text: &str) -> Result<ServiceName, LinkError> {
+    ServiceName::new(text).map_err(err("service name"))
 }
 
 /// The event service that wakes the client `client` of `service` when its

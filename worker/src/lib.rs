@@ -11,12 +11,17 @@
 //!   without TLS unless `--insecure`;
 //! - [`iox`]: iceoryx2 request/reply through shared memory on one host;
 //! - [`agent`]: the `fixplan worker` loop;
-//! - [`in_flight`]: the shards a worker runs while it asks for more;
-//! - [`replay`]: shard results replayed by simulated workers
-//!   (`fixplan bench-coordinator`);
-//! - [`host`]: host ids and unique names;
-//! - [`log`]: the log line format and the subscriber of the `fixplan` command
-//!   (library code only emits `tracing` events).
+//! - [`task`]: what a worker is asked ([`protocol::Task`]), read and
+//!   done in one place, and the [`task::Runner`] seam around it;
+//! - [`finish`]: the [`finish::Finisher`] that turns a part's result into
+//!   the coordinator's bytes;
+//! - [`in_flight`]: the tasks a worker runs while it asks for more;
+//! - [`host`]: host ids and unique names.
+//!
+//! Library code only emits `tracing` events; the `fixplan` binary (crate
+//! `fixplan-coordinator`) installs the subscriber, and gives its workers
+//! their finisher and, in tests and benchmarks, a [`task::Runner`] of its
+//! own (faults, replayed results).
 
 pub mod agent;
 pub mod exposure;
@@ -24,10 +29,9 @@ pub mod finish;
 pub mod host;
 pub mod in_flight;
 pub mod iox;
-pub mod log;
 pub mod part_input;
 pub mod protocol;
-pub mod replay;
+pub mod task;
 pub mod zenoh_link;
 
 use fixplan_core::{PartialResult, PreparedPart};
@@ -55,9 +59,10 @@ pub fn run_shard_until(
 
 /// The message of a caught panic, for the part's `invalid` result: a bug
 /// in one part's enumeration must not end the run, but must be reported.
-pub fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
-    p.downcast_ref::<&str>()
+pub fn panic_text(payload: Box<dyn std::any::Any + Send>) -> String {
+    payload
+        .downcast_ref::<&str>()
         .map(|s| s.to_string())
-        .or_else(|| p.downcast_ref::<String>().cloned())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
         .unwrap_or_else(|| "unknown panic".into())
 }

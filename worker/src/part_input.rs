@@ -3,7 +3,7 @@
 //! bit for bit. `prepare` is deterministic, so a worker that prepares the
 //! same input holds the same [`PreparedPart`] as the coordinator.
 
-use crate::protocol::Digest;
+use crate::protocol::{Digest, TaskError};
 use fixplan_core::{
     prepare, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, PrepareError, PreparedPart,
     Units, Vertex,
@@ -40,7 +40,7 @@ pub enum InputError {
 
 /// Why a worker has no prepared part for an assignment: the shard fails
 /// with this text and the part becomes `invalid` (see
-/// [`crate::protocol::ShardFailed`]).
+/// [`crate::protocol::TaskFailed`]).
 #[derive(Debug, Error)]
 pub enum WireInputError {
     /// The assignment is for a part this worker has not been sent.
@@ -218,11 +218,22 @@ pub fn digest(bytes: &[u8]) -> Digest {
 }
 
 /// A digest in hex, for logs.
-pub fn short_hex(d: &Digest) -> String {
-    d[..6].iter().map(|b| format!("{b:02x}")).collect()
+pub fn short_hex(digest: &Digest) -> String {
+    digest[..6].iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// The input of the `rectangle-mm` bench case, for tests.
+impl From<&WireInputError> for TaskError {
+    fn from(error: &WireInputError) -> TaskError {
+        match error {
+            WireInputError::Missing => TaskError::MissingInput,
+            WireInputError::DigestMismatch => TaskError::DigestMismatch,
+            WireInputError::Input(error) => TaskError::UnreadableInput(error.to_string()),
+            WireInputError::Prepare(error) => TaskError::Unprepared(error.to_string()),
+        }
+    }
+}
+
 #[cfg(test)]
 pub(crate) fn sample_input() -> PartInput {
     let case: fixplan_core::Case =

@@ -15,7 +15,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 7;
+pub const PROTOCOL_VERSION: u16 = 8;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -46,19 +46,19 @@ pub struct UnknownTransport(pub String);
 
 impl std::str::FromStr for TransportChoice {
     type Err = UnknownTransport;
-    fn from_str(s: &str) -> Result<Self, UnknownTransport> {
-        match s {
+    fn from_str(text: &str) -> Result<Self, UnknownTransport> {
+        match text {
             "auto" => Ok(TransportChoice::Auto),
             "zenoh" => Ok(TransportChoice::Zenoh),
             "iceoryx2" => Ok(TransportChoice::Iceoryx2),
-            _ => Err(UnknownTransport(s.to_string())),
+            _ => Err(UnknownTransport(text.to_string())),
         }
     }
 }
 
 impl std::fmt::Display for TransportChoice {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        formatter.write_str(match self {
             TransportChoice::Auto => "auto",
             TransportChoice::Zenoh => "zenoh",
             TransportChoice::Iceoryx2 => "iceoryx2",
@@ -111,88 +111,196 @@ pub struct Welcome {
     pub lease_ms: u64,
 }
 
-/// One shard to enumerate.
+/// One task for a worker: what it is to do ([`Task`]) with which part.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Assign {
-    /// Names the shard in the worker's report.
+    /// Names the task in the worker's report (a shard, or the finishing
+    /// of a cut part).
     pub shard_id: u64,
-    /// The part the shard belongs to: the key of the worker's cache of
+    /// The part the task is about: the key of the worker's cache of
     /// prepared parts.
     pub digest: Digest,
-    /// The combinations to enumerate.
-    pub range: Range<u64>,
     /// The part's wire input ([`crate::part_input::PartInput::encode`]),
-    /// only the first time this worker gets a shard of the part. Shared
+    /// only the first time this worker gets a task of the part. Shared
     /// bytes (serialised as `serde_bytes` would, so the wire is the same)
     /// because the coordinator sends one part's input to every worker
     /// without copying it for each.
     pub input: Option<Bytes>,
-    /// `--good-enough`: stop the shard at its first combination that admits
-    /// a fixture scoring this or better ([`ShardDone::hit`]).
-    pub good_enough: Option<f64>,
-    /// A whole part the worker is to finish (protocol 4): what the
-    /// coordinator's [`crate::finish::Finisher`] needs besides the part's
-    /// input and result (its place and name in the catalogue), opaque to
-    /// the worker. Workers without a finisher ignore it.
-    pub finish: Option<Bytes>,
-    /// A part cut into shards, all of them merged (protocol 6): the worker
-    /// finishes the part from this result with its `finish` context
-    /// instead of enumerating anything (`range` is empty), and answers
-    /// with [`ShardDone::finished`] and an empty result. Finishing a part
-    /// costs the coordinator more than all else it does for it, so cut
-    /// parts are finished by workers too, like whole ones.
-    pub finish_from: Option<Box<FinishFrom>>,
+    /// What to do with the part.
+    pub task: Task,
 }
 
-/// What a worker finishes a cut part from ([`Assign::finish_from`]).
+/// What a worker is asked to do with a part (protocol 8). The
+/// coordinator's scheduler makes tasks in one place and a worker reads
+/// them in one place ([`crate::task`]): each kind says what it needs and
+/// nothing else.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct FinishFrom {
+pub enum Task {
+    /// Enumerate these combinations of the part: a shard of a cut part, or
+    /// a whole part the coordinator finishes itself. Answered with
+    /// [`Answer::Enumerated`].
+    Enumerate {
+        /// The combinations (an open end: up to the part's count).
+        range: Range<u64>,
+        /// `--good-enough`: stop at the first combination that admits a
+        /// fixture scoring this or better ([`Answer::Enumerated`]'s `hit`).
+        good_enough: Option<f64>,
+    },
+    /// Enumerate a whole part and finish it with the worker's
+    /// [`crate::finish::Finisher`]: answered with
+    /// [`Answer::EnumeratedAndFinished`].
+    EnumerateAndFinish {
+        /// Every combination of the part (an open range).
+        range: Range<u64>,
+        /// What the finisher needs besides the part and its result (its
+        /// place and entry in the catalogue), opaque to the worker.
+        context: Bytes,
+    },
+    /// Finish a part cut into shards from their merged result, enumerating
+    /// nothing: answered with [`Answer::Finished`]. Finishing a part costs
+    /// the coordinator more than all else it does for it, so cut parts are
+    /// finished by workers too, like whole ones.
+    Finish {
+        /// The part's shard results merged, and their time.
+        merged: Box<MergedCut>,
+        /// As for [`Task::EnumerateAndFinish`].
+        context: Bytes,
+    },
+}
+
+/// What a worker finishes a cut part from ([`Task::Finish`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MergedCut {
     /// The part's shard results merged, as the coordinator merged them.
     pub result: PartialResult,
     /// The workers' time enumerating its shards, for the part's timing.
     pub micros: u64,
 }
 
-/// A finished shard (of the worker named in the [`Msg::Report`]).
+/// A task done (by the worker named in the [`Msg::Report`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ShardDone {
-    /// The shard of the [`Assign`].
+pub struct TaskDone {
+    /// The task of the [`Assign`].
     pub shard_id: u64,
-    /// The part the worker enumerated: the coordinator checks it is the one
+    /// The part the worker worked on: the coordinator checks it is the one
     /// it assigned.
     pub digest: Digest,
-    /// Time spent on the shard, for the coordinator's statistics.
+    /// Time spent enumerating (finishing, for [`Task::Finish`]), for the
+    /// coordinator's statistics and the part's timing.
     pub micros: u64,
-    /// The enumeration of the shard, or with `good_enough` of its prefix
-    /// up to and including `hit`.
-    pub result: PartialResult,
-    /// `good_enough`: the combination where the shard stopped.
-    pub hit: Option<u64>,
-    /// With [`Assign::finish`]: the part finished by the worker's
-    /// [`crate::finish::Finisher`] (for the coordinator: its messages,
-    /// compressed), or `None` (no finisher, or it failed: the coordinator
-    /// finishes the part from `result`).
-    #[serde(with = "serde_bytes")]
-    pub finished: Option<Vec<u8>>,
+    /// What the task gave, of the kind the task asked for.
+    pub answer: Answer,
 }
 
-/// A shard the worker could not enumerate (a panic, or an input it could
-/// not prepare): the part becomes `invalid` with this message.
+/// What a task gave: one kind for each kind of [`Task`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ShardFailed {
-    /// The shard of the [`Assign`].
-    pub shard_id: u64,
-    /// What went wrong, in words: it becomes the part's error message.
-    pub message: String,
+pub enum Answer {
+    /// Of [`Task::Enumerate`].
+    Enumerated {
+        /// The enumeration of the range, or with `good_enough` of its
+        /// prefix up to and including `hit`.
+        result: PartialResult,
+        /// `good_enough`: the combination where the shard stopped.
+        hit: Option<u64>,
+    },
+    /// Of [`Task::EnumerateAndFinish`].
+    EnumeratedAndFinished {
+        /// The enumeration of the whole part.
+        result: PartialResult,
+        /// The part finished by the worker's finisher (for the
+        /// coordinator: its messages, compressed), or why not (the
+        /// coordinator then finishes the part from `result`).
+        finished: Result<Bytes, FinishError>,
+    },
+    /// Of [`Task::Finish`]: the part finished, or why not (the
+    /// coordinator then finishes it from the merged result it holds).
+    Finished(Result<Bytes, FinishError>),
 }
 
-/// What became of one shard of an assignment.
+/// A task the worker could not do (a panic, or an input it could not
+/// prepare): the part becomes `invalid` with this error's text.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TaskFailed {
+    /// The task of the [`Assign`].
+    pub shard_id: u64,
+    /// What went wrong: its text becomes the part's error message.
+    pub error: TaskError,
+}
+
+/// Why a worker could not do a task. The texts are the part's error
+/// message in the results file: they read as they always did.
+#[derive(Debug, Clone, PartialEq, Error, Serialize, Deserialize)]
+pub enum TaskError {
+    /// The task is for a part this worker has not been sent.
+    #[error("the coordinator sent no input for an unknown part")]
+    MissingInput,
+    /// The input was damaged or belongs to another part.
+    #[error("part input does not match its digest")]
+    DigestMismatch,
+    /// The input could not be read (postcard's reason, as
+    /// [`crate::part_input::InputError`] tells it).
+    #[error("{0}")]
+    UnreadableInput(String),
+    /// The input was read but the part or kit is unusable (the prepare
+    /// error's text).
+    #[error("{0}")]
+    Unprepared(String),
+    /// A task that enumerates an empty range: nothing a coordinator of
+    /// this version sends.
+    #[error("a task to enumerate the empty range {0:?}")]
+    EmptyRange(Range<u64>),
+    /// The task panicked (a bug in the part's enumeration): the message.
+    #[error("internal error in the enumeration: {0}")]
+    Panicked(String),
+    /// The worker's thread panicked outside the task's own guard.
+    #[error("internal error: {0}")]
+    Crashed(String),
+}
+
+/// Why a part was not finished, or why a worker's finished part is not
+/// what its inputs make. It crosses the wire in
+/// [`Answer`]: the coordinator then finishes the part
+/// itself.
+#[derive(Debug, Clone, PartialEq, Eq, Error, Serialize, Deserialize)]
+pub enum FinishError {
+    /// The worker has no finisher (a worker loop started without one).
+    #[error("this worker finishes no parts")]
+    NoFinisher,
+    /// The context is not one this version reads.
+    #[error("malformed finish context: {0}")]
+    Context(String),
+    /// The part's messages could not be made or compressed.
+    #[error("cannot make the part's messages: {0}")]
+    Messages(String),
+    /// The finished part could not be encoded.
+    #[error("cannot encode the finished part: {0}")]
+    Encode(String),
+    /// A finished part that is not one of this version.
+    #[error("malformed: {0}")]
+    Malformed(String),
+    /// The finished part's summary differs from what its inputs make.
+    #[error("summary {theirs}, the result's {ours}")]
+    Summary {
+        /// The worker's summary.
+        theirs: String,
+        /// The summary its inputs make.
+        ours: String,
+    },
+    /// The finished part's records differ from what its inputs make.
+    #[error("{0}")]
+    Records(String),
+    /// Finishing panicked (a bug): the message.
+    #[error("finishing panicked: {0}")]
+    Panicked(String),
+}
+
+/// What became of one task of an assignment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Outcome {
-    /// Enumerated (boxed: the result is large beside a failure).
-    Done(Box<ShardDone>),
-    /// Not enumerated, and enumerating it again would fail the same way.
-    Failed(ShardFailed),
+    /// Done (boxed: the result is large beside a failure).
+    Done(Box<TaskDone>),
+    /// Not done, and doing it again would fail the same way.
+    Failed(TaskFailed),
 }
 
 impl Outcome {
@@ -417,41 +525,73 @@ mod tests {
         }
         let m = Msg::Report {
             worker: "w".into(),
-            outcomes: vec![Outcome::Done(Box::new(ShardDone {
-                shard_id: 1,
-                digest: [7; 32],
-                micros: 5,
-                result: pr,
-                hit: Some(4),
-                finished: Some(vec![1, 2, 3]),
-            }))],
+            outcomes: vec![
+                Outcome::Done(Box::new(TaskDone {
+                    shard_id: 1,
+                    digest: [7; 32],
+                    micros: 5,
+                    answer: Answer::EnumeratedAndFinished {
+                        result: pr.clone(),
+                        finished: Ok(Bytes::from_static(&[1, 2, 3])),
+                    },
+                })),
+                Outcome::Done(Box::new(TaskDone {
+                    shard_id: 2,
+                    digest: [7; 32],
+                    micros: 5,
+                    answer: Answer::Enumerated {
+                        result: pr,
+                        hit: Some(4),
+                    },
+                })),
+                Outcome::Failed(TaskFailed {
+                    shard_id: 3,
+                    error: TaskError::Panicked("boom".into()),
+                }),
+            ],
             holding: vec![],
         };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
     }
 
-    /// A finishing task carries its merged result bit for bit.
+    /// Every kind of task crosses the wire as it was made, a merged result
+    /// bit for bit.
     #[test]
-    fn finishing_tasks_round_trip() {
-        let a = Assign {
-            shard_id: 12,
-            digest: [5; 32],
-            range: 0..0,
-            input: None,
-            good_enough: None,
-            finish: Some(Bytes::from_static(b"ctx")),
-            finish_from: Some(Box::new(FinishFrom {
-                result: PartialResult {
-                    range: 0..40,
-                    counts: Counts::default(),
-                    fixtures: vec![],
-                },
-                micros: 1234,
-            })),
-        };
+    fn tasks_round_trip() {
+        let tasks = [
+            Task::Enumerate {
+                range: 0..40,
+                good_enough: Some(0.25),
+            },
+            Task::EnumerateAndFinish {
+                range: 0..u64::MAX,
+                context: Bytes::from_static(b"ctx"),
+            },
+            Task::Finish {
+                merged: Box::new(MergedCut {
+                    result: PartialResult {
+                        range: 0..40,
+                        counts: Counts::default(),
+                        fixtures: vec![],
+                    },
+                    micros: 1234,
+                }),
+                context: Bytes::from_static(b"ctx"),
+            },
+        ];
+        let work = tasks
+            .into_iter()
+            .enumerate()
+            .map(|(i, task)| Assign {
+                shard_id: i as u64,
+                digest: [5; 32],
+                input: None,
+                task,
+            })
+            .collect();
         let m = Msg::Reply {
             notes: vec![],
-            next: Next::Work(vec![a]),
+            next: Next::Work(work),
         };
         assert_eq!(decode(&encode(&m).unwrap()), Ok(Frame::Msg(m)));
     }
@@ -461,38 +601,41 @@ mod tests {
     #[test]
     fn shared_bytes_keep_the_wire_form() {
         #[derive(Serialize)]
+        enum TaskAsVectors {
+            #[allow(dead_code)] // only the second kind is encoded
+            Enumerate,
+            EnumerateAndFinish {
+                range: Range<u64>,
+                #[serde(with = "serde_bytes")]
+                context: Vec<u8>,
+            },
+        }
+        #[derive(Serialize)]
         struct AsVectors {
             shard_id: u64,
             digest: Digest,
-            range: Range<u64>,
             #[serde(with = "serde_bytes")]
             input: Option<Vec<u8>>,
-            good_enough: Option<f64>,
-            #[serde(with = "serde_bytes")]
-            finish: Option<Vec<u8>>,
-            finish_from: Option<Box<FinishFrom>>,
+            task: TaskAsVectors,
         }
-        for (input, finish) in [
-            (Some(vec![1u8, 2, 250]), None),
-            (None, Some(vec![9u8; 300])),
-        ] {
+        for (input, context) in [(Some(vec![1u8, 2, 250]), vec![]), (None, vec![9u8; 300])] {
             let a = Assign {
                 shard_id: 7,
                 digest: [3; 32],
-                range: 0..40,
                 input: input.clone().map(Bytes::from),
-                good_enough: Some(1.5),
-                finish: finish.clone().map(Bytes::from),
-                finish_from: None,
+                task: Task::EnumerateAndFinish {
+                    range: 0..40,
+                    context: Bytes::from(context.clone()),
+                },
             };
             let v = AsVectors {
                 shard_id: 7,
                 digest: [3; 32],
-                range: 0..40,
                 input,
-                good_enough: Some(1.5),
-                finish,
-                finish_from: None,
+                task: TaskAsVectors::EnumerateAndFinish {
+                    range: 0..40,
+                    context,
+                },
             };
             let wire = postcard::to_allocvec(&a).unwrap();
             assert_eq!(wire, postcard::to_allocvec(&v).unwrap());

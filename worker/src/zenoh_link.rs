@@ -103,16 +103,16 @@ pub enum LinkError {
     Encode(#[from] EncodeError),
 }
 
-fn json_list(v: &[String]) -> String {
-    let items: Vec<String> = v.iter().map(|s| format!("{s:?}")).collect();
+fn json_list(values: &[String]) -> String {
+    let items: Vec<String> = values.iter().map(|s| format!("{s:?}")).collect();
     format!("[{}]", items.join(","))
 }
 
 /// A zenoh configuration: the file if any, else defaults with multicast
 /// scouting off (explicit endpoints only) and gossip off.
-pub fn zenoh_config(o: &ZenohOptions) -> Result<zenoh::Config, LinkError> {
+pub fn zenoh_config(opts: &ZenohOptions) -> Result<zenoh::Config, LinkError> {
     let cfg_err = LinkError::Config;
-    let mut c = match &o.config_file {
+    let mut c = match &opts.config_file {
         Some(p) => zenoh::Config::from_file(p).map_err(|detail| LinkError::ConfigFile {
             path: p.clone(),
             detail,
@@ -126,31 +126,31 @@ pub fn zenoh_config(o: &ZenohOptions) -> Result<zenoh::Config, LinkError> {
             c
         }
     };
-    if let Some(m) = &o.mode {
+    if let Some(m) = &opts.mode {
         c.insert_json5("mode", &format!("{m:?}")).map_err(cfg_err)?;
     }
-    if !o.listen.is_empty() || o.config_file.is_none() {
-        c.insert_json5("listen/endpoints", &json_list(&o.listen))
+    if !opts.listen.is_empty() || opts.config_file.is_none() {
+        c.insert_json5("listen/endpoints", &json_list(&opts.listen))
             .map_err(cfg_err)?;
     }
-    if !o.connect.is_empty() {
-        c.insert_json5("connect/endpoints", &json_list(&o.connect))
+    if !opts.connect.is_empty() {
+        c.insert_json5("connect/endpoints", &json_list(&opts.connect))
             .map_err(cfg_err)?;
     }
-    if let Some(t) = &o.tls {
+    if let Some(t) = &opts.tls {
         insert_tls(&mut c, t)?;
     }
     Ok(c)
 }
 
 /// A path as a JSON5 string.
-fn json_path(p: &std::path::Path) -> String {
-    serde_json::Value::String(p.display().to_string()).to_string()
+fn json_path(file: &std::path::Path) -> String {
+    serde_json::Value::String(file.display().to_string()).to_string()
 }
 
 /// Fills `transport/link/tls` from `t`, after checking the files can be
 /// read (zenoh would only say so when a link is made).
-fn insert_tls(c: &mut zenoh::Config, t: &TlsFiles) -> Result<(), LinkError> {
+fn insert_tls(config: &mut zenoh::Config, files: &TlsFiles) -> Result<(), LinkError> {
     let readable = |what: &'static str, path: &PathBuf| {
         std::fs::File::open(path)
             .map(drop)
@@ -160,9 +160,9 @@ fn insert_tls(c: &mut zenoh::Config, t: &TlsFiles) -> Result<(), LinkError> {
                 source,
             })
     };
-    readable("CA certificate", &t.ca)?;
-    let mut keys = vec![("root_ca_certificate", json_path(&t.ca))];
-    if let Some((cert, key)) = &t.identity {
+    readable("CA certificate", &files.ca)?;
+    let mut keys = vec![("root_ca_certificate", json_path(&files.ca))];
+    if let Some((cert, key)) = &files.identity {
         readable("certificate", cert)?;
         readable("private key", key)?;
         for (k, path) in [
@@ -174,7 +174,7 @@ fn insert_tls(c: &mut zenoh::Config, t: &TlsFiles) -> Result<(), LinkError> {
             keys.push((k, json_path(path)));
         }
     }
-    let mtls = if t.identity.is_some() {
+    let mtls = if files.identity.is_some() {
         "true"
     } else {
         "false"
@@ -182,7 +182,8 @@ fn insert_tls(c: &mut zenoh::Config, t: &TlsFiles) -> Result<(), LinkError> {
     keys.push(("enable_mtls", mtls.into()));
     keys.push(("verify_name_on_connect", "true".into()));
     for (k, v) in keys {
-        c.insert_json5(&format!("transport/link/tls/{k}"), &v)
+        config
+            .insert_json5(&format!("transport/link/tls/{k}"), &v)
             .map_err(LinkError::Config)?;
     }
     Ok(())
@@ -191,9 +192,9 @@ fn insert_tls(c: &mut zenoh::Config, t: &TlsFiles) -> Result<(), LinkError> {
 /// Opens a session with [`zenoh_config`]: blocking, no async runtime
 /// needed (zenoh runs its own). Listening where other hosts can join
 /// without TLS is refused unless `o.insecure` (then a warning).
-pub fn open(o: &ZenohOptions) -> Result<zenoh::Session, LinkError> {
-    let c = zenoh_config(o)?;
-    let exposed = crate::exposure::check_config(&c, o.insecure)?;
+pub fn open(opts: &ZenohOptions) -> Result<zenoh::Session, LinkError> {
+    let c = zenoh_config(opts)?;
+    let exposed = crate::exposure::check_config(&c, opts.insecure)?;
     for e in exposed {
         tracing::warn!(
             role = "zenoh",

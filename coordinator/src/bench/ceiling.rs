@@ -15,6 +15,7 @@
 //! sessions do on zenoh's shared threads then counts as the
 //! coordinator's).
 
+use super::replay::Replay;
 use super::replay_workers::{round_endpoint, serve_main, start_workers, WorkerProcess};
 use crate::cluster::cpu_time::{monotonic_micros, process_micros};
 use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
@@ -24,7 +25,6 @@ use crate::run::{run_catalog, RunOptions};
 use anyhow::{bail, Context, Result};
 use fixplan_catalog::{load_catalog, load_kit, Catalog, KitSpec};
 use fixplan_worker::host::unique_name;
-use fixplan_worker::replay::Replay;
 use fixplan_worker::zenoh_link::ZenohOptions;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

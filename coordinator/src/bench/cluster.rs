@@ -8,7 +8,7 @@ use crate::job::{part_params, JobContext, SearchOptions};
 use anyhow::{Context, Result};
 use fixplan_catalog::{load_catalog, load_kit};
 use fixplan_worker::iox::{self, IoxClient};
-use fixplan_worker::protocol::{encode, Msg, Next, Outcome, ShardDone};
+use fixplan_worker::protocol::{encode, Answer, Msg, Next, Outcome, TaskDone};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -155,13 +155,11 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
     let result = prep.enumerate_range(0..n);
     Ok(encode(&Msg::Report {
         worker: "bench".into(),
-        outcomes: vec![Outcome::Done(Box::new(ShardDone {
+        outcomes: vec![Outcome::Done(Box::new(TaskDone {
             shard_id: 1,
             digest: [0; 32],
             micros: 1,
-            result,
-            hit: None,
-            finished: None,
+            answer: Answer::Enumerated { result, hit: None },
         }))],
         holding: vec![],
     })?)

@@ -7,4 +7,5 @@
 pub mod ceiling;
 pub mod cluster;
 pub mod parts;
+pub mod replay;
 pub mod replay_workers;

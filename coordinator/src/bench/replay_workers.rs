@@ -7,12 +7,12 @@
 //! apart. `--in-process` keeps them in the coordinator's process (one
 //! `perf record` for both sides).
 
+use super::replay::Replay;
 use crate::cluster::cpu_time::{process_micros, thread_micros};
 use crate::cluster::TransportChoice;
 use crate::run::finish::RunFinisher;
 use anyhow::{bail, Context, Result};
 use fixplan_worker::agent::{run_worker, WorkerOptions};
-use fixplan_worker::replay::Replay;
 use fixplan_worker::zenoh_link::ZenohOptions;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -58,7 +58,7 @@ pub fn start_workers(
                     threads: Some(threads),
                     transport,
                     name: Some(format!("replay-{i}")),
-                    replay: Some(replay.clone()),
+                    runner: replay.clone(),
                     finisher: Some(Arc::new(RunFinisher)),
                     ..WorkerOptions::default()
                 };

@@ -2,6 +2,7 @@
 //! the `--workers` option of `fixplan run` and `fixplan study`, and the
 //! coordinator's and worker's entry points.
 
+use super::fault::Fault;
 use crate::cluster::{ClusterOptions, TransportChoice, VerifyPolicy};
 use crate::job::SearchOptions;
 use crate::run::backend::Backend;
@@ -10,10 +11,12 @@ use crate::run::{run_parts, RunOptions};
 use anyhow::{Context, Result};
 use clap::Args;
 use fixplan_catalog::{load_kit, ArcMode};
-use fixplan_worker::agent::{run_worker, Fault, WorkerError, WorkerOptions};
+use fixplan_worker::agent::{run_worker, WorkerError, WorkerOptions};
 use fixplan_worker::protocol::PROTOCOL_VERSION;
+use fixplan_worker::task::{Plain, Runner};
 use fixplan_worker::zenoh_link::{zenoh_config, TlsFiles, ZenohOptions};
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Duration;
 
 /// How to reach the other processes (zenoh).
@@ -255,7 +258,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
     let catalog_path = a.catalog.clone().unwrap_or(default_catalog);
     let catalog = crate::run::load_catalog_arcs(&catalog_path, a.arcs)?;
     let spec = load_kit(&a.kit, catalog.units)?;
-    let cores = fixplan_worker::host::cores();
+    let cores = crate::job::threads::cores();
     let copts = ClusterOptions {
         zenoh,
         key_prefix: a.net.key_prefix.clone(),
@@ -299,9 +302,11 @@ pub fn worker_main(a: &WorkerArgs) -> Result<()> {
         stay: a.stay,
         name: a.name.clone(),
         protocol_version: a.protocol_version,
-        fault: a.fault,
-        replay: None,
-        finisher: Some(std::sync::Arc::new(crate::run::finish::RunFinisher)),
+        runner: match a.fault {
+            Some(fault) => Arc::new(fault) as Arc<dyn Runner>,
+            None => Arc::new(Plain),
+        },
+        finisher: Some(Arc::new(crate::run::finish::RunFinisher)),
     };
     match run_worker(opts) {
         Ok(_) => Ok(()),

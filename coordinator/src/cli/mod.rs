@@ -3,8 +3,10 @@
 //! this crate and the one the workspace integration tests build (`tests/`)
 //! are the same program. Uses every other folder; nothing uses it.
 
+pub mod case_file;
 pub mod cluster;
-pub mod solve;
+pub mod fault;
+pub mod log;
 pub mod study;
 
 use crate::run::backend::Backend;
@@ -325,13 +327,13 @@ fn sheet_load(sheet: bool) -> LoadOptions {
 fn real_main() -> Result<()> {
     let cli = Cli::parse();
     // Once per process, before any work: library code only emits events.
-    fixplan_worker::log::init(quiet_logs(&cli.cmd));
+    log::init(quiet_logs(&cli.cmd));
     match cli.cmd {
         Cmd::Solve {
             case,
             threads,
             full_counts,
-        } => solve::solve_main(&case, threads, full_counts)?,
+        } => case_file::solve_main(&case, threads, full_counts)?,
         Cmd::Run {
             catalog,
             kit,

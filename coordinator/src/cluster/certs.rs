@@ -63,15 +63,15 @@ impl Validity {
         }
     }
 
-    fn apply(&self, p: &mut CertificateParams) -> Result<(), CertError> {
+    fn apply(&self, params: &mut CertificateParams) -> Result<(), CertError> {
         let at = |t: SystemTime| -> Result<_, CertError> {
             let since = t
                 .duration_since(UNIX_EPOCH)
                 .map_err(|_| CertError::Validity)?;
             Ok(rcgen::date_time_ymd(1970, 1, 1) + since)
         };
-        p.not_before = at(self.not_before)?;
-        p.not_after = at(self.not_after)?;
+        params.not_before = at(self.not_before)?;
+        params.not_after = at(self.not_after)?;
         Ok(())
     }
 }
@@ -180,11 +180,11 @@ fn write(path: &Path, text: &str, private: bool) -> Result<(), CertError> {
 }
 
 /// Writes `NAME.pem` and `NAME-key.pem` in `dir`.
-fn write_pair(dir: &Path, name: &str, i: &Issued) -> Result<[PathBuf; 2], CertError> {
+fn write_pair(dir: &Path, name: &str, issued: &Issued) -> Result<[PathBuf; 2], CertError> {
     let cert = dir.join(format!("{name}.pem"));
     let key = dir.join(format!("{name}-key.pem"));
-    write(&cert, &i.cert_pem, false)?;
-    write(&key, &i.key_pem, true)?;
+    write(&cert, &issued.cert_pem, false)?;
+    write(&key, &issued.key_pem, true)?;
     Ok([cert, key])
 }
 
@@ -192,30 +192,30 @@ fn write_pair(dir: &Path, name: &str, i: &Issued) -> Result<[PathBuf; 2], CertEr
 /// certificates (`coordinator.pem`, `router.pem` and keys) and `workers`
 /// worker certificates (`worker-N.pem` and keys) in `o.dir`; returns the
 /// files written. Refuses a directory that already has a `ca.pem`.
-pub fn write_certs(o: &CertsOptions) -> Result<Vec<PathBuf>, CertError> {
-    let ca_path = o.dir.join("ca.pem");
+pub fn write_certs(opts: &CertsOptions) -> Result<Vec<PathBuf>, CertError> {
+    let ca_path = opts.dir.join("ca.pem");
     if ca_path.exists() {
         return Err(CertError::Exists { path: ca_path });
     }
-    std::fs::create_dir_all(&o.dir).map_err(|source| CertError::Io {
-        path: o.dir.clone(),
+    std::fs::create_dir_all(&opts.dir).map_err(|source| CertError::Io {
+        path: opts.dir.clone(),
         source,
     })?;
-    let validity = Validity::days(o.days);
+    let validity = Validity::days(opts.days);
     let ca = Authority::new("fixplan-ca", validity)?;
-    let mut files = write_pair(&o.dir, "ca", &ca.own)?.to_vec();
+    let mut files = write_pair(&opts.dir, "ca", &ca.own)?.to_vec();
     let mut hosts: Vec<String> = ["localhost", "127.0.0.1", "::1"]
         .iter()
         .map(|h| h.to_string())
         .collect();
-    hosts.extend(o.hosts.iter().cloned());
+    hosts.extend(opts.hosts.iter().cloned());
     for (name, cn) in [("coordinator", COORDINATOR_CN), ("router", ROUTER_CN)] {
         let c = ca.issue(cn, &hosts, validity)?;
-        files.extend(write_pair(&o.dir, name, &c)?);
+        files.extend(write_pair(&opts.dir, name, &c)?);
     }
-    for n in 1..=o.workers {
+    for n in 1..=opts.workers {
         let c = ca.issue(WORKER_CN, &[WORKER_CN.to_string()], validity)?;
-        files.extend(write_pair(&o.dir, &format!("worker-{n}"), &c)?);
+        files.extend(write_pair(&opts.dir, &format!("worker-{n}"), &c)?);
     }
     Ok(files)
 }

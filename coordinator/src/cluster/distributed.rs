@@ -5,9 +5,10 @@ use super::local;
 use super::options::{ClusterError, ClusterOptions};
 use super::runtime::{self, Runtime};
 use super::scheduler::{
-    Delivery, MergedShards, PartError, PlannedPart, Scheduler, Settings, Stats, WHOLE,
+    Delivery, MergedShards, PartFailure, PlannedPart, Scheduler, Settings, Stats, WHOLE,
 };
 use crate::job::shards;
+use bytes::Bytes;
 use fixplan_core::{PartialResult, PreparedPart};
 use fixplan_worker::finish::Finisher;
 use fixplan_worker::iox;
@@ -39,22 +40,22 @@ pub enum Returned {
     Merged(Box<MergedPart>),
     /// Finished by its worker ([`fixplan_worker::finish`]): the bytes of
     /// the caller's finisher, to be copied.
-    Finished(Vec<u8>),
+    Finished(Bytes),
 }
 
 impl MergedPart {
     /// Takes the coordinator's prepared part if it has one, else prepares
     /// it here (parts go out unprepared and are prepared only when asked
     /// for).
-    fn prepared(m: MergedShards) -> Result<MergedPart, PartError> {
-        let prep = match m.prep {
+    fn prepared(shards: MergedShards) -> Result<MergedPart, PartFailure> {
+        let prep = match shards.prep {
             Some(p) => Arc::try_unwrap(p).unwrap_or_else(|p| (*p).clone()),
-            None => m.input.prepare()?,
+            None => shards.input.prepare()?,
         };
         Ok(MergedPart {
             prep,
-            merged: m.merged,
-            stopped_at: m.stopped_at,
+            merged: shards.merged,
+            stopped_at: shards.stopped_at,
         })
     }
 }
@@ -91,12 +92,12 @@ impl Distributed {
 
     /// The next part's merged result, without preparing the part on the
     /// coordinator (what a caller needs that only counts or ranks).
-    pub fn next_merged(&mut self) -> Option<(usize, Result<PartialResult, PartError>)> {
+    pub fn next_merged(&mut self) -> Option<(usize, Result<PartialResult, PartFailure>)> {
         self.next_delivery().map(|(i, r)| (i, r.map(|m| m.merged)))
     }
 
     /// The next part, prepared here if the run did not need to.
-    pub fn next_part(&mut self) -> Option<(usize, Result<MergedPart, PartError>)> {
+    pub fn next_part(&mut self) -> Option<(usize, Result<MergedPart, PartFailure>)> {
         let (i, r) = self.next_delivery()?;
         Some((i, r.and_then(MergedPart::prepared)))
     }
@@ -107,7 +108,7 @@ impl Distributed {
     /// on it, so on a host with several cores the coordinator
     /// keeps up with more workers. `None` once all parts are out (the run
     /// is ended then).
-    pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<Returned, PartError>)>> {
+    pub fn next_parts(&mut self) -> Option<Vec<(usize, Result<Returned, PartFailure>)>> {
         let first = self.next_delivery()?;
         let more = self.ready.len().min(self.total - self.delivered);
         self.delivered += more;
@@ -167,12 +168,12 @@ const PARALLEL_FROM: usize = 8;
 /// `items` mapped by `f`, on rayon's threads when there are enough of them.
 pub(crate) fn map_batch<T: Send, U: Send>(
     items: Vec<T>,
-    f: impl Fn(T) -> U + Sync + Send,
+    map: impl Fn(T) -> U + Sync + Send,
 ) -> Vec<U> {
     if items.len() < PARALLEL_FROM {
-        items.into_iter().map(f).collect()
+        items.into_iter().map(map).collect()
     } else {
-        items.into_par_iter().map(f).collect()
+        items.into_par_iter().map(map).collect()
     }
 }
 
@@ -206,11 +207,11 @@ pub fn run_distributed_finishing(
     let (tx, rx) = channel::<Vec<Delivery>>();
     let threads = opts
         .worker_threads
-        .unwrap_or_else(|| (fixplan_worker::host::cores() / opts.local_workers.max(1)).max(1));
+        .unwrap_or_else(|| (crate::job::threads::cores() / opts.local_workers.max(1)).max(1));
     let slots = opts.expected_threads.unwrap_or(if opts.local_workers > 0 {
         threads * opts.local_workers
     } else {
-        fixplan_worker::host::cores()
+        crate::job::threads::cores()
     });
     let (planned, batch_cost) = plan(parts, &opts, slots)?;
     let mut dist = Distributed {

@@ -33,11 +33,11 @@ pub struct LocalSpec<'a> {
 impl LocalWorkers {
     /// Starts `n` workers; they leave when the coordinator says the run
     /// is over.
-    pub fn spawn(spec: &LocalSpec, n: usize) -> std::io::Result<LocalWorkers> {
+    pub fn spawn(spec: &LocalSpec, count: usize) -> std::io::Result<LocalWorkers> {
         let mut w = LocalWorkers {
             children: Vec::new(),
         };
-        for _ in 0..n {
+        for _ in 0..count {
             let mut c = Command::new(spec.exe);
             c.args([
                 "worker",

@@ -6,7 +6,7 @@
 //! or results files.
 //!
 //! - [`distributed`]: parts in, merged results out ([`run_distributed`]:
-//!   a [`MergedPart`] or a [`PartError`] for each);
+//!   a [`MergedPart`] or a [`PartFailure`] for each);
 //! - [`scheduler`]: queue, leases, workers, merging (transport-free);
 //! - [`verify`]: the checks of a shard result and how many are re-derived;
 //! - [`runtime`]: zenoh queryables, liveliness, iceoryx2 server, leases;
@@ -31,5 +31,5 @@ pub use distributed::{
 pub use fixplan_worker::part_input::PartInput;
 pub use fixplan_worker::protocol::TransportChoice;
 pub use options::{ClusterError, ClusterOptions};
-pub use scheduler::PartError;
+pub use scheduler::PartFailure;
 pub use verify::VerifyPolicy;

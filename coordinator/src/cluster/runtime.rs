@@ -84,9 +84,9 @@ impl Runtime {
     }
 
     /// Starts `n` local worker processes as `spec` says.
-    pub fn spawn_local(&mut self, spec: &LocalSpec, n: usize) -> Result<(), ClusterError> {
-        if n > 0 {
-            self.local = Some(LocalWorkers::spawn(spec, n).map_err(ClusterError::Spawn)?);
+    pub fn spawn_local(&mut self, spec: &LocalSpec, count: usize) -> Result<(), ClusterError> {
+        if count > 0 {
+            self.local = Some(LocalWorkers::spawn(spec, count).map_err(ClusterError::Spawn)?);
         }
         Ok(())
     }

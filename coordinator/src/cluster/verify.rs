@@ -7,9 +7,10 @@
 
 use fixplan_core::parts::{combination_at, Accumulator, Scratch};
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
-use fixplan_worker::finish::Finisher;
-use fixplan_worker::part_input::{short_hex, PartInput};
+use fixplan_worker::finish::{FinishInputs, Finisher};
+use fixplan_worker::part_input::short_hex;
 use fixplan_worker::protocol::Digest;
+use fixplan_worker::protocol::FinishError;
 use std::cmp::Ordering;
 use std::ops::Range;
 use thiserror::Error;
@@ -110,7 +111,11 @@ pub enum CheckError {
     },
     /// A finished part that is not what its (checked) result makes.
     #[error("its finished part differs from the result's: {0}")]
-    Finished(String),
+    Finished(FinishError),
+    /// An answer of another kind than its task asked for (a finished part
+    /// for a shard, an enumeration for a finishing).
+    #[error("an answer of another kind than its task")]
+    WrongAnswer,
     /// The result covers other combinations than the shard.
     #[error("result for combinations {range:?}, shard is {shard:?}")]
     WrongRange {
@@ -196,16 +201,16 @@ impl Default for VerifyPolicy {
 
 impl std::str::FromStr for VerifyPolicy {
     type Err = UnknownPolicy;
-    fn from_str(s: &str) -> Result<Self, UnknownPolicy> {
-        match s {
+    fn from_str(text: &str) -> Result<Self, UnknownPolicy> {
+        match text {
             "all" => Ok(VerifyPolicy::All),
             "sample" => Ok(VerifyPolicy::default()),
-            _ => s
+            _ => text
                 .strip_prefix("1/")
                 .and_then(|n| n.parse::<u64>().ok())
                 .filter(|&n| n >= 1)
                 .map(|one_in| VerifyPolicy::Sample { one_in })
-                .ok_or_else(|| UnknownPolicy(s.to_string())),
+                .ok_or_else(|| UnknownPolicy(text.to_string())),
         }
     }
 }
@@ -223,8 +228,8 @@ impl VerifyPolicy {
     }
 }
 
-fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+fn splitmix64(seed: u64) -> u64 {
+    let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
@@ -233,27 +238,38 @@ fn splitmix64(x: u64) -> u64 {
 /// Whether `f` is exactly what the enumeration gives for its segments,
 /// locators, clamp segment and rotation (core's own code path, restricted to
 /// that clamp side, so the check costs a fraction of the enumeration).
-pub fn rederive(prep: &PreparedPart, f: &Fixture) -> bool {
+pub fn rederive(prep: &PreparedPart, fixture: &Fixture) -> bool {
     let n = prep.segments().len();
-    let [a, b, c] = f.segments;
-    if !(a <= b && b <= c && c < n && a != c) || f.locators[0] != [0, 0] {
+    let [a, b, c] = fixture.segments;
+    if !(a <= b && b <= c && c < n && a != c) || fixture.locators[0] != [0, 0] {
         return false;
     }
     let mut acc = Accumulator::new(0);
     let mut scratch = Scratch::default();
-    prep.setups_for_locators(f.segments, f.locators[1], f.locators[2], |s| {
-        prep.process_setup_for_clamp(s, &mut acc, &mut scratch, f.clamp_segment, f.rotation)
-    });
-    acc.top.into_sorted().iter().any(|g| g == f)
+    prep.setups_for_locators(
+        fixture.segments,
+        fixture.locators[1],
+        fixture.locators[2],
+        |s| {
+            prep.process_setup_for_clamp(
+                s,
+                &mut acc,
+                &mut scratch,
+                fixture.clamp_segment,
+                fixture.rotation,
+            )
+        },
+    );
+    acc.top.into_sorted().iter().any(|g| g == fixture)
 }
 
 /// Whether `f` would enter a top-k that holds `top` (sorted, best first).
-pub fn enters(top: &[Fixture], top_k: usize, f: &Fixture) -> bool {
+pub fn enters(top: &[Fixture], top_k: usize, fixture: &Fixture) -> bool {
     top_k == 0
         || top.len() < top_k
         || top
             .get(top_k - 1)
-            .is_some_and(|w| f.rank_cmp(w) == Ordering::Less)
+            .is_some_and(|w| fixture.rank_cmp(w) == Ordering::Less)
 }
 
 /// The checks of the fixture list that hold for any shard: at most
@@ -346,22 +362,16 @@ pub fn check_stop(
     }
 }
 
-/// Whether the finished part `theirs` a worker sent with the whole part's
-/// result `result` (checked before) is what the coordinator's finisher
-/// makes of that result: finished here the same way (with the worker's
-/// timing) and compared.
+/// Whether the finished part `theirs` a worker sent with a part's result
+/// (checked before) is what the coordinator's finisher makes of the same
+/// `inputs`: finished here the same way (with the worker's timing) and
+/// compared.
 pub fn check_finished(
     finisher: &dyn Finisher,
-    source: &PartInput,
-    prep: &PreparedPart,
-    result: &PartialResult,
-    micros: u64,
-    context: &[u8],
+    inputs: &FinishInputs,
     theirs: &[u8],
 ) -> Result<(), CheckError> {
-    finisher
-        .check(source, prep, result, micros, context, theirs)
-        .map_err(CheckError::Finished)
+    finisher.check(inputs, theirs).map_err(CheckError::Finished)
 }
 
 /// Checks a shard result against the shard it answers and the part's

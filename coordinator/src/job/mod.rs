@@ -6,7 +6,8 @@
 pub mod enumerate;
 pub mod search;
 pub mod shards;
-pub mod solve;
+pub mod solve_part;
+pub mod threads;
 
 pub use search::{SearchError, SearchInfo, SearchOptions, StepSummary};
-pub use solve::{part_params, solve_part, JobContext, Solved, Timing};
+pub use solve_part::{part_params, solve_part, JobContext, SolveTiming, Solved};

@@ -50,8 +50,8 @@ pub enum SearchError {
 }
 
 /// Parses `4,2,1`.
-pub fn parse_grid_steps(s: &str) -> Result<Vec<u32>, SearchError> {
-    let steps = s
+pub fn parse_grid_steps(text: &str) -> Result<Vec<u32>, SearchError> {
+    let steps = text
         .split(',')
         .map(str::trim)
         .filter(|t| !t.is_empty())

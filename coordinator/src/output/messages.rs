@@ -15,7 +15,7 @@ use super::fields::{
     VertexField, WrenchField,
 };
 use super::fixture_fields::FixtureField;
-pub use crate::job::Timing;
+pub use crate::job::SolveTiming;
 use crate::job::{SearchInfo, StepSummary};
 use fixplan_catalog::{Catalog, CatalogPart};
 use fixplan_core::{Kit, Params, Point, SolveResult, Units, Vertex};
@@ -86,7 +86,7 @@ pub struct PartContent<'a> {
     /// The part's result.
     pub result: &'a SolveResult,
     /// How long it took.
-    pub timing: Timing,
+    pub timing: SolveTiming,
     /// `--grid-steps` summaries and the `--good-enough` stop.
     pub search: &'a SearchInfo,
 }
@@ -243,8 +243,8 @@ pub struct TimingField {
     pub shards: usize,
 }
 
-impl From<&Timing> for TimingField {
-    fn from(t: &Timing) -> TimingField {
+impl From<&SolveTiming> for TimingField {
+    fn from(t: &SolveTiming) -> TimingField {
         TimingField {
             prepare_ms: t.prepare_ms,
             enumerate_ms: t.enumerate_ms,
@@ -714,7 +714,7 @@ mod tests {
             outline: &outline,
             access: &access,
             result: &result,
-            timing: Timing {
+            timing: SolveTiming {
                 prepare_ms: 0.5,
                 enumerate_ms: 1.0,
                 shards: 2,

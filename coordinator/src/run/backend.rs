@@ -2,8 +2,9 @@
 //! and parameters it is solved with) and the backend that solves them.
 
 use crate::cluster::ClusterOptions;
-use crate::job::solve::Preparation;
-use crate::job::{JobContext, Solved};
+use crate::job::solve_part::Preparation;
+use crate::job::JobContext;
+use bytes::Bytes;
 use fixplan_catalog::CatalogPart;
 
 /// Where the enumeration runs.
@@ -26,7 +27,7 @@ impl Backend {
     /// the run's first log line reports.
     pub fn threads(&self) -> usize {
         match self {
-            Backend::Embedded { threads } => threads.unwrap_or_else(fixplan_worker::host::cores),
+            Backend::Embedded { threads } => threads.unwrap_or_else(crate::job::threads::cores),
             Backend::Cluster(c) => c
                 .expected_threads
                 .unwrap_or(c.worker_threads.unwrap_or(1) * c.local_workers.max(1)),
@@ -34,28 +35,21 @@ impl Backend {
     }
 }
 
-/// What a backend hands back for a job.
-#[derive(Debug)]
-pub enum PartDone {
-    /// Solved here or merged from the workers' shards: the caller
-    /// finishes it.
-    Solved(Solved),
-    /// Finished by a worker of the cluster: the bytes of the run's
-    /// finisher ([`super::finish`]), to be copied.
-    Finished(Vec<u8>),
-}
-
 /// What a worker needs to finish job `i` itself ([`fixplan_worker::finish`]);
 /// `None`: the caller finishes it.
 pub type RemoteContext<'a> = dyn Fn(usize) -> Option<Vec<u8>> + Sync + 'a;
 
-/// Jobs finished by the workers of a cluster: what each needs, and the
-/// workers' finisher (the coordinator checks finished parts with it).
-pub struct RemoteFinish<'a> {
+/// Jobs finished by the workers of a cluster: what each needs, the
+/// workers' finisher (the coordinator checks finished parts with it), and
+/// what the caller keeps of a job its worker finished.
+pub struct RemoteFinish<'a, T> {
     /// What the worker of job `i` is sent to finish it.
     pub context: &'a RemoteContext<'a>,
     /// The workers' finisher.
     pub finisher: std::sync::Arc<dyn fixplan_worker::finish::Finisher>,
+    /// What the caller keeps of job `i` finished by its worker: made from
+    /// the finisher's bytes, to be copied.
+    pub keep: &'a (dyn Fn(usize, Bytes) -> T + Sync),
 }
 
 /// One part to solve: the catalogue entry, the run inputs it is solved

@@ -2,15 +2,16 @@
 //! per grid step, its steps come back merged and become the same result as
 //! the embedded search's; unreadable parts never leave this process.
 
-use super::backend::{PartDone, PartJob, RemoteFinish};
+use super::backend::{PartJob, RemoteFinish};
 use crate::cluster::distributed::map_batch;
 use crate::cluster::{
-    run_distributed_finishing, ClusterError, ClusterOptions, Distributed, MergedPart, PartError,
+    run_distributed_finishing, ClusterError, ClusterOptions, Distributed, MergedPart, PartFailure,
     Returned,
 };
 use crate::job::search::step_summary;
-use crate::job::solve::Preparation;
-use crate::job::{part_params, solve_part, SearchInfo, Solved, StepSummary, Timing};
+use crate::job::solve_part::Preparation;
+use crate::job::{part_params, solve_part, SearchInfo, SolveTiming, Solved, StepSummary};
+use bytes::Bytes;
 use fixplan_core::{report, SolveResult, Status};
 use fixplan_worker::part_input::PartInput;
 use std::collections::HashMap;
@@ -35,14 +36,32 @@ fn steps_of(job: &PartJob) -> Vec<u32> {
         .unwrap_or_else(|| vec![job.ctx.params.grid_step])
 }
 
+/// Where the jobs go as they come back ([`ClusterJobs::deliver`]).
+pub struct Sink<'a, T> {
+    /// What the caller keeps of job `i`, solved.
+    pub solved: &'a (dyn Fn(usize, Solved) -> T + Sync),
+    /// What the caller keeps of job `i` finished by its worker; `None` if
+    /// no job was sent to be finished.
+    pub finished: Option<&'a (dyn Fn(usize, Bytes) -> T + Sync)>,
+    /// Hands what is kept of job `i` over; false when the caller is gone.
+    pub send: &'a (dyn Fn(usize, T) -> bool + Sync),
+}
+
+/// A job that came back finished by its worker though none was sent to
+/// be finished: a bug of the coordinator, reported rather than given a
+/// made-up result.
+#[derive(Debug, thiserror::Error)]
+#[error("job {0}: finished by a worker, but no job was sent to be finished")]
+pub struct FinishedUnasked(pub usize);
+
 /// Starts the coordinator for `jobs` (all of one search: the first job's
 /// `--good-enough` is the run's). Jobs of one plain enumeration (no grid
-/// steps, no `--good-enough`) go with `remote(i)`, for their worker to
-/// finish them.
-pub fn start(
+/// steps, no `--good-enough`) go with `remote`'s context, for their
+/// worker to finish them.
+pub fn start<T>(
     jobs: &[PartJob],
     opts: &ClusterOptions,
-    remote: Option<&RemoteFinish>,
+    remote: Option<&RemoteFinish<T>>,
 ) -> Result<ClusterJobs, ClusterError> {
     let mut inputs = Vec::new();
     let mut map = Vec::new();
@@ -110,9 +129,9 @@ fn from_steps(job: &PartJob, steps: Vec<StepOut>, ms: f64) -> Solved {
         .unwrap_or_else(|| SolveResult::invalid(format!("{}: no grid step", job.part.id)));
     Solved {
         result,
-        timing: Timing {
+        timing: SolveTiming {
             enumerate_ms: ms,
-            ..Timing::default()
+            ..SolveTiming::default()
         },
         search: SearchInfo {
             steps: job.ctx.search.grid_steps.is_some().then_some(summaries),
@@ -124,8 +143,8 @@ fn from_steps(job: &PartJob, steps: Vec<StepOut>, ms: f64) -> Solved {
 
 /// A part's step as it came back, reported as the embedded run reports it
 /// (its fixtures in catalogue units, placed on the plate).
-fn step_out(job: &PartJob, r: Result<MergedPart, PartError>, ms: f64) -> StepOut {
-    match r {
+fn step_out(job: &PartJob, returned: Result<MergedPart, PartFailure>, ms: f64) -> StepOut {
+    match returned {
         Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
         Err(msg) => {
             let msg = format!("{}: {msg}", job.part.id);
@@ -135,18 +154,18 @@ fn step_out(job: &PartJob, r: Result<MergedPart, PartError>, ms: f64) -> StepOut
 }
 
 impl ClusterJobs {
-    /// Hands every job's result to `send` (the unreadable ones first, the
-    /// others as their last grid step comes back), then ends the run. Stops early
-    /// when `send` returns false (the caller is gone). The parts that came
-    /// back together are prepared, reported and handed over in parallel
-    /// (`send` makes their messages): the coordinator's work per part is
-    /// what limits how many workers it serves.
-    pub fn deliver(mut self, jobs: &[PartJob], send: &(dyn Fn(usize, PartDone) -> bool + Sync)) {
+    /// Hands every job to `sink` (the unreadable ones first, the others
+    /// as their last grid step comes back), then ends the run. Stops early
+    /// when the caller is gone. The parts that came back together are
+    /// prepared, reported and kept in parallel (`sink` makes their
+    /// messages): the coordinator's work per part is what limits how many
+    /// workers it serves.
+    pub fn deliver<T>(mut self, jobs: &[PartJob], sink: &Sink<T>) -> Result<(), FinishedUnasked> {
+        let solved = |i, s| (sink.send)(i, (sink.solved)(i, s));
         for &i in &self.direct {
             let job = &jobs[i];
-            let solved = solve_part(job.ctx, job.part, Preparation::Fresh);
-            if !send(i, PartDone::Solved(solved)) {
-                return;
+            if !solved(i, solve_part(job.ctx, job.part, Preparation::Fresh)) {
+                return Ok(());
             }
         }
         let mut t_prev = Instant::now();
@@ -170,8 +189,13 @@ impl ClusterJobs {
                 }
             }
             for (i, bytes) in finished {
-                if !send(i, PartDone::Finished(bytes)) {
-                    return self.end();
+                let Some(keep) = sink.finished else {
+                    self.end();
+                    return Err(FinishedUnasked(i));
+                };
+                if !(sink.send)(i, keep(i, bytes)) {
+                    self.end();
+                    return Ok(());
                 }
             }
             let outs = map_batch(merged, |(n, r)| {
@@ -196,13 +220,14 @@ impl ClusterJobs {
                 .collect();
             let taken = map_batch(done, |(i, done)| {
                 let ms = done.iter().map(|s| s.2).sum();
-                send(i, PartDone::Solved(from_steps(&jobs[i], done, ms)))
+                solved(i, from_steps(&jobs[i], done, ms))
             });
             if !taken.into_iter().all(|t| t) {
                 break;
             }
         }
         self.end();
+        Ok(())
     }
 
     /// Ends the run and logs its figures.

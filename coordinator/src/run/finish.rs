@@ -7,20 +7,21 @@
 //! workers. The fixtures and scene messages are byte for byte what the
 //! coordinator would have made; the part message's timing is the worker's.
 
-use super::outcome::{part_outcome_packed, OutcomeError, PartOutcome};
-use crate::job::{JobContext, SearchOptions, Solved, Timing};
+use super::outcome::{part_outcome_packed, PartOutcome};
+use crate::job::{SearchInfo, SolveTiming, Solved};
 use crate::output::messages::NS_PER_PART;
 use crate::output::{PartChunk, PartMessages};
 use bytes::Bytes;
 use fixplan_catalog::CatalogPart;
-use fixplan_core::{PartialResult, PreparedPart, Status};
-use fixplan_worker::finish::Finisher;
-use fixplan_worker::part_input::PartInput;
+use fixplan_core::Status;
+use fixplan_worker::finish::{FinishInputs, Finisher};
+use fixplan_worker::protocol::FinishError;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// What a worker needs to finish a part besides its input and result:
-/// its place and entry in the catalogue.
+/// its place and its whole entry in the catalogue (the part itself is the
+/// input's).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct FinishContext {
     index: usize,
@@ -28,6 +29,38 @@ struct FinishContext {
     file: Option<String>,
     warnings: Vec<String>,
     quantity: f64,
+    top_k: Option<usize>,
+    wrenches: Option<Vec<[f64; 3]>>,
+}
+
+impl FinishContext {
+    /// The context of part `index` (`cp`); `None` for a part that cannot
+    /// be read.
+    fn of(index: usize, cp: &CatalogPart) -> Option<FinishContext> {
+        cp.part.as_ref().ok()?;
+        Some(FinishContext {
+            index,
+            id: cp.id.clone(),
+            file: cp.file.as_ref().map(|f| f.display().to_string()),
+            warnings: cp.warnings.clone(),
+            quantity: cp.quantity,
+            top_k: cp.top_k,
+            wrenches: cp.wrenches.clone(),
+        })
+    }
+
+    /// The catalogue entry back, with the part the worker was sent.
+    fn entry(self, part: &fixplan_core::Part) -> CatalogPart {
+        CatalogPart {
+            id: self.id,
+            file: self.file.map(PathBuf::from),
+            part: Ok(part.clone()),
+            warnings: self.warnings,
+            quantity: self.quantity,
+            top_k: self.top_k,
+            wrenches: self.wrenches,
+        }
+    }
 }
 
 /// A part as its worker finished it: what the progress display counts and
@@ -66,15 +99,7 @@ impl FinishedPart {
 /// What the worker of part `index` (`cp`) is sent to finish it; `None` for
 /// a part that cannot be read (it never leaves the coordinator).
 pub fn context(index: usize, cp: &CatalogPart) -> Option<Vec<u8>> {
-    cp.part.as_ref().ok()?;
-    let c = FinishContext {
-        index,
-        id: cp.id.clone(),
-        file: cp.file.as_ref().map(|f| f.display().to_string()),
-        warnings: cp.warnings.clone(),
-        quantity: cp.quantity,
-    };
-    postcard::to_allocvec(&c).ok()
+    postcard::to_allocvec(&FinishContext::of(index, cp)?).ok()
 }
 
 /// Why a worker's finished part is not taken.
@@ -97,12 +122,8 @@ pub enum FinishedError {
 }
 
 /// The outcome of part `index` (`cp`) from its worker's bytes.
-pub fn outcome(
-    bytes: Vec<u8>,
-    index: usize,
-    cp: &CatalogPart,
-) -> Result<PartOutcome, FinishedError> {
-    let f = FinishedPart::from_bytes(bytes.into())?;
+pub fn outcome(bytes: Bytes, index: usize, cp: &CatalogPart) -> Result<PartOutcome, FinishedError> {
+    let f = FinishedPart::from_bytes(bytes)?;
     if f.index != index || f.id != cp.id {
         return Err(FinishedError::OtherPart {
             got_index: f.index,
@@ -130,52 +151,36 @@ pub fn outcome(
 pub struct RunFinisher;
 
 impl RunFinisher {
-    /// The finished part, its chunk made by `pack`.
+    /// The finished part, its chunk made by `pack`: the very
+    /// [`part_outcome_packed`] the coordinator runs on a part it merged.
     fn finished(
-        input: &PartInput,
-        prep: &PreparedPart,
-        result: &PartialResult,
-        micros: u64,
-        context: &[u8],
+        inputs: &FinishInputs,
         pack: impl FnOnce(&PartMessages) -> std::io::Result<PartChunk>,
-    ) -> Result<FinishedPart, String> {
-        let c: FinishContext = postcard::from_bytes(context).map_err(|e| e.to_string())?;
-        let cp = CatalogPart {
-            id: c.id,
-            file: c.file.map(PathBuf::from),
-            part: Ok(input.part.clone()),
-            warnings: c.warnings,
-            quantity: c.quantity,
-            top_k: None,
-            wrenches: None,
-        };
-        let search = SearchOptions::default();
-        let ctx = JobContext {
-            kit: &input.kit,
-            params: &input.params,
-            units: input.units,
-            shard_size: None,
-            search: &search,
-        };
+    ) -> Result<FinishedPart, FinishError> {
+        let context: FinishContext = postcard::from_bytes(inputs.context)
+            .map_err(|e| FinishError::Context(e.to_string()))?;
+        let index = context.index;
+        let entry = context.entry(&inputs.input.part);
         // As the coordinator closes a part: its shards merged (one here),
         // numbered from 0 as the embedded run numbers a whole part (a
         // worker's whole shard is labelled with an open range).
-        let mut whole = result.clone();
-        whole.range = 0..result.counts.combinations;
-        let merged = fixplan_core::merge(prep.top_k(), vec![whole]);
+        let mut whole = inputs.result.clone();
+        whole.range = 0..inputs.result.counts.combinations;
+        let merged = fixplan_core::merge(inputs.prep.top_k(), vec![whole]);
         let solved = Solved {
-            result: fixplan_core::report(prep, &merged),
-            timing: Timing {
-                enumerate_ms: micros as f64 * 1e-3,
+            result: fixplan_core::report(inputs.prep, &merged),
+            timing: SolveTiming {
+                enumerate_ms: inputs.micros as f64 * 1e-3,
                 shards: 1,
-                ..Timing::default()
+                ..SolveTiming::default()
             },
-            search: Default::default(),
+            search: SearchInfo::default(),
         };
-        let o = part_outcome_packed(&ctx, c.index, &cp, solved, pack)
-            .map_err(|e: OutcomeError| e.to_string())?;
+        let (kit, units) = (&inputs.input.kit, inputs.input.units);
+        let o = part_outcome_packed(kit, units, index, &entry, solved, pack)
+            .map_err(|e| FinishError::Messages(e.to_string()))?;
         Ok(FinishedPart {
-            index: c.index,
+            index,
             id: o.id,
             status: o.status,
             error: o.error,
@@ -187,40 +192,23 @@ impl RunFinisher {
 }
 
 impl Finisher for RunFinisher {
-    fn finish(
-        &self,
-        input: &PartInput,
-        prep: &PreparedPart,
-        result: &PartialResult,
-        micros: u64,
-        context: &[u8],
-    ) -> Result<Vec<u8>, String> {
-        let f = RunFinisher::finished(input, prep, result, micros, context, |m| m.chunk())?;
-        f.to_bytes().map_err(|e| e.to_string())
+    fn finish(&self, inputs: &FinishInputs) -> Result<Vec<u8>, FinishError> {
+        let f = RunFinisher::finished(inputs, |m| m.chunk())?;
+        f.to_bytes().map_err(|e| FinishError::Encode(e.to_string()))
     }
 
-    fn check(
-        &self,
-        input: &PartInput,
-        prep: &PreparedPart,
-        result: &PartialResult,
-        micros: u64,
-        context: &[u8],
-        theirs: &[u8],
-    ) -> Result<(), String> {
+    fn check(&self, inputs: &FinishInputs, theirs: &[u8]) -> Result<(), FinishError> {
         // Laid out, not compressed: the check compares what the chunks hold.
-        let ours = RunFinisher::finished(input, prep, result, micros, context, |m| {
-            Ok(m.unpacked_chunk())
-        })?;
+        let ours = RunFinisher::finished(inputs, |m| Ok(m.unpacked_chunk()))?;
         let theirs = FinishedPart::from_bytes(Bytes::copy_from_slice(theirs))
-            .map_err(|e| format!("malformed: {e}"))?;
+            .map_err(|e| FinishError::Malformed(e.to_string()))?;
         same_part(&ours, &theirs)
     }
 }
 
 /// Whether `theirs` holds what `ours` describes: every field, and a chunk
 /// with the same records ([`PartChunk::holds_same`]).
-fn same_part(ours: &FinishedPart, theirs: &FinishedPart) -> Result<(), String> {
+fn same_part(ours: &FinishedPart, theirs: &FinishedPart) -> Result<(), FinishError> {
     let head = |f: &FinishedPart| {
         (
             f.index,
@@ -232,51 +220,82 @@ fn same_part(ours: &FinishedPart, theirs: &FinishedPart) -> Result<(), String> {
         )
     };
     if head(ours) != head(theirs) {
-        return Err(format!(
-            "summary {:?}, the result's {:?}",
-            head(theirs),
-            head(ours)
-        ));
+        return Err(FinishError::Summary {
+            theirs: format!("{:?}", head(theirs)),
+            ours: format!("{:?}", head(ours)),
+        });
     }
-    ours.chunk.holds_same(&theirs.chunk)
+    ours.chunk
+        .holds_same(&theirs.chunk)
+        .map_err(FinishError::Records)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use fixplan_catalog::kit::{builtin_kit, METRIC_25};
-    use fixplan_core::{Params, Part};
+    use fixplan_core::{Params, Part, PartialResult, PreparedPart};
+    use fixplan_worker::part_input::PartInput;
 
-    /// A finished rectangle, as a worker sends it, and its pieces.
-    fn finished() -> (Vec<u8>, PartInput, PreparedPart, PartialResult, Vec<u8>) {
-        let (kit, units) = builtin_kit(METRIC_25).expect("kit");
-        let input = PartInput {
-            part: Part::polygon(&[[0.0, 0.0], [120.0, 0.0], [120.0, 60.0], [0.0, 60.0]]),
-            kit,
-            params: Params::default(),
-            units,
-        };
-        let prep = input.prepare().expect("prepare");
-        let result = prep.enumerate_all();
-        let context = postcard::to_allocvec(&FinishContext {
-            index: 3,
-            id: "rect".into(),
-            file: None,
-            warnings: vec![],
-            quantity: 1.0,
-        })
-        .expect("context");
-        let bytes = RunFinisher
-            .finish(&input, &prep, &result, 1500, &context)
-            .expect("finish");
-        (bytes, input, prep, result, context)
+    /// A rectangle's pieces, as a worker finishes it.
+    struct Rectangle {
+        input: PartInput,
+        prep: PreparedPart,
+        result: PartialResult,
+        context: Vec<u8>,
+    }
+
+    impl Rectangle {
+        fn new() -> Rectangle {
+            let (kit, units) = builtin_kit(METRIC_25).expect("kit");
+            let input = PartInput {
+                part: Part::polygon(&[[0.0, 0.0], [120.0, 0.0], [120.0, 60.0], [0.0, 60.0]]),
+                kit,
+                params: Params::default(),
+                units,
+            };
+            let prep = input.prepare().expect("prepare");
+            let result = prep.enumerate_all();
+            let cp = CatalogPart {
+                id: "rect".into(),
+                file: None,
+                part: Ok(input.part.clone()),
+                warnings: vec![],
+                quantity: 1.0,
+                top_k: Some(4),
+                wrenches: None,
+            };
+            let context = context(3, &cp).expect("context");
+            Rectangle {
+                input,
+                prep,
+                result,
+                context,
+            }
+        }
+
+        fn inputs<'a>(&'a self, result: &'a PartialResult, micros: u64) -> FinishInputs<'a> {
+            FinishInputs {
+                input: &self.input,
+                prep: &self.prep,
+                result,
+                micros,
+                context: &self.context,
+            }
+        }
+
+        fn finish(&self, result: &PartialResult, micros: u64) -> Vec<u8> {
+            RunFinisher
+                .finish(&self.inputs(result, micros))
+                .expect("finish")
+        }
     }
 
     #[test]
     fn a_finished_part_is_the_same_only_as_its_own_result() {
-        let (ours, input, prep, result, context) = finished();
-        let f = RunFinisher;
-        let check = |theirs: &[u8]| f.check(&input, &prep, &result, 1500, &context, theirs);
+        let rect = Rectangle::new();
+        let ours = rect.finish(&rect.result, 1500);
+        let check = |theirs: &[u8]| RunFinisher.check(&rect.inputs(&rect.result, 1500), theirs);
         assert_eq!(check(&ours), Ok(()));
         let decode =
             |b: &[u8]| FinishedPart::from_bytes(Bytes::copy_from_slice(b)).expect("decode");
@@ -289,28 +308,46 @@ mod tests {
         assert_eq!((part.index, part.id.as_str()), (3, "rect"));
         assert!(part.kept > 0, "a rectangle has fixtures");
         // Another timing: another part message, told apart.
-        let later = f
-            .finish(&input, &prep, &result, 2500, &context)
-            .expect("finish");
-        assert!(check(&later).is_err());
+        let later = rect.finish(&rect.result, 2500);
+        assert!(matches!(check(&later), Err(FinishError::Records(_))));
         // A result with its best fixture dropped.
-        let mut fewer = result.clone();
+        let mut fewer = rect.result.clone();
         fewer.fixtures.remove(0);
-        let forged = f
-            .finish(&input, &prep, &fewer, 1500, &context)
-            .expect("finish");
-        assert!(check(&forged).is_err());
+        let forged = rect.finish(&fewer, 1500);
+        assert!(matches!(
+            check(&forged),
+            Err(FinishError::Summary { .. } | FinishError::Records(_))
+        ));
         // The same header over other compressed bytes.
         let mut swapped = decode(&ours);
         swapped.chunk.compressed = decode(&forged).chunk.compressed;
         let swapped = swapped.to_bytes().expect("encode");
         assert!(check(&swapped).is_err());
-        assert!(check(b"junk").is_err());
+        assert!(matches!(check(b"junk"), Err(FinishError::Malformed(_))));
+        // A context this version cannot read.
+        let junk = FinishInputs {
+            context: b"junk",
+            ..rect.inputs(&rect.result, 1500)
+        };
+        assert!(matches!(
+            RunFinisher.finish(&junk),
+            Err(FinishError::Context(_))
+        ));
+    }
+
+    #[test]
+    fn the_context_carries_the_whole_entry() {
+        let rect = Rectangle::new();
+        let context: FinishContext = postcard::from_bytes(&rect.context).expect("context");
+        let entry = context.entry(&rect.input.part);
+        assert_eq!(entry.top_k, Some(4));
+        assert_eq!(entry.part.as_ref().ok(), Some(&rect.input.part));
     }
 
     #[test]
     fn the_coordinator_reads_back_what_a_worker_finished() {
-        let (bytes, ..) = finished();
+        let rect = Rectangle::new();
+        let bytes = Bytes::from(rect.finish(&rect.result, 1500));
         let cp = CatalogPart {
             id: "rect".into(),
             file: None,
@@ -326,11 +363,11 @@ mod tests {
             outcome(bytes.clone(), 4, &cp),
             Err(FinishedError::OtherPart { got_index: 3, .. })
         ));
-        let mut bad = FinishedPart::from_bytes(bytes.into()).expect("decode");
+        let mut bad = FinishedPart::from_bytes(bytes).expect("decode");
         bad.chunk.compressed.truncate(3);
         let bad = bad.to_bytes().expect("encode");
         assert!(matches!(
-            outcome(bad, 3, &cp),
+            outcome(bad.into(), 3, &cp),
             Err(FinishedError::BadChunk(_))
         ));
     }

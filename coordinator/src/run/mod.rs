@@ -18,18 +18,18 @@ pub mod outcome;
 pub mod progress;
 pub mod resume;
 pub mod slice;
-pub mod solve;
+pub mod solve_in_order;
 
-use crate::job::solve::Preparation;
+use crate::job::solve_part::Preparation;
 use crate::job::{solve_part, JobContext, SearchOptions};
 use crate::output::messages::{CatalogInfo, RunMsg};
 use anyhow::{Context, Result};
-use backend::{Backend, PartDone, PartJob};
+use backend::{Backend, PartJob};
 use fixplan_catalog::{load_catalog_with, load_kit, ArcMode, Catalog, KitSpec, LoadOptions};
 use fixplan_core::Params;
 use outcome::{part_outcome, OutcomeError, PartOutcome};
 use progress::{progress_line, summary_table, Progress, Totals};
-use solve::solve_in_order_finishing;
+use solve_in_order::solve_in_order_finishing;
 use std::path::{Path, PathBuf};
 
 /// Everything a catalogue run needs besides the catalogue and the kit.
@@ -175,30 +175,29 @@ pub fn run_parts(
         .collect();
     let partial = resume::partial_path(&opts.output);
     let context = |i: usize| finish::context(start + i, jobs[i].part);
+    let keep = |i: usize, bytes| {
+        finish::outcome(bytes, start + i, jobs[i].part).or_else(|e| {
+            // Never from a fixplan worker of this version: solved here
+            // rather than lost.
+            tracing::warn!(
+                role = "coordinator",
+                "{}: a worker's finished part is unusable ({e}); solving it here",
+                jobs[i].part.id
+            );
+            let s = solve_part(&ctx, jobs[i].part, Preparation::Fresh);
+            part_outcome(&ctx, start + i, jobs[i].part, s)
+        })
+    };
     let remote = backend::RemoteFinish {
         context: &context,
         finisher: std::sync::Arc::new(finish::RunFinisher),
+        keep: &keep,
     };
     let solved = solve_in_order_finishing(
         &jobs,
         &opts.backend,
         Some(&remote),
-        |i, done| match done {
-            PartDone::Solved(s) => part_outcome(&ctx, start + i, jobs[i].part, s),
-            PartDone::Finished(bytes) => {
-                finish::outcome(bytes, start + i, jobs[i].part).or_else(|e| {
-                    // Never from a fixplan worker of this version: solved
-                    // here rather than lost.
-                    tracing::warn!(
-                        role = "coordinator",
-                        "{}: a worker's finished part is unusable ({e}); solving it here",
-                        jobs[i].part.id
-                    );
-                    let s = solve_part(&ctx, jobs[i].part, Preparation::Fresh);
-                    part_outcome(&ctx, start + i, jobs[i].part, s)
-                })
-            }
-        },
+        |i, s| part_outcome(&ctx, start + i, jobs[i].part, s),
         |_, out: Result<PartOutcome, OutcomeError>| {
             let o = out.with_context(|| format!("writing {}", partial.display()))?;
             writer

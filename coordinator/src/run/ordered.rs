@@ -21,8 +21,8 @@ impl<T> Reorder<T> {
 
     /// Takes item `i`; returns the items now ready, in order (none if `i`
     /// is still waiting for an earlier one).
-    pub fn push(&mut self, i: usize, item: T) -> Vec<(usize, T)> {
-        self.early.insert(i, item);
+    pub fn push(&mut self, index: usize, item: T) -> Vec<(usize, T)> {
+        self.early.insert(index, item);
         let mut ready = Vec::new();
         while let Some(item) = self.early.remove(&self.next) {
             ready.push((self.next, item));

@@ -6,7 +6,7 @@ use crate::job::{JobContext, Solved};
 use crate::output::messages::PartContent;
 use crate::output::{PartChunk, PartMessages};
 use fixplan_catalog::CatalogPart;
-use fixplan_core::Status;
+use fixplan_core::{Kit, Status, Units};
 
 /// Why a part's messages could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -50,13 +50,15 @@ pub fn part_outcome(
     cp: &CatalogPart,
     solved: Solved,
 ) -> Result<PartOutcome, OutcomeError> {
-    part_outcome_packed(ctx, index, cp, solved, |m| m.chunk())
+    part_outcome_packed(ctx.kit, ctx.units, index, cp, solved, |m| m.chunk())
 }
 
-/// [`part_outcome`] with its chunk made by `pack` (compressed, or only
+/// [`part_outcome`] from the kit and unit alone (what a worker finishing
+/// the part holds), its chunk made by `pack` (compressed, or only
 /// described: [`PartMessages::unpacked_chunk`]).
 pub fn part_outcome_packed(
-    ctx: &JobContext,
+    kit: &Kit,
+    units: Units,
     index: usize,
     cp: &CatalogPart,
     solved: Solved,
@@ -76,8 +78,8 @@ pub fn part_outcome_packed(
     let messages = PartMessages::encode(&PartContent {
         index,
         entry: cp,
-        units: ctx.units,
-        kit: ctx.kit,
+        units,
+        kit,
         outline: read.map_or(&[], |p| &p.outline),
         access: read.map_or(&[], |p| &p.access),
         result: &result,

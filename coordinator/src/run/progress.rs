@@ -120,30 +120,36 @@ impl Progress {
     }
 
     /// Counts a written part and shows it.
-    pub fn part_done(&mut self, o: &PartOutcome) {
-        self.totals.add(o.status, o.admissible, o.kept);
+    pub fn part_done(&mut self, outcome: &PartOutcome) {
+        self.totals
+            .add(outcome.status, outcome.admissible, outcome.kept);
         let done = self.totals.parts();
         match &self.bar {
             Some(b) => {
-                if o.status == Status::Invalid {
-                    b.println(format!("invalid: {}", o.error.as_deref().unwrap_or("?")));
+                if outcome.status == Status::Invalid {
+                    b.println(format!(
+                        "invalid: {}",
+                        outcome.error.as_deref().unwrap_or("?")
+                    ));
                 }
                 b.set_message(self.totals.found());
                 b.inc(1);
             }
             None if !self.quiet => {
-                let what = match o.status {
-                    Status::Ok => match o.admissible {
+                let what = match outcome.status {
+                    Status::Ok => match outcome.admissible {
                         Some(a) => format!("ok, {a} fixtures"),
-                        None => format!("ok, top {}", o.kept),
+                        None => format!("ok, top {}", outcome.kept),
                     },
                     Status::NoFixture => "no fixture".to_string(),
-                    Status::Invalid => format!("invalid: {}", o.error.as_deref().unwrap_or("?")),
+                    Status::Invalid => {
+                        format!("invalid: {}", outcome.error.as_deref().unwrap_or("?"))
+                    }
                 };
                 say(format_args!(
                     "[{done}/{}] {}: {what}  ({} so far, {:.1} s)",
                     self.total,
-                    o.id,
+                    outcome.id,
                     self.totals.found(),
                     self.start.elapsed().as_secs_f64()
                 ));
@@ -167,9 +173,9 @@ impl Progress {
 
 /// The terminal line of a part searched with `--grid-steps` or
 /// `--good-enough`: what each step found, where the part stopped.
-pub fn progress_line(o: &PartOutcome) -> Option<String> {
+pub fn progress_line(outcome: &PartOutcome) -> Option<String> {
     let mut parts = Vec::new();
-    for s in o.steps.iter().flatten() {
+    for s in outcome.steps.iter().flatten() {
         let best = s.best_score.map_or("-".into(), |b| format!("{b:.4}"));
         let added = s.added.map_or("?".into(), |a| a.to_string());
         parts.push(format!(
@@ -177,25 +183,30 @@ pub fn progress_line(o: &PartOutcome) -> Option<String> {
             s.grid_step
         ));
     }
-    if let Some(h) = o.stopped_at {
+    if let Some(h) = outcome.stopped_at {
         parts.push(format!("good enough at combination {h}"));
     }
-    (!parts.is_empty()).then(|| format!("{}: {}", o.id, parts.join(" | ")))
+    (!parts.is_empty()).then(|| format!("{}: {}", outcome.id, parts.join(" | ")))
 }
 
 /// The summary table printed at the end of a run.
-pub fn summary_table(t: &Totals, elapsed: Duration, output: &str) -> String {
+pub fn summary_table(totals: &Totals, elapsed: Duration, output: &str) -> String {
     let mut s = String::new();
     let row = |s: &mut String, k: &str, v: String| s.push_str(&format!("  {k:<22} {v:>12}\n"));
-    s.push_str(&format!("fixplan run: {} parts -> {output}\n", t.parts()));
-    row(&mut s, "ok", t.ok.to_string());
-    row(&mut s, "no_fixture", t.no_fixture.to_string());
-    row(&mut s, "invalid", t.invalid.to_string());
-    let found = t.admissible.map_or("not counted".into(), |a| a.to_string());
+    s.push_str(&format!(
+        "fixplan run: {} parts -> {output}\n",
+        totals.parts()
+    ));
+    row(&mut s, "ok", totals.ok.to_string());
+    row(&mut s, "no_fixture", totals.no_fixture.to_string());
+    row(&mut s, "invalid", totals.invalid.to_string());
+    let found = totals
+        .admissible
+        .map_or("not counted".into(), |a| a.to_string());
     row(&mut s, "fixtures found", found);
-    row(&mut s, "fixtures kept (top-k)", t.kept.to_string());
-    if t.resumed > 0 {
-        row(&mut s, "resumed from file", t.resumed.to_string());
+    row(&mut s, "fixtures kept (top-k)", totals.kept.to_string());
+    if totals.resumed > 0 {
+        row(&mut s, "resumed from file", totals.resumed.to_string());
     }
     row(&mut s, "time", format!("{:.2} s", elapsed.as_secs_f64()));
     s

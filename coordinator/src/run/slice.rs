@@ -34,9 +34,9 @@ pub struct BadSlice(String);
 
 impl std::str::FromStr for Slice {
     type Err = BadSlice;
-    fn from_str(s: &str) -> Result<Self, BadSlice> {
-        let bad = || BadSlice(s.to_string());
-        let (k, n) = s.split_once('/').ok_or_else(bad)?;
+    fn from_str(text: &str) -> Result<Self, BadSlice> {
+        let bad = || BadSlice(text.to_string());
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
         let (k, n) = (
             k.trim().parse().map_err(|_| bad())?,
             n.trim().parse().map_err(|_| bad())?,
@@ -96,7 +96,7 @@ fn open_input(path: &Path) -> Result<Input> {
 
 /// Copies the parts of `input` into `w`, checking they continue at `next`;
 /// returns the place after its last part.
-fn copy_parts(input: &Input, w: &mut ResultsWriter, mut next: usize) -> Result<usize> {
+fn copy_parts(input: &Input, writer: &mut ResultsWriter, mut next: usize) -> Result<usize> {
     let mut failed: Option<anyhow::Error> = None;
     let mut put = |m: PartMessages| -> Result<()> {
         if m.index != next {
@@ -111,7 +111,7 @@ fn copy_parts(input: &Input, w: &mut ResultsWriter, mut next: usize) -> Result<u
                 m.index
             );
         }
-        w.write_part(&m)?;
+        writer.write_part(&m)?;
         next += 1;
         Ok(())
     };

@@ -6,10 +6,10 @@
 use super::kits::StudyKit;
 use super::messages::StudyPartRow;
 use super::sharing::{geometry_key, Job};
-use crate::job::solve::Preparation;
+use crate::job::solve_part::Preparation;
 use crate::job::{part_params, JobContext, SearchOptions};
 use crate::run::backend::{Backend, PartJob};
-use crate::run::solve::solve_in_order;
+use crate::run::solve_in_order::solve_in_order;
 use anyhow::{Context, Result};
 use fixplan_catalog::Catalog;
 use fixplan_core::{prepare, Params, PrepareError, PreparedPart};
@@ -128,7 +128,7 @@ impl<'a> Engine<'a> {
             }
         }
         let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.unwrap_or_else(fixplan_worker::host::cores))
+            .num_threads(threads.unwrap_or_else(crate::job::threads::cores))
             .build()
             .context("cannot start the thread pool")?;
         Ok(pool.install(|| {

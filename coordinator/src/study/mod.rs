@@ -28,7 +28,7 @@ use crate::run::backend::Backend;
 use anyhow::{Context, Result};
 use fixplan_catalog::{ArcMode, Catalog};
 use sharing::{Rows, SharePlan};
-use stats::{kit_messages, summary, Work};
+use stats::{kit_messages, summary, StudyWork};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -92,7 +92,7 @@ pub fn run_study(
     rows.fill(&jobs, engine.solve(&jobs)?);
     let shared_same_kit = plan.copy_same_kits(&mut rows, kits);
     let msgs = kit_messages(catalog, kits, &params, rows.into_kits());
-    let work = Work {
+    let work = StudyWork {
         part_runs: kits.len() * np,
         shared_same_kit,
         shared_larger_plate,

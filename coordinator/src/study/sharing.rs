@@ -1,7 +1,7 @@
 //! Work sharing between the kits of a study, and the rows it fills.
 //!
 //! Every (kit, part) goes through the per-part path of `fixplan run`
-//! ([`crate::run::solve::solve_in_order`] in this process, or the workers of
+//! ([`crate::run::solve_in_order::solve_in_order`] in this process, or the workers of
 //! [`crate::cluster::run_distributed`] with `--workers N`), so a study scales out
 //! like a run. Work is shared only where that is provably exact:
 //!

@@ -97,7 +97,7 @@ pub fn kit_messages(
 
 /// How much of a study's work was done and how much was shared.
 #[derive(Debug, Clone, Copy)]
-pub struct Work {
+pub struct StudyWork {
     /// Kits times parts.
     pub part_runs: usize,
     /// Rows copied from an identical kit.
@@ -114,7 +114,7 @@ pub fn summary(
     source: &Path,
     kits: &[StudyKit],
     msgs: &[StudyKitMsg],
-    work: Work,
+    work: StudyWork,
     workers: Option<usize>,
     elapsed_ms: f64,
 ) -> StudySummaryMsg {

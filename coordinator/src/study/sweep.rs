@@ -235,7 +235,7 @@ pub struct Sweep {
 }
 
 /// One point of a sweep: a value per clause.
-pub type Point = Vec<(Key, Value)>;
+pub type SweepPoint = Vec<(Key, Value)>;
 
 fn round(x: f64) -> f64 {
     // Ranges accumulate rounding (0.1 + 0.2): keep 9 decimals.
@@ -467,8 +467,8 @@ impl Sweep {
     }
 
     /// Every point, first clause slowest.
-    pub fn points(&self) -> Vec<Point> {
-        let mut pts: Vec<Point> = vec![Vec::new()];
+    pub fn points(&self) -> Vec<SweepPoint> {
+        let mut pts: Vec<SweepPoint> = vec![Vec::new()];
         for c in &self.clauses {
             pts = pts
                 .into_iter()

@@ -8,7 +8,9 @@ use super::show::print_part;
 use crate::drawing::draw::{bounds, fixture_drawing, plate_outline};
 use crate::drawing::outline::extent_points;
 use crate::output::fields::{CountsField, UnitsName, VertexField};
-use crate::output::messages::{CatalogInfo, FixturesMsg, PartMsg, RunMsg, Timing, TimingField};
+use crate::output::messages::{
+    CatalogInfo, FixturesMsg, PartMsg, RunMsg, SolveTiming, TimingField,
+};
 use crate::output::reader::PartRecord;
 use crate::output::scene::{scene_update, PartScene};
 use fixplan_core::{solve, Params, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex};
@@ -70,7 +72,7 @@ fn record(run: &RunMsg, id: &str, outline: Vec<Vertex>) -> PartRecord {
             counts: result.counts.as_ref().map(CountsField::from),
             fixtures: result.fixtures.len(),
             best_score: result.fixtures.first().map(|f| f.score),
-            timing: TimingField::from(&Timing::default()),
+            timing: TimingField::from(&SolveTiming::default()),
             refine: None,
             stopped: None,
             stopped_at: None,

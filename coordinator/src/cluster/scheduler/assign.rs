@@ -2,14 +2,20 @@
 //! reported (and so holds none any more), sized so that the workers run
 //! out of work together.
 
-use super::state::{requeue, Settings, ShardStatus, State, ROLE, WHOLE};
+use super::state::{requeue, Settings, ShardStatus, State, ROLE};
+use super::tasks;
 use fixplan_worker::protocol::{Assign, Next};
 use std::time::Instant;
 use tracing::info;
 
 /// What `worker`, still working on `holding`, is to do next: work, wait,
 /// rejoin, or stop.
-pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str, holding: &[u64]) -> Next {
+pub(super) fn next_work(
+    st: &mut State,
+    settings: &Settings,
+    worker: &str,
+    holding: &[u64],
+) -> Next {
     let Some(w) = st.workers.get_mut(worker) else {
         return Next::Rejoin;
     };
@@ -22,7 +28,7 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str, holding: &[u
     }
     requeue(st, lost.into_iter());
     if !st.started {
-        if st.workers.len() < s.min_workers {
+        if st.workers.len() < settings.min_workers {
             return Next::Idle { retry_ms: 10 };
         }
         st.started = true;
@@ -33,8 +39,8 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str, holding: &[u
             st.shards.len()
         );
     }
-    let limit = batch_limit(st, s, worker);
-    let Some(batch) = lease_batch(st, s, worker, limit) else {
+    let limit = batch_limit(st, settings, worker);
+    let Some(batch) = lease_batch(st, settings, worker, limit) else {
         return Next::Rejoin;
     };
     if batch.is_empty() {
@@ -53,11 +59,11 @@ pub(super) fn next_work(st: &mut State, s: &Settings, worker: &str, holding: &[u
 /// threads (its batch runs on its whole pool), so a batch sized for one
 /// thread would leave a 64-thread worker mostly idle, and cost the
 /// coordinator a round trip per thread's worth of work.
-fn batch_limit(st: &State, s: &Settings, worker: &str) -> (u64, usize) {
+fn batch_limit(st: &State, settings: &Settings, worker: &str) -> (u64, usize) {
     let threads: u64 = st.workers.values().map(|w| w.threads).sum();
     let mine = st.workers.get(worker).map_or(1, |w| w.threads).max(1);
     let cost = (st.queued_cost.saturating_mul(mine) / (2 * threads.max(1)))
-        .clamp(1, s.batch_cost.max(1).saturating_mul(mine));
+        .clamp(1, settings.batch_cost.max(1).saturating_mul(mine));
     (cost, crate::job::shards::max_batch_shards(mine))
 }
 
@@ -66,7 +72,7 @@ fn batch_limit(st: &State, s: &Settings, worker: &str) -> (u64, usize) {
 /// if it is not known.
 fn lease_batch(
     st: &mut State,
-    s: &Settings,
+    settings: &Settings,
     worker: &str,
     limit: (u64, usize),
 ) -> Option<Vec<Assign>> {
@@ -81,15 +87,17 @@ fn lease_batch(
             continue;
         }
         let part = &st.parts[sh.part];
-        if part.closed || part.stop.is_some_and(|s| sh.range.start > s) {
-            // Past a `--good-enough` hit: not needed any more.
+        let needed = !part.closed && !sh.past(part.stop);
+        let Some(task) = needed.then(|| tasks::task(part, sh, settings)).flatten() else {
+            // Past a `--good-enough` hit, or of a part delivered: not
+            // needed any more.
             sh.status = ShardStatus::Done;
             st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
             continue;
-        }
+        };
         sh.status = ShardStatus::Leased {
             worker: worker.to_string(),
-            until: Instant::now() + s.lease,
+            until: Instant::now() + settings.lease,
         };
         st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
         cost += sh.cost;
@@ -100,17 +108,8 @@ fn lease_batch(
         batch.push(Assign {
             shard_id: id,
             digest: part.digest,
-            range: sh.range.clone(),
             input,
-            good_enough: s.good_enough,
-            // A worker finishes a whole part, or a cut one from its merged
-            // result, never a shard.
-            finish: part
-                .finish
-                .as_ref()
-                .filter(|_| sh.range == WHOLE || sh.finish_from.is_some())
-                .cloned(),
-            finish_from: sh.finish_from.clone(),
+            task,
         });
     }
     Some(batch)

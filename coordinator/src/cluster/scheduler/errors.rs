@@ -1,11 +1,12 @@
 //! Why the scheduler says no: to a whole message ([`Refusal`], answered
 //! with a refusal frame), to one outcome of a report ([`NotTaken`], a
-//! note in the reply), and why a part has no result ([`PartError`], the
+//! note in the reply), and why a part has no result ([`PartFailure`], the
 //! part's message in the results file). The texts reach workers, logs and
 //! results files: they read as they always did.
 
 use crate::cluster::verify::CheckError;
 use fixplan_core::PrepareError;
+use fixplan_worker::protocol::TaskError;
 use thiserror::Error;
 
 /// Why a whole message is refused. A worker prints it and exits, so it
@@ -46,12 +47,12 @@ pub enum NotTaken {
 /// Why a part has no merged result. Its text is the embedded run's
 /// message for the part, without the part's name.
 #[derive(Debug, Clone, PartialEq, Error)]
-pub enum PartError {
+pub enum PartFailure {
     /// The part cannot be prepared: bad outline, kit or parameters.
     #[error(transparent)]
     Prepare(#[from] PrepareError),
     /// A worker's enumeration failed (`internal error in the enumeration:
-    /// ...`): its message as it came over the wire.
-    #[error("{0}")]
-    Worker(String),
+    /// ...`): its error as it came over the wire.
+    #[error(transparent)]
+    Worker(#[from] TaskError),
 }

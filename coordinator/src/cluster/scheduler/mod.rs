@@ -4,26 +4,27 @@
 //! server call it alike) and the answer goes back as bytes.
 //!
 //! This file reads a request and dispatches it; `state` holds what the
-//! scheduler knows, `assign` hands out work, `results` takes and merges
-//! shard results, `workers` follows joins, losses, leases and bans, and
+//! scheduler knows, `tasks` makes a worker's tasks, `assign` hands them
+//! out, `results` takes and merges their outcomes, `workers` follows joins, losses, leases and bans, and
 //! `errors` says why a request or a result is turned down.
 
 mod assign;
 mod errors;
 mod results;
 mod state;
+mod tasks;
 #[cfg(test)]
 mod tests;
 mod workers;
 
-pub use errors::PartError;
+pub use errors::PartFailure;
 pub(crate) use state::{Delivery, MergedShards, PlannedPart};
 pub use state::{Settings, Stats, WHOLE};
 
 use errors::{NotTaken, Refusal};
 use fixplan_worker::protocol::{
-    decode, encode, encode_refused, refusal_for, Frame, Join, Msg, Next, Outcome, ShardDone,
-    ShardFailed,
+    decode, encode, encode_refused, refusal_for, Frame, Join, Msg, Next, Outcome, TaskDone,
+    TaskFailed,
 };
 use state::{State, ROLE};
 use std::sync::mpsc::Sender;
@@ -51,9 +52,10 @@ impl Scheduler {
         parts: Vec<PlannedPart>,
         tx: Sender<Vec<Delivery>>,
     ) -> Scheduler {
+        let st = State::new(parts, settings.good_enough.is_some());
         Scheduler {
             settings,
-            st: Mutex::new(State::new(parts)),
+            st: Mutex::new(st),
             tx: Mutex::new(tx),
         }
     }
@@ -134,9 +136,9 @@ impl Scheduler {
     }
 
     /// The reply to a message, or why it is refused.
-    fn on_msg(&self, m: Msg) -> Result<Msg, Refusal> {
+    fn on_msg(&self, msg: Msg) -> Result<Msg, Refusal> {
         let banned = |w: &str| self.lock().banned.contains(w);
-        match m {
+        match msg {
             Msg::Join(j) if banned(&j.worker) => Err(Refusal::Banned(j.worker)),
             Msg::Report { worker, .. } if banned(&worker) => Err(Refusal::Banned(worker)),
             Msg::Join(j) => self.join(j),
@@ -189,9 +191,14 @@ impl Scheduler {
         })
     }
 
-    fn join(&self, j: Join) -> Result<Msg, Refusal> {
-        let data = workers::data_path(&self.settings, &j)?;
-        Ok(workers::join(&mut self.lock(), &self.settings, j, data))
+    fn join(&self, joining: Join) -> Result<Msg, Refusal> {
+        let data = workers::data_path(&self.settings, &joining)?;
+        Ok(workers::join(
+            &mut self.lock(),
+            &self.settings,
+            joining,
+            data,
+        ))
     }
 
     /// The next assignment of a worker that has just reported and holds
@@ -207,12 +214,12 @@ impl Scheduler {
         assign::next_work(&mut self.lock(), &self.settings, worker, holding)
     }
 
-    fn result(&self, r: ShardDone, worker: &str) -> Result<(), NotTaken> {
-        results::take_result(&mut self.lock(), &self.settings, r, worker)
+    fn result(&self, done: TaskDone, worker: &str) -> Result<(), NotTaken> {
+        results::take_result(&mut self.lock(), &self.settings, done, worker)
     }
 
-    fn failed(&self, f: ShardFailed, worker: &str) -> Result<(), NotTaken> {
-        results::take_failure(&mut self.lock(), f, worker)
+    fn failed(&self, failure: TaskFailed, worker: &str) -> Result<(), NotTaken> {
+        results::take_failure(&mut self.lock(), failure, worker)
     }
 
     /// A worker's liveliness token vanished: its shards go back to the queue.
@@ -228,8 +235,8 @@ impl Scheduler {
 }
 
 /// A message's kind, for the log.
-fn kind(m: &Msg) -> &'static str {
-    match m {
+fn kind(msg: &Msg) -> &'static str {
+    match msg {
         Msg::Join(_) => "join",
         Msg::Welcome(_) => "welcome",
         Msg::Report { .. } => "report",

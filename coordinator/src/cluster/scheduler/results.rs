@@ -2,49 +2,150 @@
 //! [`crate::cluster::verify`]) and held until its part is complete, then
 //! merged into the part's result; or a failure, which fails the part.
 
-use super::errors::{NotTaken, PartError};
+use super::errors::{NotTaken, PartFailure};
 use super::state::{
-    queue_finishing, MergedShards, PartSlot, Settings, ShardResult, ShardStatus, State, ROLE, WHOLE,
+    queue_finishing, MergedShards, PartSlot, Settings, ShardResult, ShardStatus, ShardWork, State,
+    ROLE, WHOLE,
 };
-use super::workers;
+use super::{tasks, workers};
 use crate::cluster::verify::{self, CheckError};
+use bytes::Bytes;
 use fixplan_core::{merge, PartialResult};
-use fixplan_worker::protocol::{FinishFrom, ShardDone, ShardFailed};
+use fixplan_worker::finish::FinishInputs;
+use fixplan_worker::protocol::{Answer, Digest, MergedCut, TaskDone, TaskFailed};
 use std::ops::Range;
 use tracing::warn;
 
-/// Takes one shard result, or says why not (a rejected one bans its
+/// A task's outcome as the scheduler checks it: whose, for which part,
+/// how long it took.
+struct OutcomeHead {
+    shard_id: u64,
+    digest: Digest,
+    micros: u64,
+}
+
+/// A shard's enumeration as a worker reported it.
+struct Enumeration {
+    result: PartialResult,
+    hit: Option<u64>,
+    /// The part finished by the worker, if it was asked to and could.
+    finished: Option<Bytes>,
+}
+
+/// An outcome read against the task it answers.
+enum Taken {
+    /// A shard's enumeration, and the shard's combinations.
+    Enumeration(Enumeration, Range<u64>),
+    /// A cut part's finishing: the finished part, if the worker could.
+    Finishing(Option<Bytes>),
+}
+
+/// `answer` read as the answer to `work`; `None` if it answers another
+/// kind of task.
+fn read(work: &ShardWork, answer: Answer) -> Option<Taken> {
+    match (work, answer) {
+        (ShardWork::Combinations(range), Answer::Enumerated { result, hit }) => {
+            Some(Taken::Enumeration(
+                Enumeration {
+                    result,
+                    hit,
+                    finished: None,
+                },
+                range.clone(),
+            ))
+        }
+        (ShardWork::Combinations(range), Answer::EnumeratedAndFinished { result, finished }) => {
+            Some(Taken::Enumeration(
+                Enumeration {
+                    result,
+                    hit: None,
+                    finished: finished.ok(),
+                },
+                range.clone(),
+            ))
+        }
+        (ShardWork::Finishing(_), Answer::Finished(finished)) => {
+            Some(Taken::Finishing(finished.ok()))
+        }
+        _ => None,
+    }
+}
+
+/// Takes one task's outcome, or says why not (a rejected one bans its
 /// worker).
 pub(super) fn take_result(
     st: &mut State,
-    s: &Settings,
-    r: ShardDone,
+    settings: &Settings,
+    done: TaskDone,
     worker: &str,
 ) -> Result<(), NotTaken> {
     st.stats.results += 1;
-    let (p, shard_range) = shard_of(st, &r, worker)?;
-    if st.shards[r.shard_id as usize].finish_from.is_some() {
-        return take_finishing(st, s, r, worker, p);
+    let p = task_of(st, done.shard_id, worker)?;
+    let head = OutcomeHead {
+        shard_id: done.shard_id,
+        digest: done.digest,
+        micros: done.micros,
+    };
+    let sh = &st.shards[done.shard_id as usize];
+    let taken = if tasks::expects(&st.parts[p], sh, &done.answer) {
+        read(&sh.work, done.answer)
+    } else {
+        None
+    };
+    match taken {
+        Some(Taken::Enumeration(enumeration, range)) => {
+            take_enumeration(st, settings, &head, enumeration, worker, (p, range))
+        }
+        Some(Taken::Finishing(finished)) => {
+            take_finishing(st, settings, &head, finished, worker, p)
+        }
+        None => {
+            if let Some(w) = st.workers.get_mut(worker) {
+                w.leased.remove(&head.shard_id);
+            }
+            let e = CheckError::WrongAnswer;
+            reject(st, &head, p, &"its task", worker, &e);
+            Err(NotTaken::Rejected(e))
+        }
     }
+}
+
+/// Takes a shard's enumeration (of part `p`, combinations
+/// `shard_range`), checked.
+fn take_enumeration(
+    st: &mut State,
+    settings: &Settings,
+    head: &OutcomeHead,
+    mut enumeration: Enumeration,
+    worker: &str,
+    (p, shard_range): (usize, Range<u64>),
+) -> Result<(), NotTaken> {
     // A shard stopped by `--good-enough` answers for its prefix.
-    let range = match r.hit {
+    let range = match enumeration.hit {
         Some(h) if shard_range.contains(&h) => shard_range.start..h + 1,
         _ => shard_range.clone(),
     };
-    let deep = s.verify.deep(
-        r.shard_id,
+    let deep = settings.verify.deep(
+        head.shard_id,
         st.workers.get(worker).map_or(0, |w| w.rederived),
     );
-    let check = check(&mut st.parts[p], s, &r, &shard_range, &range, deep);
+    let check = check(
+        &mut st.parts[p],
+        settings,
+        head,
+        &enumeration,
+        (&shard_range, &range),
+        deep,
+    );
     if let Some(w) = st.workers.get_mut(worker) {
-        w.leased.remove(&r.shard_id);
+        w.leased.remove(&head.shard_id);
     }
     let checked = match check {
         Ok(n) => n,
         Err(e) => {
             reject(
                 st,
-                &r,
+                head,
                 p,
                 &format_args!("combinations {range:?}"),
                 worker,
@@ -53,43 +154,56 @@ pub(super) fn take_result(
             return Err(NotTaken::Rejected(e));
         }
     };
-    accept(st, &r, worker, checked, deep);
-    let mut r = r;
-    if deep && s.finisher.is_none() {
+    accept(st, head, worker, checked, deep);
+    if deep && settings.finisher.is_none() {
         // The result was re-derived, its finished part cannot be checked:
         // the caller finishes the part from the result.
-        r.finished = None;
+        enumeration.finished = None;
     }
-    hold(st, s, p, r, &shard_range);
+    hold(st, settings, p, head, enumeration, &shard_range);
     Ok(())
 }
 
 /// Takes a worker's finishing of cut part `p` (checked, for the
 /// verification sample, by finishing the part here too), and delivers
-/// the part with it.
+/// the part with it (without it, if the worker could not finish it: the
+/// caller then does).
 fn take_finishing(
     st: &mut State,
-    s: &Settings,
-    r: ShardDone,
+    settings: &Settings,
+    head: &OutcomeHead,
+    finished: Option<Bytes>,
     worker: &str,
-    p: usize,
+    slot: usize,
 ) -> Result<(), NotTaken> {
-    let id = r.shard_id;
-    let deep = s
+    let id = head.shard_id;
+    let deep = settings
         .verify
         .deep(id, st.workers.get(worker).map_or(0, |w| w.rederived));
-    let from = st.shards[id as usize].finish_from.as_deref();
-    let check = check_finishing(&mut st.parts[p], s, &r, from, deep);
+    let merged = match &st.shards[id as usize].work {
+        ShardWork::Finishing(merged) => merged.as_deref(),
+        ShardWork::Combinations(_) => None,
+    };
+    let check = check_finishing(
+        &mut st.parts[slot],
+        settings,
+        head,
+        finished.as_ref(),
+        merged,
+        deep,
+    );
     if let Some(w) = st.workers.get_mut(worker) {
         w.leased.remove(&id);
     }
     if let Err(e) = check {
-        reject(st, &r, p, &"its finishing", worker, &e);
+        reject(st, head, slot, &"its finishing", worker, &e);
         return Err(NotTaken::Rejected(e));
     }
-    accept(st, &r, worker, 0, deep);
-    if let Some(from) = st.shards[id as usize].finish_from.take() {
-        deliver(st, p, from.result, None, r.finished);
+    accept(st, head, worker, 0, deep);
+    if let ShardWork::Finishing(merged) = &mut st.shards[id as usize].work {
+        if let Some(merged) = merged.take() {
+            deliver(st, slot, merged.result, None, finished);
+        }
     }
     Ok(())
 }
@@ -98,44 +212,41 @@ fn take_finishing(
 /// `deep` the finished bytes against the coordinator's own finishing.
 fn check_finishing(
     part: &mut PartSlot,
-    s: &Settings,
-    r: &ShardDone,
-    from: Option<&FinishFrom>,
+    settings: &Settings,
+    head: &OutcomeHead,
+    finished: Option<&Bytes>,
+    merged: Option<&MergedCut>,
     deep: bool,
 ) -> Result<(), CheckError> {
-    if r.digest != part.digest {
+    if head.digest != part.digest {
         return Err(CheckError::OtherPart {
-            got: r.digest,
+            got: head.digest,
             want: part.digest,
         });
     }
-    if !deep || r.finished.is_none() {
+    let (Some(theirs), true) = (finished, deep) else {
         return Ok(());
-    }
+    };
     let prep = part.prepared().map_err(CheckError::CannotPrepare)?;
-    if let (Some(theirs), Some(f), Some(context), Some(from)) =
-        (&r.finished, &s.finisher, &part.finish, from)
-    {
-        verify::check_finished(
-            f.as_ref(),
-            &part.source,
-            &prep,
-            &from.result,
-            from.micros,
+    if let (Some(f), Some(context), Some(merged)) = (&settings.finisher, &part.finish, merged) {
+        let inputs = FinishInputs {
+            input: &part.source,
+            prep: &prep,
+            result: &merged.result,
+            micros: merged.micros,
             context,
-            theirs,
-        )?;
+        };
+        verify::check_finished(f.as_ref(), &inputs, theirs)?;
     }
     Ok(())
 }
 
-/// The part and combinations of the shard `r` answers, if that shard is
-/// still to be done.
-fn shard_of(st: &mut State, r: &ShardDone, worker: &str) -> Result<(usize, Range<u64>), NotTaken> {
-    let Some(sh) = st.shards.get(r.shard_id as usize) else {
+/// The part of the task `id` answers, if that task is still to be done.
+fn task_of(st: &mut State, id: u64, worker: &str) -> Result<usize, NotTaken> {
+    let Some(sh) = st.shards.get(id as usize) else {
         warn!(
             role = ROLE,
-            "dropped a result for unknown shard {} from worker {}", r.shard_id, worker
+            "dropped a result for unknown shard {} from worker {}", id, worker
         );
         return Err(NotTaken::UnknownShard);
     };
@@ -143,45 +254,51 @@ fn shard_of(st: &mut State, r: &ShardDone, worker: &str) -> Result<(usize, Range
         st.stats.duplicates += 1;
         return Err(NotTaken::Duplicate);
     }
-    Ok((sh.part, sh.range.clone()))
+    Ok(sh.part)
 }
 
 /// The checks of a result against its part as it stands (`deep`: its
 /// fixtures re-derived too): how many fixtures were re-derived.
 fn check(
     part: &mut PartSlot,
-    s: &Settings,
-    r: &ShardDone,
-    shard_range: &Range<u64>,
-    range: &Range<u64>,
+    settings: &Settings,
+    head: &OutcomeHead,
+    enumeration: &Enumeration,
+    (shard_range, range): (&Range<u64>, &Range<u64>),
     deep: bool,
 ) -> Result<usize, CheckError> {
-    if r.digest != part.digest {
+    if head.digest != part.digest {
         return Err(CheckError::OtherPart {
-            got: r.digest,
+            got: head.digest,
             want: part.digest,
         });
     }
-    verify::check_stop(s.good_enough, shard_range, r.hit, &r.result)?;
+    verify::check_stop(
+        settings.good_enough,
+        shard_range,
+        enumeration.hit,
+        &enumeration.result,
+    )?;
     if deep {
         let prep = part.prepared().map_err(CheckError::CannotPrepare)?;
-        let n = verify::check(&prep, range, &r.result, &part.top, true)?;
-        if let (Some(theirs), Some(f), Some(context)) = (&r.finished, &s.finisher, &part.finish) {
-            verify::check_finished(
-                f.as_ref(),
-                &part.source,
-                &prep,
-                &r.result,
-                r.micros,
+        let n = verify::check(&prep, range, &enumeration.result, &part.top, true)?;
+        if let (Some(theirs), Some(f), Some(context)) =
+            (&enumeration.finished, &settings.finisher, &part.finish)
+        {
+            let inputs = FinishInputs {
+                input: &part.source,
+                prep: &prep,
+                result: &enumeration.result,
+                micros: head.micros,
                 context,
-                theirs,
-            )?;
+            };
+            verify::check_finished(f.as_ref(), &inputs, theirs)?;
         }
         return Ok(n);
     }
     match &part.prep {
-        Some(prep) => verify::check(prep, range, &r.result, &part.top, false),
-        None => verify::check_shape(part.top_k(), range, &r.result).map(|()| 0),
+        Some(prep) => verify::check(prep, range, &enumeration.result, &part.top, false),
+        None => verify::check_shape(part.top_k(), range, &enumeration.result).map(|()| 0),
     }
 }
 
@@ -189,77 +306,81 @@ fn check(
 /// worker is banned.
 fn reject(
     st: &mut State,
-    r: &ShardDone,
-    p: usize,
+    task: &OutcomeHead,
+    slot: usize,
     what: &dyn std::fmt::Display,
     worker: &str,
-    e: &CheckError,
+    error: &CheckError,
 ) {
     st.stats.rejected += 1;
     let part_index = &st.part_index;
     warn!(
         role = ROLE,
-        "rejected shard {} (part #{}, {what}) from worker {}: {e}; it goes back to the queue",
-        r.shard_id,
-        part_index.get(p).copied().unwrap_or(p),
+        "rejected shard {} (part #{}, {what}) from worker {}: {error}; it goes back to the queue",
+        task.shard_id,
+        part_index.get(slot).copied().unwrap_or(slot),
         worker
     );
     // A worker that sends a bad result gets no more work.
-    workers::ban(st, worker, r.shard_id);
+    workers::ban(st, worker, task.shard_id);
 }
 
 /// Counts a result that passed its checks, and marks its shard done by
 /// `worker` (whose work is redone if it is caught later).
-fn accept(st: &mut State, r: &ShardDone, worker: &str, checked: usize, deep: bool) {
+fn accept(st: &mut State, task: &OutcomeHead, worker: &str, checked: usize, deep: bool) {
     st.stats.fixtures_rederived += checked as u64;
     st.stats.results_rederived += u64::from(deep);
-    st.stats.worker_micros += r.micros;
-    st.shards[r.shard_id as usize].status = ShardStatus::Done;
+    st.stats.worker_micros += task.micros;
+    st.shards[task.shard_id as usize].status = ShardStatus::Done;
     if let Some(w) = st.workers.get_mut(worker) {
         w.shards += 1;
         w.rederived += checked as u64;
-        st.shards[r.shard_id as usize].by = Some(w.name.clone());
+        st.shards[task.shard_id as usize].by = Some(w.name.clone());
     }
 }
 
 /// Holds a result taken for part `p`, and closes the part once no shard up
 /// to its stop is left.
-fn hold(st: &mut State, s: &Settings, p: usize, r: ShardDone, shard_range: &Range<u64>) {
-    let part = &mut st.parts[p];
-    let mut result = r.result;
-    if *shard_range == WHOLE && r.hit.is_none() {
+fn hold(
+    st: &mut State,
+    settings: &Settings,
+    slot: usize,
+    head: &OutcomeHead,
+    enumeration: Enumeration,
+    shard_range: &Range<u64>,
+) {
+    let part = &mut st.parts[slot];
+    let mut result = enumeration.result;
+    if *shard_range == WHOLE && enumeration.hit.is_none() {
         // As the embedded run cuts it: `0..count`.
         result.range = 0..result.counts.combinations;
     }
-    if let Some(h) = r.hit {
-        part.stop = Some(part.stop.map_or(h, |s| s.min(h)));
+    if let Some(h) = enumeration.hit {
+        part.stop = Some(part.stop.map_or(h, |settings| settings.min(h)));
     }
-    let open = still_open(st, p);
-    let part = &mut st.parts[p];
+    let open = still_open(st, slot);
+    let part = &mut st.parts[slot];
     if open {
         // The running top-k only serves the checks of the shards to come.
         let lists = vec![std::mem::take(&mut part.top), result.fixtures.clone()];
         part.top = fixplan_core::merge_ranked(lists, part.top_k());
     }
     part.partials.push(ShardResult {
-        shard: r.shard_id,
-        hit: r.hit,
-        micros: r.micros,
+        shard: head.shard_id,
+        hit: enumeration.hit,
+        micros: head.micros,
         result,
-        finished: r.finished,
+        finished: enumeration.finished,
     });
     if !open && !part.closed {
-        close(st, s, p);
+        close(st, settings, slot);
     }
 }
 
 /// Whether a shard of part `p` up to its stop is not done yet.
-fn still_open(st: &State, p: usize) -> bool {
-    let part = &st.parts[p];
-    let counts = |id: u64| {
-        part.stop
-            .is_none_or(|s| st.shards[id as usize].range.start <= s)
-    };
+fn still_open(st: &State, slot: usize) -> bool {
+    let part = &st.parts[slot];
+    let counts = |id: u64| !st.shards[id as usize].past(part.stop);
     part.shard_ids
         .clone()
         .any(|id| counts(id) && st.shards[id as usize].status != ShardStatus::Done)
@@ -267,8 +388,8 @@ fn still_open(st: &State, p: usize) -> bool {
 
 /// Merges the results of part `p` and hands the part to the consumer, or
 /// for a cut part that workers finish, queues its finishing.
-fn close(st: &mut State, s: &Settings, p: usize) {
-    let part = &mut st.parts[p];
+fn close(st: &mut State, settings: &Settings, slot: usize) {
+    let part = &mut st.parts[slot];
     let stop = part.stop;
     // Shards past the stop: results that came in are left out, the others
     // are never handed out (or are duplicates later).
@@ -284,7 +405,7 @@ fn close(st: &mut State, s: &Settings, p: usize) {
     let kept = partials
         .into_iter()
         .map(|h| h.result)
-        .filter(|r| stop.is_none_or(|s| r.range.start <= s))
+        .filter(|r| stop.is_none_or(|settings| r.range.start <= settings))
         .collect();
     let mut merged = merge(part.top_k(), kept);
     if merged.range.end == u64::MAX {
@@ -295,30 +416,30 @@ fn close(st: &mut State, s: &Settings, p: usize) {
             .start
             .saturating_add(merged.counts.combinations);
     }
-    if !whole && stop.is_none() && s.finisher.is_some() && part.finish.is_some() {
+    if !whole && stop.is_none() && settings.finisher.is_some() && part.finish.is_some() {
         queue_finishing(
             st,
-            p,
-            FinishFrom {
+            slot,
+            MergedCut {
                 result: merged,
                 micros,
             },
         );
         return;
     }
-    deliver(st, p, merged, stop, finished);
+    deliver(st, slot, merged, stop, finished);
 }
 
 /// Hands part `p` to the consumer: its merged result, the combination
 /// where it stopped, and its finished bytes if a worker finished it.
 fn deliver(
     st: &mut State,
-    p: usize,
+    slot: usize,
     merged: PartialResult,
     stopped_at: Option<u64>,
-    finished: Option<Vec<u8>>,
+    finished: Option<Bytes>,
 ) {
-    let part = &mut st.parts[p];
+    let part = &mut st.parts[slot];
     part.closed = true;
     part.finishing = None;
     let done = MergedShards {
@@ -334,15 +455,19 @@ fn deliver(
     for id in part.shard_ids.clone() {
         st.shards[id as usize].status = ShardStatus::Done;
     }
-    let idx = st.part_index.get(p).copied().unwrap_or(p);
+    let idx = st.part_index.get(slot).copied().unwrap_or(slot);
     st.done.push((idx, Ok(done)));
 }
 
 /// A worker could not enumerate a shard: the part fails, with the
 /// coordinator's own message if the part cannot be prepared (the embedded
 /// run's), else the worker's.
-pub(super) fn take_failure(st: &mut State, f: ShardFailed, worker: &str) -> Result<(), NotTaken> {
-    let Some(sh) = st.shards.get(f.shard_id as usize) else {
+pub(super) fn take_failure(
+    st: &mut State,
+    failure: TaskFailed,
+    worker: &str,
+) -> Result<(), NotTaken> {
+    let Some(sh) = st.shards.get(failure.shard_id as usize) else {
         return Err(NotTaken::UnknownShard);
     };
     if sh.status == ShardStatus::Done {
@@ -350,16 +475,19 @@ pub(super) fn take_failure(st: &mut State, f: ShardFailed, worker: &str) -> Resu
     }
     let p = sh.part;
     if let Some(w) = st.workers.get_mut(worker) {
-        w.leased.remove(&f.shard_id);
+        w.leased.remove(&failure.shard_id);
     }
-    if let Some(from) = st.shards[f.shard_id as usize].finish_from.take() {
+    if let ShardWork::Finishing(merged) = &mut st.shards[failure.shard_id as usize].work {
         // A worker that cannot finish a cut part: the caller finishes it.
         warn!(
             role = ROLE,
-            "worker {worker} could not finish a cut part: {}", f.message
+            "worker {worker} could not finish a cut part: {}", failure.error
         );
-        st.shards[f.shard_id as usize].status = ShardStatus::Done;
-        deliver(st, p, from.result, None, None);
+        let merged = merged.take();
+        st.shards[failure.shard_id as usize].status = ShardStatus::Done;
+        if let Some(merged) = merged {
+            deliver(st, p, merged.result, None, None);
+        }
         return Ok(());
     }
     let idx = st.part_index.get(p).copied().unwrap_or(p);
@@ -367,13 +495,16 @@ pub(super) fn take_failure(st: &mut State, f: ShardFailed, worker: &str) -> Resu
     // the input's fault and the coordinator's own message stands (the
     // embedded run's); otherwise the worker's enumeration failed.
     let error = match st.parts[p].prepared() {
-        Err(e) => PartError::Prepare(e),
+        Err(e) => PartFailure::Prepare(e),
         Ok(_) => {
             warn!(
                 role = ROLE,
-                "part #{idx}: worker {} failed shard {}: {}", worker, f.shard_id, f.message
+                "part #{idx}: worker {} failed shard {}: {}",
+                worker,
+                failure.shard_id,
+                failure.error
             );
-            PartError::Worker(f.message)
+            PartFailure::Worker(failure.error)
         }
     };
     for sh in st.shards.iter_mut().filter(|s| s.part == p) {

@@ -2,13 +2,13 @@
 //! every shard and where it is, the workers, the run's figures; and the
 //! one way a shard goes back to the queue.
 
-use super::errors::PartError;
+use super::errors::PartFailure;
 use crate::cluster::verify::VerifyPolicy;
 use bytes::Bytes;
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
 use fixplan_worker::finish::Finisher;
 use fixplan_worker::part_input::{digest, PartInput};
-use fixplan_worker::protocol::{DataPath, Digest, FinishFrom, TransportChoice};
+use fixplan_worker::protocol::{DataPath, Digest, MergedCut, TransportChoice};
 use std::collections::{HashMap, HashSet, VecDeque};
 use std::ops::Range;
 use std::sync::Arc;
@@ -38,8 +38,10 @@ pub(crate) struct PlannedPart {
     pub ranges: Vec<Range<u64>>,
     /// Its segment count (estimated for a whole part), for shard costs.
     pub segments: usize,
-    /// For a part that goes out whole: what a worker needs to finish it
-    /// ([`fixplan_worker::finish`]), if the caller wants it finished there.
+    /// What a worker needs to finish the part
+    /// ([`fixplan_worker::finish`]), if the caller wants it finished there
+    /// (ignored with `--good-enough`: a part that stops early is finished
+    /// by the caller).
     pub finish: Option<Vec<u8>>,
 }
 
@@ -59,11 +61,11 @@ pub(crate) struct MergedShards {
     /// The part as the worker finished it ([`fixplan_worker::finish`]),
     /// unless the coordinator must finish it (a result it re-derived, or a
     /// worker that did not).
-    pub finished: Option<Vec<u8>>,
+    pub finished: Option<Bytes>,
 }
 
 /// A finished part under its index in the caller's list.
-pub(crate) type Delivery = (usize, Result<MergedShards, PartError>);
+pub(crate) type Delivery = (usize, Result<MergedShards, PartFailure>);
 
 /// A part being worked on.
 pub(super) struct PartSlot {
@@ -89,7 +91,7 @@ pub(super) struct PartSlot {
     pub(super) finish: Option<Bytes>,
     /// A cut part whose shards are all merged, waiting for a worker to
     /// finish it: the finishing task's id (the merged result is in that
-    /// task's [`ShardSlot::finish_from`]).
+    /// task's [`ShardWork::Finishing`]).
     pub(super) finishing: Option<u64>,
 }
 
@@ -121,18 +123,38 @@ pub(super) enum ShardStatus {
     Done,
 }
 
+/// What a task of the scheduler stands for: the scheduler's side of a
+/// [`fixplan_worker::protocol::Task`] (made from it in `tasks`).
+#[derive(Debug)]
+pub(super) enum ShardWork {
+    /// Combinations of the part to enumerate ([`WHOLE`] for a part that
+    /// goes out whole).
+    Combinations(Range<u64>),
+    /// The finishing of a cut part from its merged result, held until the
+    /// part is delivered or merged again (then `None`).
+    Finishing(Option<Box<MergedCut>>),
+}
+
+/// A task: a shard of a part, or a cut part's finishing.
 pub(super) struct ShardSlot {
     pub(super) part: usize,
-    pub(super) range: Range<u64>,
+    pub(super) work: ShardWork,
     /// [`crate::job::shards::cost`] of the shard, for batching.
     pub(super) cost: u64,
     pub(super) status: ShardStatus,
     /// The worker whose result was taken.
     pub(super) by: Option<Arc<str>>,
-    /// Not a shard but the finishing of a cut part from its merged result
-    /// ([`fixplan_worker::protocol::Assign::finish_from`]); `range` is
-    /// empty.
-    pub(super) finish_from: Option<Box<FinishFrom>>,
+}
+
+impl ShardSlot {
+    /// Whether the shard starts past `stop` (a `--good-enough` hit): not
+    /// needed any more. A finishing is never past a stop.
+    pub(super) fn past(&self, stop: Option<u64>) -> bool {
+        match &self.work {
+            ShardWork::Combinations(range) => stop.is_some_and(|s| range.start > s),
+            ShardWork::Finishing(_) => false,
+        }
+    }
 }
 
 /// A shard result taken, held until its part is complete.
@@ -143,7 +165,7 @@ pub(super) struct ShardResult {
     pub(super) micros: u64,
     pub(super) result: PartialResult,
     /// [`MergedShards::finished`], of a whole part's one shard.
-    pub(super) finished: Option<Vec<u8>>,
+    pub(super) finished: Option<Bytes>,
 }
 
 pub(super) struct WorkerSlot {
@@ -254,8 +276,9 @@ pub(super) struct State {
 }
 
 impl State {
-    /// Every shard of `parts` in the queue, in order.
-    pub(super) fn new(parts: Vec<PlannedPart>) -> State {
+    /// Every shard of `parts` in the queue, in order; with `--good-enough`
+    /// (`stops`), the parts' finish contexts dropped.
+    pub(super) fn new(parts: Vec<PlannedPart>, stops: bool) -> State {
         // Sized once: growing these by doubling copied every slot again,
         // which showed in the coordinator's CPU on big catalogues.
         let shards: usize = parts.iter().map(|p| p.ranges.len()).sum();
@@ -272,7 +295,10 @@ impl State {
             part_index: Vec::with_capacity(parts.len()),
             stats: Stats::default(),
         };
-        for part in parts {
+        for mut part in parts {
+            if stops {
+                part.finish = None;
+            }
             st.add(part);
         }
         st.stats.shards = st.shards.len() as u64;
@@ -292,11 +318,10 @@ impl State {
             self.queued_cost += cost;
             self.shards.push(ShardSlot {
                 part: p,
-                range: r,
+                work: ShardWork::Combinations(r),
                 cost,
                 status: ShardStatus::Queued,
                 by: None,
-                finish_from: None,
             });
         }
         self.parts.push(PartSlot {
@@ -319,20 +344,19 @@ impl State {
 
 /// Queues the finishing of cut part `p` from its merged result, first in
 /// line (the results file waits for the part, in catalogue order).
-pub(super) fn queue_finishing(st: &mut State, p: usize, from: FinishFrom) {
+pub(super) fn queue_finishing(st: &mut State, slot: usize, merged: MergedCut) {
     let id = st.shards.len() as u64;
-    let cost = st.parts[p].source.part.outline.len().max(1) as u64;
+    let cost = st.parts[slot].source.part.outline.len().max(1) as u64;
     st.shards.push(ShardSlot {
-        part: p,
-        range: 0..0,
+        part: slot,
+        work: ShardWork::Finishing(Some(Box::new(merged))),
         cost,
         status: ShardStatus::Queued,
         by: None,
-        finish_from: Some(Box::new(from)),
     });
     st.queued_cost += cost;
     st.queue.push_front(id);
-    st.parts[p].finishing = Some(id);
+    st.parts[slot].finishing = Some(id);
     st.stats.finishings += 1;
 }
 

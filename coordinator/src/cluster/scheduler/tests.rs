@@ -1,12 +1,15 @@
 //! The scheduler driven by hand: bans, lost replies, batch sizes.
 
-use super::state::ShardStatus;
+use super::state::{ShardStatus, ShardWork};
 use super::*;
 use crate::cluster::verify::VerifyPolicy;
+use bytes::Bytes;
 use fixplan_catalog::kit::{builtin_kit, METRIC_25};
 use fixplan_core::{Params, Part};
+use fixplan_worker::finish::FinishInputs;
 use fixplan_worker::part_input::PartInput;
-use fixplan_worker::protocol::{Assign, TransportChoice};
+use fixplan_worker::protocol::{Answer, Assign, FinishError, Task, TransportChoice};
+use std::ops::Range;
 use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -65,37 +68,72 @@ fn core_rx(parts: usize, shard: u64, verify: VerifyPolicy) -> (Scheduler, Receiv
 }
 
 /// The honest outcome of each shard of `batch` (part 0).
-fn honest(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
-    let prep = c.lock().parts[0].prep.clone().expect("prepared");
+fn honest(scheduler: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+    let prep = scheduler.lock().parts[0].prep.clone().expect("prepared");
     batch
         .iter()
-        .map(|a| done(a, prep.enumerate_range(a.range.clone()), None))
+        .map(|a| done(a, prep.enumerate_range(range_of(a)), None))
         .collect()
 }
 
-/// `a`'s shard done in 1 us, with `result` and `finished` bytes.
-fn done(a: &Assign, result: fixplan_core::PartialResult, finished: Option<Vec<u8>>) -> Outcome {
-    Outcome::Done(Box::new(ShardDone {
-        shard_id: a.shard_id,
-        digest: a.digest,
+/// The combinations task `a` enumerates.
+fn range_of(assign: &Assign) -> Range<u64> {
+    match &assign.task {
+        Task::Enumerate { range, .. } | Task::EnumerateAndFinish { range, .. } => range.clone(),
+        Task::Finish { .. } => panic!("a finishing enumerates nothing"),
+    }
+}
+
+/// `a` done in 1 us, with `result` and `finished` bytes, answered as its
+/// kind of task is.
+fn done(
+    assign: &Assign,
+    result: fixplan_core::PartialResult,
+    finished: Option<Vec<u8>>,
+) -> Outcome {
+    let finished = finished.map(Bytes::from).ok_or(FinishError::NoFinisher);
+    let answer = match &assign.task {
+        Task::Enumerate { .. } => Answer::Enumerated { result, hit: None },
+        Task::EnumerateAndFinish { .. } => Answer::EnumeratedAndFinished { result, finished },
+        Task::Finish { .. } => Answer::Finished(finished),
+    };
+    Outcome::Done(Box::new(TaskDone {
+        shard_id: assign.shard_id,
+        digest: assign.digest,
         micros: 1,
-        result,
-        hit: None,
-        finished,
+        answer,
     }))
 }
 
-fn report(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>) -> Frame {
-    report_holding(c, worker, outcomes, vec![])
+/// `o` with its finished part replaced by `bytes`.
+fn forge(outcome: &mut Outcome, bytes: &[u8]) {
+    let Outcome::Done(d) = outcome else {
+        panic!("failed")
+    };
+    match &mut d.answer {
+        Answer::EnumeratedAndFinished { finished, .. } | Answer::Finished(finished) => {
+            *finished = Ok(Bytes::copy_from_slice(bytes))
+        }
+        Answer::Enumerated { .. } => panic!("nothing finished"),
+    }
 }
 
-fn report_holding(c: &Scheduler, worker: &str, outcomes: Vec<Outcome>, holding: Vec<u64>) -> Frame {
+fn report(scheduler: &Scheduler, worker: &str, outcomes: Vec<Outcome>) -> Frame {
+    report_holding(scheduler, worker, outcomes, vec![])
+}
+
+fn report_holding(
+    scheduler: &Scheduler,
+    worker: &str,
+    outcomes: Vec<Outcome>,
+    holding: Vec<u64>,
+) -> Frame {
     let msg = Msg::Report {
         worker: worker.into(),
         outcomes,
         holding,
     };
-    decode(&c.handle(&encode(&msg).expect("encode"))).expect("decode")
+    decode(&scheduler.handle(&encode(&msg).expect("encode"))).expect("decode")
 }
 
 #[test]
@@ -125,10 +163,13 @@ fn a_banned_worker_s_work_on_open_parts_is_done_again() {
     // ...then lies about one fixture of it.
     let mut lies = honest(&c, &second);
     let forged = lies.iter_mut().find_map(|o| match o {
-        Outcome::Done(d) if !d.result.fixtures.is_empty() => Some(d),
-        _ => None,
+        Outcome::Done(d) => match &mut d.answer {
+            Answer::Enumerated { result, .. } if !result.fixtures.is_empty() => Some(result),
+            _ => None,
+        },
+        Outcome::Failed(_) => None,
     });
-    forged.expect("a shard with fixtures").result.fixtures[0].score *= 0.5;
+    forged.expect("a shard with fixtures").fixtures[0].score *= 0.5;
     assert!(matches!(report(&c, "a", lies), Frame::Refused(_)));
     // Its first, accepted results are back in the queue.
     for &id in &first_ids {
@@ -153,11 +194,11 @@ fn a_banned_worker_s_work_on_open_parts_is_done_again() {
     assert_eq!(f.merged, prep.enumerate_all());
 }
 
-fn join(c: &Scheduler, name: &str) {
-    join_threads(c, name, 1);
+fn join(scheduler: &Scheduler, name: &str) {
+    join_threads(scheduler, name, 1);
 }
 
-fn join_threads(c: &Scheduler, name: &str, threads: u32) {
+fn join_threads(scheduler: &Scheduler, name: &str, threads: u32) {
     let j = Join {
         worker: name.into(),
         host_id: "other".into(),
@@ -166,11 +207,11 @@ fn join_threads(c: &Scheduler, name: &str, threads: u32) {
         transport: TransportChoice::Zenoh,
         software: "test".into(),
     };
-    assert!(matches!(c.join(j), Ok(Msg::Welcome(_))));
+    assert!(matches!(scheduler.join(j), Ok(Msg::Welcome(_))));
 }
 
-fn ids(n: &Next) -> Vec<u64> {
-    match n {
+fn ids(next: &Next) -> Vec<u64> {
+    match next {
         Next::Work(b) => b.iter().map(|a| a.shard_id).collect(),
         other => panic!("{other:?}"),
     }
@@ -228,20 +269,12 @@ fn nothing_else_of_a_report_counts_after_a_bad_result() {
     let mut outcomes: Vec<(bool, Outcome)> = batch
         .iter()
         .map(|a| {
-            let mut result = prep.enumerate_range(a.range.clone());
+            let mut result = prep.enumerate_range(range_of(a));
             let bad = !result.fixtures.is_empty();
             if let Some(f) = result.fixtures.first_mut() {
                 f.score *= 0.5;
             }
-            let done = ShardDone {
-                shard_id: a.shard_id,
-                digest: a.digest,
-                micros: 1,
-                result,
-                hit: None,
-                finished: None,
-            };
-            (bad, Outcome::Done(Box::new(done)))
+            (bad, done(a, result, None))
         })
         .collect();
     // One corrupted result first, honest ones after it.
@@ -330,9 +363,9 @@ fn a_worker_s_batch_grows_with_its_threads() {
 }
 
 /// `n` parts planned whole and unprepared, each with a finish context.
-fn whole_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
+fn whole_parts(count: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
     let (kit, units) = builtin_kit(METRIC_25).expect("built-in kit");
-    let planned = (0..n)
+    let planned = (0..count)
         .map(|i| {
             let w = 100.0 + 10.0 * i as f64;
             let source = PartInput {
@@ -359,17 +392,19 @@ fn whole_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Deliv
 
 /// Honest results of whole parts, each with `finished` bytes naming its
 /// part (`f`, part index: what [`Tag`] makes of its context).
-fn finished_outcomes(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+fn finished_outcomes(scheduler: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
     batch
         .iter()
         .map(|a| {
             let input = PartInput::decode(a.input.as_deref().expect("input")).expect("decode");
             let mut result = input.prepare().expect("prepare").enumerate_all();
             result.range = 0..u64::MAX;
-            assert_eq!(a.range, WHOLE);
-            let ctx = a.finish.clone().expect("a finish context");
-            let p = c.lock().shards[a.shard_id as usize].part;
-            assert_eq!(ctx, vec![b'c', p as u8], "the part's own context");
+            let Task::EnumerateAndFinish { range, context } = &a.task else {
+                panic!("a whole part is enumerated and finished")
+            };
+            assert_eq!(*range, WHOLE);
+            let p = scheduler.lock().shards[a.shard_id as usize].part;
+            assert_eq!(context[..], [b'c', p as u8], "the part's own context");
             done(a, result, Some(vec![b'f', p as u8]))
         })
         .collect()
@@ -379,7 +414,7 @@ fn finished_of(rx: &Receiver<Vec<Delivery>>) -> Vec<(usize, Option<Vec<u8>>)> {
     let mut out: Vec<_> = rx
         .try_iter()
         .flatten()
-        .map(|(i, r)| (i, r.expect("merged").finished))
+        .map(|(i, r)| (i, r.expect("merged").finished.map(|b| b.to_vec())))
         .collect();
     out.sort();
     out
@@ -389,52 +424,37 @@ fn finished_of(rx: &Receiver<Vec<Delivery>>) -> Vec<(usize, Option<Vec<u8>>)> {
 struct Tag;
 
 impl fixplan_worker::finish::Finisher for Tag {
-    fn finish(
-        &self,
-        _: &PartInput,
-        _: &fixplan_core::PreparedPart,
-        _: &fixplan_core::PartialResult,
-        _: u64,
-        context: &[u8],
-    ) -> Result<Vec<u8>, String> {
-        Ok(vec![b'f', context[1]])
+    fn finish(&self, inputs: &FinishInputs) -> Result<Vec<u8>, FinishError> {
+        Ok(vec![b'f', inputs.context[1]])
     }
 
-    fn check(
-        &self,
-        _: &PartInput,
-        _: &fixplan_core::PreparedPart,
-        _: &fixplan_core::PartialResult,
-        _: u64,
-        context: &[u8],
-        theirs: &[u8],
-    ) -> Result<(), String> {
-        let ours = [b'f', context[1]];
+    fn check(&self, inputs: &FinishInputs, theirs: &[u8]) -> Result<(), FinishError> {
+        let ours = [b'f', inputs.context[1]];
         (ours == theirs)
             .then_some(())
-            .ok_or_else(|| format!("{theirs:?}, not {ours:?}"))
+            .ok_or_else(|| FinishError::Records(format!("{theirs:?}, not {ours:?}")))
     }
 }
 
 /// Runs every shard with [`finished_outcomes`] as worker `w`.
-fn finish_all(c: &Scheduler) {
-    work_until_done(c, "w", Vec::new(), finished_outcomes);
+fn finish_all(scheduler: &Scheduler) {
+    work_until_done(scheduler, "w", Vec::new(), finished_outcomes);
 }
 
 /// Worker `w` reports `outcomes`, then answers every assignment with
 /// `answer` until the run is over.
 fn work_until_done(
-    c: &Scheduler,
-    w: &str,
+    scheduler: &Scheduler,
+    worker: &str,
     mut outcomes: Vec<Outcome>,
     answer: fn(&Scheduler, &[Assign]) -> Vec<Outcome>,
 ) {
     loop {
-        match report(c, w, outcomes) {
+        match report(scheduler, worker, outcomes) {
             Frame::Msg(Msg::Reply {
                 next: Next::Work(b),
                 ..
-            }) => outcomes = answer(c, &b),
+            }) => outcomes = answer(scheduler, &b),
             Frame::Msg(Msg::Reply {
                 next: Next::Done, ..
             }) => break,
@@ -490,9 +510,7 @@ fn re_derived_parts_keep_their_finished_bytes_only_if_they_match() {
         panic!("no work")
     };
     let mut forged = finished_outcomes(&c, &batch);
-    if let Some(Outcome::Done(d)) = forged.first_mut() {
-        d.finished = Some(b"forged".to_vec());
-    }
+    forge(&mut forged[0], b"forged");
     assert!(matches!(report(&c, "w", forged), Frame::Refused(_)));
     assert_eq!(c.stats().rejected, 1);
     assert!(finished_of(&rx)
@@ -504,11 +522,11 @@ fn re_derived_parts_keep_their_finished_bytes_only_if_they_match() {
 /// combinations (open last shard), unprepared, each with a finish
 /// context, finished by workers with [`Tag`].
 fn cut_parts_from(
-    n: usize,
+    count: usize,
     verify: VerifyPolicy,
     estimate: u64,
 ) -> (Scheduler, Receiver<Vec<Delivery>>) {
-    let (c, rx) = whole_parts(n, verify);
+    let (c, rx) = whole_parts(count, verify);
     let st = c.lock();
     let planned: Vec<PlannedPart> = st
         .parts
@@ -535,36 +553,27 @@ fn cut_parts_from(
 /// Honest outcomes of `batch`: shards enumerated, cut parts finished as
 /// [`Tag`] finishes them (checking what the task carries on the way).
 /// [`cut_parts_from`] the right estimate.
-fn cut_parts(n: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
-    cut_parts_from(n, verify, fixplan_core::combination_count(4))
+fn cut_parts(count: usize, verify: VerifyPolicy) -> (Scheduler, Receiver<Vec<Delivery>>) {
+    cut_parts_from(count, verify, fixplan_core::combination_count(4))
 }
 
-fn honest_cut(c: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+fn honest_cut(scheduler: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
     batch
         .iter()
         .map(|a| {
-            let p = c.lock().shards[a.shard_id as usize].part;
-            let prep = c.lock().parts[p].source.prepare().expect("prepare");
-            let (result, finished) = match &a.finish_from {
-                Some(from) => {
-                    assert_eq!(a.range, 0..0, "a finishing task enumerates nothing");
-                    assert_eq!(a.finish.as_deref(), Some(&[b'c', p as u8][..]));
+            let p = scheduler.lock().shards[a.shard_id as usize].part;
+            let prep = scheduler.lock().parts[p].source.prepare().expect("prepare");
+            match &a.task {
+                Task::Finish { merged, context } => {
+                    assert_eq!(context[..], [b'c', p as u8]);
                     let mut whole = prep.enumerate_all();
                     whole.range = 0..whole.counts.combinations;
-                    assert_eq!(from.result, whole, "merged as the embedded run");
-                    let empty = fixplan_core::PartialResult {
-                        range: 0..0,
-                        counts: Default::default(),
-                        fixtures: Vec::new(),
-                    };
-                    (empty, Some(vec![b'f', p as u8]))
+                    assert_eq!(merged.result, whole, "merged as the embedded run");
+                    done(a, whole, Some(vec![b'f', p as u8]))
                 }
-                None => {
-                    assert!(a.finish.is_none(), "a shard is not finished");
-                    (prep.enumerate_range(a.range.clone()), None)
-                }
-            };
-            done(a, result, finished)
+                Task::Enumerate { range, .. } => done(a, prep.enumerate_range(range.clone()), None),
+                Task::EnumerateAndFinish { .. } => panic!("a shard is not finished"),
+            }
         })
         .collect()
 }
@@ -587,11 +596,19 @@ fn cut_parts_are_finished_by_a_worker_from_their_merged_result() {
             let mut whole = m.input.prepare().expect("prepare").enumerate_all();
             whole.range = 0..whole.counts.combinations;
             assert_eq!(m.merged, whole, "part {i}");
-            assert_eq!(m.finished, Some(vec![b'f', i as u8]), "part {i}");
+            assert_eq!(
+                m.finished.as_deref(),
+                Some(&[b'f', i as u8][..]),
+                "part {i}"
+            );
         }
         // One finishing task per part, handed out once.
         let st = c.lock();
-        let tasks = st.shards.iter().filter(|s| s.range == (0..0)).count();
+        let tasks = st
+            .shards
+            .iter()
+            .filter(|s| matches!(s.work, ShardWork::Finishing(_)))
+            .count();
         assert_eq!(tasks, 3);
         assert_eq!(st.stats.finishings, 3);
         assert_eq!(st.stats.requeued, 0);
@@ -632,15 +649,13 @@ fn forged_finishing_of_a_cut_part_is_refused() {
         else {
             panic!("no work")
         };
-        if let Some(t) = b.iter().find(|a| a.finish_from.is_some()) {
+        if let Some(t) = b.iter().find(|a| matches!(a.task, Task::Finish { .. })) {
             break t.clone();
         }
         outcomes = honest_cut(&c, &b);
     };
     let mut forged = honest_cut(&c, std::slice::from_ref(&task));
-    if let Some(Outcome::Done(d)) = forged.first_mut() {
-        d.finished = Some(b"forged".to_vec());
-    }
+    forge(&mut forged[0], b"forged");
     assert!(matches!(report(&c, "liar", forged), Frame::Refused(_)));
     assert_eq!(c.stats().rejected, 1);
     // Its shards are done again, by an honest worker, and finished by it.
@@ -649,7 +664,7 @@ fn forged_finishing_of_a_cut_part_is_refused() {
     let parts: Vec<_> = rx.try_iter().flatten().collect();
     assert_eq!(parts.len(), 1);
     let m = parts[0].1.as_ref().expect("merged");
-    assert_eq!(m.finished, Some(vec![b'f', 0]));
+    assert_eq!(m.finished.as_deref(), Some(&[b'f', 0][..]));
 }
 
 #[test]
@@ -676,17 +691,20 @@ fn a_cut_part_waiting_to_be_finished_is_merged_again_if_a_worker_of_it_is_banned
                 worker: "a".into(),
                 until: Instant::now() + Duration::from_secs(60),
             };
-            let range = sh.range.clone();
+            let ShardWork::Combinations(range) = &sh.work else {
+                panic!("a shard")
+            };
+            let range = range.clone();
             let digest = st.parts[0].digest;
             st.workers.get_mut("a").expect("a").leased.insert(id);
             b.push(Assign {
                 shard_id: id,
                 digest,
-                range,
                 input: None,
-                good_enough: None,
-                finish: None,
-                finish_from: None,
+                task: Task::Enumerate {
+                    range,
+                    good_enough: None,
+                },
             });
         }
         b
@@ -731,7 +749,7 @@ fn a_cut_part_waiting_to_be_finished_is_merged_again_if_a_worker_of_it_is_banned
     assert_eq!(parts.len(), 2, "each part once");
     for (i, r) in parts {
         let m = r.expect("merged");
-        assert_eq!(m.finished, Some(vec![b'f', i as u8]));
+        assert_eq!(m.finished.as_deref(), Some(&[b'f', i as u8][..]));
         for &id in &part0 {
             assert_eq!(
                 c.lock().shards[id as usize].by.as_deref(),

@@ -4,7 +4,7 @@
 
 use super::errors::Refusal;
 use super::state::{
-    back_in_queue, requeue, Settings, ShardSlot, ShardStatus, State, WorkerSlot, ROLE,
+    back_in_queue, requeue, Settings, ShardSlot, ShardStatus, ShardWork, State, WorkerSlot, ROLE,
 };
 use fixplan_worker::protocol::{DataPath, Join, Msg, Next, TransportChoice, Welcome};
 use std::collections::HashSet;
@@ -14,18 +14,18 @@ use tracing::{info, warn};
 /// Where a joining worker is to send its requests: iceoryx2 shared memory
 /// if it is on this host and the coordinator serves it, else zenoh; a
 /// refusal if iceoryx2 is forced but cannot reach it.
-pub(super) fn data_path(s: &Settings, j: &Join) -> Result<DataPath, Refusal> {
-    let same_host = j.host_id == s.host_id;
-    let forced = |t| s.transport == t || j.transport == t;
+pub(super) fn data_path(settings: &Settings, joining: &Join) -> Result<DataPath, Refusal> {
+    let same_host = joining.host_id == settings.host_id;
+    let forced = |t| settings.transport == t || joining.transport == t;
     if forced(TransportChoice::Zenoh) {
         return Ok(DataPath::Zenoh);
     }
-    match (&s.iox, same_host) {
+    match (&settings.iox, same_host) {
         (Some(d), true) => Ok(d.clone()),
         _ if forced(TransportChoice::Iceoryx2) => {
             warn!(
                 role = ROLE,
-                "refused worker {}: iceoryx2 forced but it is on another host", j.worker
+                "refused worker {}: iceoryx2 forced but it is on another host", joining.worker
             );
             Err(Refusal::IoxOnAnotherHost)
         }
@@ -36,7 +36,7 @@ pub(super) fn data_path(s: &Settings, j: &Join) -> Result<DataPath, Refusal> {
 /// Welcomes a worker, or tells it the run is over. A worker that joins
 /// again under its name (restarted) had its shards: they go back to the
 /// queue.
-pub(super) fn join(st: &mut State, s: &Settings, j: Join, data: DataPath) -> Msg {
+pub(super) fn join(st: &mut State, settings: &Settings, joining: Join, data: DataPath) -> Msg {
     if st.open_parts == 0 {
         return Msg::Reply {
             notes: Vec::new(),
@@ -52,20 +52,20 @@ pub(super) fn join(st: &mut State, s: &Settings, j: Join, data: DataPath) -> Msg
     info!(
         role = ROLE,
         "worker {} joined (pid {}, {} threads, fixplan {}, shards over {how})",
-        j.worker,
-        j.pid,
-        j.threads,
-        j.software
+        joining.worker,
+        joining.pid,
+        joining.threads,
+        joining.software
     );
     let old = st.workers.insert(
-        j.worker.clone(),
+        joining.worker.clone(),
         WorkerSlot {
-            name: j.worker.as_str().into(),
+            name: joining.worker.as_str().into(),
             parts_sent: HashSet::new(),
             leased: HashSet::new(),
             got_done: false,
             shards: 0,
-            threads: u64::from(j.threads.max(1)),
+            threads: u64::from(joining.threads.max(1)),
             rederived: 0,
         },
     );
@@ -73,9 +73,9 @@ pub(super) fn join(st: &mut State, s: &Settings, j: Join, data: DataPath) -> Msg
         requeue(st, old.leased.into_iter());
     }
     Msg::Welcome(Welcome {
-        run_id: s.run_id.clone(),
+        run_id: settings.run_id.clone(),
         data,
-        lease_ms: s.lease.as_millis() as u64,
+        lease_ms: settings.lease.as_millis() as u64,
     })
 }
 
@@ -162,10 +162,7 @@ fn redo_work_of(st: &mut State, worker: &str) {
             let sh = &st.shards[id as usize];
             // Done but not held: this worker's, or skipped past a stop
             // that may have been its.
-            if sh.status == ShardStatus::Done
-                && !held.contains(&id)
-                && stop.is_none_or(|s| sh.range.start <= s)
-            {
+            if sh.status == ShardStatus::Done && !held.contains(&id) && !sh.past(stop) {
                 back_in_queue(st, id);
             }
         }
@@ -175,8 +172,8 @@ fn redo_work_of(st: &mut State, worker: &str) {
 /// A cut part waiting to be finished is to be merged again: the merged
 /// result its finishing task holds is dropped, and a result of that task
 /// still to come is a duplicate.
-fn cancel_finishing(st: &mut State, p: usize) {
-    let Some(id) = st.parts[p].finishing.take() else {
+fn cancel_finishing(st: &mut State, slot: usize) {
+    let Some(id) = st.parts[slot].finishing.take() else {
         return;
     };
     let task = &mut st.shards[id as usize];
@@ -184,5 +181,5 @@ fn cancel_finishing(st: &mut State, p: usize) {
         st.queued_cost = st.queued_cost.saturating_sub(task.cost);
     }
     task.status = ShardStatus::Done;
-    task.finish_from = None;
+    task.work = ShardWork::Finishing(None);
 }

@@ -4,11 +4,11 @@
 //! `fixplan coordinator` and `fixplan study` all go through
 //! [`solve_in_order`].
 
-use super::backend::{Backend, PartDone, PartJob, RemoteFinish};
+use super::backend::{Backend, PartJob, RemoteFinish};
+use super::cluster_jobs::Sink;
 use super::ordered::Reorder;
 use crate::job::{solve_part, Solved};
 use anyhow::{Context, Result};
-use fixplan_core::SolveResult;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{mpsc, Condvar, Mutex};
 
@@ -23,30 +23,18 @@ pub fn solve_in_order<T: Send>(
     finish: impl Fn(usize, Solved) -> T + Sync,
     deliver: impl FnMut(usize, T) -> Result<()>,
 ) -> Result<()> {
-    let finish = |i, done| match done {
-        PartDone::Solved(s) => finish(i, s),
-        // Never: no job was given a remote finish.
-        PartDone::Finished(_) => finish(
-            i,
-            Solved {
-                result: SolveResult::invalid(format!("job {i}: finished by a worker unasked")),
-                timing: Default::default(),
-                search: Default::default(),
-            },
-        ),
-    };
     solve_in_order_finishing(jobs, backend, None, finish, deliver)
 }
 
 /// [`solve_in_order`] where the cluster's workers may finish jobs
-/// themselves: `remote(i)` is what a worker needs to finish job `i`, and
-/// such jobs come to `finish` as [`PartDone::Finished`] (not always: a
+/// themselves: `remote` says what a worker needs to finish job `i`, and
+/// such jobs are kept by `remote.keep` instead of `finish` (not always: a
 /// job whose result was re-derived here comes solved).
 pub fn solve_in_order_finishing<T: Send>(
     jobs: &[PartJob],
     backend: &Backend,
-    remote: Option<&RemoteFinish>,
-    finish: impl Fn(usize, PartDone) -> T + Sync,
+    remote: Option<&RemoteFinish<T>>,
+    finish: impl Fn(usize, Solved) -> T + Sync,
     mut deliver: impl FnMut(usize, T) -> Result<()>,
 ) -> Result<()> {
     let (tx, rx) = mpsc::channel::<(usize, T)>();
@@ -57,7 +45,7 @@ pub fn solve_in_order_finishing<T: Send>(
         Backend::Cluster(c) => (Some(super::cluster_jobs::start(jobs, c, remote)?), None),
         Backend::Embedded { threads } => {
             let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads.unwrap_or_else(fixplan_worker::host::cores))
+                .num_threads(threads.unwrap_or_else(crate::job::threads::cores))
                 .build()
                 .context("cannot start the thread pool")?;
             let drivers = Drivers {
@@ -72,11 +60,19 @@ pub fn solve_in_order_finishing<T: Send>(
     };
     let finish = &finish;
     let mut failure = None;
-    std::thread::scope(|s| {
-        if let Some(c) = cluster {
+    let unasked = std::thread::scope(|s| {
+        let cluster = cluster.map(|c| {
             let tx = tx.clone();
-            s.spawn(move || c.deliver(jobs, &|i, solved| tx.send((i, finish(i, solved))).is_ok()));
-        }
+            s.spawn(move || {
+                let send = |i, kept| tx.send((i, kept)).is_ok();
+                let sink = Sink {
+                    solved: finish,
+                    finished: remote.map(|r| r.keep),
+                    send: &send,
+                };
+                c.deliver(jobs, &sink)
+            })
+        });
         if let Some(d) = &drivers {
             for _ in 0..d.pool.current_num_threads().max(1) {
                 let tx = tx.clone();
@@ -98,10 +94,12 @@ pub fn solve_in_order_finishing<T: Send>(
                 gate.1.notify_all();
             }
         }
+        cluster.map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
     });
-    match failure {
-        Some(e) => Err(e),
-        None => Ok(()),
+    match (failure, unasked) {
+        (Some(e), _) => Err(e),
+        (None, Some(Err(e))) => Err(e.into()),
+        (None, _) => Ok(()),
     }
 }
 
@@ -135,9 +133,9 @@ impl Drivers<'_, '_> {
 
     /// Waits until job `i` is within the window of the delivered ones;
     /// false if the run is aborting.
-    fn wait_for_room(&self, i: usize) -> bool {
+    fn wait_for_room(&self, job: usize) -> bool {
         let mut delivered = self.gate.0.lock().unwrap_or_else(|e| e.into_inner());
-        while i >= *delivered + self.window() && !self.abort.load(Ordering::SeqCst) {
+        while job >= *delivered + self.window() && !self.abort.load(Ordering::SeqCst) {
             delivered = self
                 .gate
                 .1
@@ -150,7 +148,7 @@ impl Drivers<'_, '_> {
     fn run<T: Send>(
         &self,
         tx: &mpsc::Sender<(usize, T)>,
-        finish: &(impl Fn(usize, PartDone) -> T + Sync),
+        finish: &(impl Fn(usize, Solved) -> T + Sync),
     ) {
         loop {
             let i = self.next.fetch_add(1, Ordering::SeqCst);
@@ -160,7 +158,7 @@ impl Drivers<'_, '_> {
             let job = &self.jobs[i];
             let out = self.pool.install(|| {
                 let solved = solve_part(job.ctx, job.part, job.preparation);
-                finish(i, PartDone::Solved(solved))
+                finish(i, solved)
             });
             if tx.send((i, out)).is_err() {
                 break;

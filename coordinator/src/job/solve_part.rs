@@ -30,7 +30,9 @@ pub struct JobContext<'a> {
 /// Wall-clock timings: the only fields of a results file that differ from
 /// one run to the next.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
-pub struct Timing {
+// The results file's schema names it as it always did.
+#[schemars(rename = "Timing")]
+pub struct SolveTiming {
     /// Validating and preparing the part.
     pub prepare_ms: f64,
     /// Enumerating its shards (all grid steps).
@@ -45,7 +47,7 @@ pub struct Solved {
     /// SPEC Appendix A result (fixtures in the catalogue's unit).
     pub result: SolveResult,
     /// How long it took.
-    pub timing: Timing,
+    pub timing: SolveTiming,
     /// `--grid-steps` summaries and the `--good-enough` stop, if any.
     pub search: SearchInfo,
 }
@@ -89,7 +91,7 @@ impl Preparation<'_> {
 
 /// Solves one catalogue part on the current rayon pool.
 pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) -> Solved {
-    let mut timing = Timing::default();
+    let mut timing = SolveTiming::default();
     let part = match &cp.part {
         Err(e) => {
             return Solved {
