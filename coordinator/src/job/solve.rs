@@ -113,6 +113,13 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
             }
         }
     };
+    if let Some(result) = super::budget::over_budget(&prep, &cp.id, ctx.search.part_budget) {
+        return Solved {
+            result,
+            timing,
+            search: SearchInfo::default(),
+        };
+    }
     let t1 = Instant::now();
     let solved = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if ctx.search.is_plain() {
@@ -133,11 +140,14 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
             (res, info)
         }
         Err(p) => (
-            SolveResult::invalid(format!(
-                "{}: internal error in the enumeration: {}",
-                cp.id,
-                fixplan_worker::panic_text(p)
-            )),
+            SolveResult::gave_up(
+                fixplan_core::Status::Failed,
+                format!(
+                    "{}: internal error in the enumeration: {}",
+                    cp.id,
+                    fixplan_worker::panic_text(p)
+                ),
+            ),
             SearchInfo::default(),
         ),
     };

@@ -157,11 +157,11 @@ mod tests {
             ),
             (
                 "fixplan.Part",
-                "cdf4f807005d013297e8512f48ce44116f13e4c0fa9a27f8f62d6799144c7f84",
+                "cbfc31787c4a10c7809da7f7843369631cea442bb09d27a97d624aa928f66459",
             ),
             (
                 "fixplan.Fixtures",
-                "05dda1f46479ffa3f515d654a3d45908ba14b402d89926ea7041d847fb2c1bba",
+                "f741de28c7b3ba0db054e958944eaac538bff5291c3d73bda0d8ccc6af5712b4",
             ),
             (
                 SCHEMA_SCENE,

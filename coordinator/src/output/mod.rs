@@ -10,10 +10,11 @@ pub mod chunk;
 pub mod mcap_file;
 pub mod messages;
 pub mod reader;
+pub mod records;
 pub mod scene;
 pub mod schemas;
 pub mod writer;
 
 pub use chunk::PartChunk;
-pub use reader::{PartRecord, ReadError, ResultsFile};
+pub use reader::{PartRecord, ResultsFile, ResultsFileError};
 pub use writer::{PartMessages, ResultsWriter};

@@ -21,7 +21,7 @@ pub mod slice;
 pub mod solve;
 
 use crate::job::solve::Preparation;
-use crate::job::{solve_part, JobContext, SearchOptions};
+use crate::job::{solve_guarded, JobContext, SearchOptions};
 use crate::output::messages::{CatalogInfo, RunMsg};
 use anyhow::{Context, Result};
 use backend::{Backend, PartDone, PartJob};
@@ -144,13 +144,13 @@ pub fn run_parts(
         spec.name,
         opts.backend.threads()
     ));
-    let (mut writer, start) = resume::open_output(
-        &opts.output,
-        opts.resume,
-        &run_msg,
-        parts.clone(),
-        &mut progress,
-    )?;
+    let run_parts = resume::RunParts {
+        message: &run_msg,
+        parts: parts.clone(),
+        ids: catalog.parts.iter().map(|p| p.id.as_str()).collect(),
+    };
+    let (mut writer, start) =
+        resume::open_output(&opts.output, opts.resume, &run_parts, &mut progress)?;
     let ctx = JobContext {
         kit: &spec.kit,
         params: &run_msg.params,
@@ -187,7 +187,7 @@ pub fn run_parts(
                         "{}: a worker's finished part is unusable ({e}); solving it here",
                         jobs[i].part.id
                     );
-                    let s = solve_part(&ctx, jobs[i].part, Preparation::Fresh);
+                    let s = solve_guarded(&ctx, jobs[i].part, Preparation::Fresh);
                     part_outcome(&ctx, start + i, jobs[i].part, s)
                 })
             }

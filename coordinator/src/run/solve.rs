@@ -6,7 +6,7 @@
 
 use super::backend::{Backend, PartDone, PartJob, RemoteFinish};
 use super::ordered::Reorder;
-use crate::job::{solve_part, Solved};
+use crate::job::{solve_guarded, Solved};
 use anyhow::{Context, Result};
 use fixplan_core::SolveResult;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -159,7 +159,7 @@ impl Drivers<'_, '_> {
             }
             let job = &self.jobs[i];
             let out = self.pool.install(|| {
-                let solved = solve_part(job.ctx, job.part, job.preparation);
+                let solved = solve_guarded(job.ctx, job.part, job.preparation);
                 finish(i, PartDone::Solved(solved))
             });
             if tx.send((i, out)).is_err() {

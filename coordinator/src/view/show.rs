@@ -17,6 +17,8 @@ pub fn status_word(s: Status) -> &'static str {
         Status::Ok => "ok",
         Status::NoFixture => "no_fixture",
         Status::Invalid => "invalid",
+        Status::Failed => "failed",
+        Status::OverBudget => "over_budget",
     }
 }
 
@@ -222,7 +224,11 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
                 Ok(f) if f.part != p => return true,
                 Ok(_) => {}
                 Err(e) => {
-                    err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                    err = Some(anyhow::anyhow!(
+                        "{}: part #{}: {e}",
+                        path.display(),
+                        m.index
+                    ));
                     return false;
                 }
             }
@@ -239,6 +245,7 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
     if let Some(e) = err {
         return Err(e);
     }
+    contents.sound(&file.path)?;
     warn_incomplete(path, contents.complete, &contents.truncated);
     Ok(())
 }
