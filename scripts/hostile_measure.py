@@ -72,6 +72,22 @@ def damaged_files(sound, flips, seed):
         at = rng.randrange(8, len(b) - 8)
         b[at] ^= 1 << rng.randrange(8)
         out.append((f"flip-{at}", bytes(b)))
+    # Flips inside the parts' chunk records (opcode 0x06), where the
+    # crate's reader handed out messages before the chunk's CRC failed.
+    chunks, pos = [], 8
+    while pos + 9 <= len(data):
+        op, n = data[pos], int.from_bytes(data[pos + 1:pos + 9], "little")
+        if op == 0x06:
+            chunks.append((pos, pos + 9 + n))
+        if op == 0x0F:
+            break
+        pos += 9 + n
+    for i in range(flips // 2):
+        s, e = chunks[rng.randrange(len(chunks))]
+        b = bytearray(data)
+        at = rng.randrange(s, e)
+        b[at] ^= 1 << rng.randrange(8)
+        out.append((f"chunk-flip-{at}", bytes(b)))
     for i in range(max(1, flips // 4)):
         b = bytearray(data)
         at = rng.randrange(8, len(b) - 8)

@@ -297,6 +297,23 @@ fn hostile_parts_end_in_a_status_and_spare_the_good_ones() {
     let dxf = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\n0\n90\n3\n70\n1\n10\n0\n20\n0\n42\n-1e9\n10\n10\n20\n0\n10\n5\n20\n5\n0\nENDSEC\n0\nEOF\n";
     std::fs::write(dir.path().join("bulge.dxf"), dxf).unwrap();
     entries.push(("dxf-bulge".into(), "file = \"bulge.dxf\"".into()));
+    // 20,000 vertices: over --part-budget before it is prepared (preparing
+    // allocates segments squared).
+    let ring: Vec<[f64; 2]> = (0..20_000)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / 20_000.0;
+            [50.0 * a.cos(), 50.0 * a.sin()]
+        })
+        .collect();
+    let ring = serde_json::json!({ "part": ring }).to_string();
+    std::fs::write(dir.path().join("ring.json"), ring).unwrap();
+    let got = run_manifest(
+        &manifest(dir.path(), "ring", "file = \"ring.json\""),
+        &dir.path().join("ring.mcap"),
+    );
+    assert_eq!(good(&got), good(&clean), "ring: the good parts changed");
+    let ring = got.iter().find(|p| p.0 == "bad").unwrap();
+    assert_eq!(ring.1, Status::OverBudget);
     // Mutated numbers in the sample parts.
     let parts = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/catalog/parts");
     let mut rng = Rng(42);

@@ -100,6 +100,15 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
         }
         Ok(part) => part,
     };
+    if let Some(result) =
+        super::budget::over_budget_unprepared(part, &cp.id, ctx.search.part_budget)
+    {
+        return Solved {
+            result,
+            timing,
+            search: SearchInfo::default(),
+        };
+    }
     let t0 = Instant::now();
     let prepared = preparation.prepare(part, ctx, &part_params(ctx, cp));
     timing.prepare_ms = t0.elapsed().as_secs_f64() * 1e3;
