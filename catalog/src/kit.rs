@@ -24,6 +24,7 @@
 //! ```
 
 use crate::error::CatalogError;
+use crate::kit_limits::check_kit_sizes;
 use crate::units::parse_units;
 use fixplan_core::{validate_kit, Clamp, HoleKind, Kit, MountHole, Params, Pattern, Units};
 use std::path::Path;
@@ -227,6 +228,7 @@ fn finish(
     units: Units,
     path: &Path,
 ) -> Result<KitSpec, CatalogError> {
+    check_kit_sizes(&kit).map_err(|e| invalid(path, format!("kit {name}: {e}")))?;
     validate_kit(&kit).map_err(|e| invalid(path, format!("kit {name}: {e}")))?;
     let params = Params {
         edge_trim: Some(params.edge_trim_or_default(units)),

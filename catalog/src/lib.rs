@@ -42,6 +42,7 @@
 
 mod error;
 pub mod kit;
+pub mod kit_limits;
 mod manifest;
 pub mod part;
 pub mod units;

@@ -123,3 +123,42 @@ fn bad_kits_name_the_file_and_problem() {
     let e = load_kit("no-such-kit", Units::Mm).unwrap_err().to_string();
     assert!(e.contains("paper-inch") && e.contains("metric-25"), "{e}");
 }
+
+/// The metric-25 kit as a [`fixplan_core::Kit`], to spoil one field of.
+fn metric_25() -> fixplan_core::Kit {
+    fixplan_catalog::kit::builtin_kit(fixplan_catalog::kit::METRIC_25)
+        .unwrap()
+        .0
+}
+
+#[test]
+fn a_plate_of_too_many_holes_is_refused_with_the_limit() {
+    use fixplan_catalog::kit_limits::check_kit_sizes;
+    let mut kit = metric_25();
+    assert_eq!(check_kit_sizes(&kit), Ok(()));
+    kit.rows = 100_000_000;
+    let e = check_kit_sizes(&kit).unwrap_err();
+    assert!(
+        e.contains("2000000000 holes") && e.contains("100000"),
+        "{e}"
+    );
+}
+
+#[test]
+fn clamp_lengths_beyond_the_plate_are_refused() {
+    use fixplan_catalog::kit_limits::check_kit_sizes;
+    let base = metric_25();
+    let mut kit = base.clone();
+    kit.clamp.axis_offset = -1e300;
+    let e = check_kit_sizes(&kit).unwrap_err();
+    assert!(e.contains("axis_offset -1e300"), "{e}");
+    let mut kit = base.clone();
+    kit.clamp.travel[1] = 1e12;
+    assert!(check_kit_sizes(&kit).unwrap_err().contains("travel[1]"));
+    let mut kit = base.clone();
+    kit.clamp.body[2][0] = f64::INFINITY;
+    assert!(check_kit_sizes(&kit).unwrap_err().contains("body vertex 2"));
+    let mut kit = base;
+    kit.clamp.mount_holes[1].offset = [0, i64::MIN];
+    assert!(check_kit_sizes(&kit).unwrap_err().contains("mount hole"));
+}

@@ -65,6 +65,29 @@ fn a_full_circle_has_segments_but_no_pose() {
     assert_eq!(r.counts.admissible, 0);
 }
 
+#[test]
+fn an_arc_that_reaches_past_the_size_limit_is_refused_before_the_sweep() {
+    // Bulges of +-1e9 on a 10-spacing chord: circles of radius ~2.5e9
+    // spacings, though every vertex is within 10 of the origin. The sweep
+    // would allocate one span per lattice row it reaches.
+    for b in [1e9, -1e9] {
+        let part = arc_part(&[[0.0, 0.0, b], [10.0, 0.0, 0.0], [5.0, 5.0, 0.0]], &[]);
+        let e = fixplan_core::prepare(
+            &part,
+            &kit(Pattern::Square),
+            &params(90.0, 1),
+            fixplan_core::Units::Mm,
+        );
+        match e {
+            Err(fixplan_core::PrepareError::TooLarge { extent, .. }) => {
+                assert!(extent > 1e9, "{extent}")
+            }
+            Err(other) => panic!("bulge {b}: refused for another reason: {other}"),
+            Ok(_) => panic!("bulge {b}: accepted"),
+        }
+    }
+}
+
 /// Random polygons with random convex and concave bulges, invalid ones
 /// (self-crossing arcs) filtered out.
 fn arc_outline_strategy() -> impl Strategy<Value = (Vec<[f64; 3]>, bool, f64)> {

@@ -133,6 +133,12 @@ pub struct SearchArgs {
     /// With --grid-steps, a hit at a coarse step ends the part.
     #[arg(long, value_name = "SCORE")]
     pub good_enough: Option<f64>,
+    /// Give up on a part whose estimated work, segment combinations x
+    /// segments (known once it is prepared, the same on every machine),
+    /// is beyond COST: its status is `over_budget` with the estimate, and
+    /// the run goes on. Default: no budget.
+    #[arg(long, value_name = "COST")]
+    pub part_budget: Option<u64>,
 }
 
 impl SearchArgs {
@@ -141,6 +147,7 @@ impl SearchArgs {
         SearchOptions {
             grid_steps: self.grid_steps.as_ref().map(|g| g.0.clone()),
             good_enough: self.good_enough,
+            part_budget: self.part_budget,
         }
     }
 }

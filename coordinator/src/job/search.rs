@@ -25,6 +25,9 @@ pub struct SearchOptions {
     /// Stop a part at the first combination that admits a fixture with this
     /// score or better.
     pub good_enough: Option<f64>,
+    /// `--part-budget`: a part whose estimated work (segment combinations
+    /// x segments) is beyond it gets `over_budget` without enumerating.
+    pub part_budget: Option<u64>,
 }
 
 /// Why `--grid-steps` or `--good-enough` cannot be used.
@@ -62,7 +65,7 @@ pub fn parse_grid_steps(text: &str) -> Result<Vec<u32>, SearchError> {
         .collect::<Result<Vec<_>, _>>()?;
     let o = SearchOptions {
         grid_steps: Some(steps),
-        good_enough: None,
+        ..SearchOptions::default()
     };
     o.validate()?;
     Ok(o.grid_steps.unwrap_or_default())
@@ -254,8 +257,8 @@ mod tests {
             Err(SearchError::BadStep(_))
         ));
         let o = SearchOptions {
-            grid_steps: None,
             good_enough: Some(f64::NAN),
+            ..SearchOptions::default()
         };
         assert!(o.validate().is_err());
     }

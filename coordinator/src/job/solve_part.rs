@@ -102,6 +102,15 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
         }
         Ok(part) => part,
     };
+    if let Some(result) =
+        super::budget::over_budget_unprepared(part, &cp.id, ctx.search.part_budget)
+    {
+        return Solved {
+            result,
+            timing,
+            search: SearchInfo::default(),
+        };
+    }
     let t0 = Instant::now();
     let prepared = preparation.prepare(part, ctx, &part_params(ctx, cp));
     timing.prepare_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -115,6 +124,13 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
             }
         }
     };
+    if let Some(result) = super::budget::over_budget(&prep, &cp.id, ctx.search.part_budget) {
+        return Solved {
+            result,
+            timing,
+            search: SearchInfo::default(),
+        };
+    }
     let t1 = Instant::now();
     let solved = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if ctx.search.is_plain() {
@@ -135,11 +151,14 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
             (res, info)
         }
         Err(p) => (
-            SolveResult::invalid(format!(
-                "{}: internal error in the enumeration: {}",
-                cp.id,
-                fixplan_worker::panic_text(p)
-            )),
+            SolveResult::gave_up(
+                fixplan_core::Status::Failed,
+                format!(
+                    "{}: internal error in the enumeration: {}",
+                    cp.id,
+                    fixplan_worker::panic_text(p)
+                ),
+            ),
             SearchInfo::default(),
         ),
     };

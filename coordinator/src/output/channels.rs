@@ -157,11 +157,11 @@ mod tests {
             ),
             (
                 "fixplan.Part",
-                "36ce769d0a14b41d37abd9aff2545de0cd78441a5b8ad4878cc550ed7a8a9523",
+                "99d5fb5d1c4c282d99b44457fb5f723799bbd737a42dfe8f8295811418ce40f4",
             ),
             (
                 "fixplan.Fixtures",
-                "49ebd61607969e11debcf1e4d4bd19d90a359a80ac1b09b1b8bdd3cd4d391ce2",
+                "401ebf56173dd247dd17eb776c230cabb9ac53af62ed3aebcb97378109922a40",
             ),
             (
                 SCHEMA_SCENE,

@@ -99,6 +99,10 @@ file_name_enum! {
         NoFixture = "no_fixture" => NoFixture,
         /// The input cannot be enumerated.
         Invalid = "invalid" => Invalid,
+        /// The solver failed on the part (a bug, not the input's fault).
+        Failed = "failed" => Failed,
+        /// The part's estimated work is beyond the run's budget.
+        OverBudget = "over_budget" => OverBudget,
     }
 }
 

@@ -7,6 +7,7 @@
 //! the crate's reader.
 
 use super::chunk::PartChunk;
+use super::records::MAGIC;
 use binrw::BinWrite;
 use mcap::records::{
     op, Channel, ChunkHeader, ChunkIndex, DataEnd, Footer, Header, MessageIndex, MessageIndexEntry,
@@ -14,9 +15,6 @@ use mcap::records::{
 };
 use std::collections::BTreeMap;
 use std::io::{Cursor, Write};
-
-/// The MCAP magic, at both ends of a file.
-const MAGIC: &[u8] = b"\x89MCAP0\r\n";
 
 /// An MCAP file being written, chunk by chunk.
 pub struct McapFile<W: Write> {

@@ -13,10 +13,11 @@ pub mod fixture_fields;
 pub mod mcap_file;
 pub mod messages;
 pub mod reader;
+pub mod records;
 pub mod scene;
 pub mod schemas;
 pub mod writer;
 
 pub use chunk::PartChunk;
-pub use reader::{PartRecord, ReadError, ResultsFile};
+pub use reader::{PartRecord, ResultsFile, ResultsFileError};
 pub use writer::{PartMessages, ResultsWriter};

@@ -10,7 +10,7 @@ use crate::cluster::{
 };
 use crate::job::search::step_summary;
 use crate::job::solve_part::Preparation;
-use crate::job::{part_params, solve_part, SearchInfo, SolveTiming, Solved, StepSummary};
+use crate::job::{part_params, solve_guarded, SearchInfo, SolveTiming, Solved, StepSummary};
 use bytes::Bytes;
 use fixplan_core::{report, SolveResult, Status};
 use fixplan_worker::part_input::PartInput;
@@ -164,7 +164,7 @@ impl ClusterJobs {
         let solved = |i, s| (sink.send)(i, (sink.solved)(i, s));
         for &i in &self.direct {
             let job = &jobs[i];
-            if !solved(i, solve_part(job.ctx, job.part, Preparation::Fresh)) {
+            if !solved(i, solve_guarded(job.ctx, job.part, Preparation::Fresh)) {
                 return Ok(());
             }
         }

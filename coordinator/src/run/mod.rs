@@ -21,7 +21,7 @@ pub mod slice;
 pub mod solve_in_order;
 
 use crate::job::solve_part::Preparation;
-use crate::job::{solve_part, JobContext, SearchOptions};
+use crate::job::{solve_guarded, JobContext, SearchOptions};
 use crate::output::messages::{CatalogInfo, RunMsg};
 use anyhow::{Context, Result};
 use backend::{Backend, PartJob};
@@ -151,13 +151,13 @@ pub fn run_parts(
         spec.name,
         opts.backend.threads()
     ));
-    let (mut writer, start) = resume::open_output(
-        &opts.output,
-        opts.resume,
-        &run_msg,
-        parts.clone(),
-        &mut progress,
-    )?;
+    let run_parts = resume::RunParts {
+        message: &run_msg,
+        parts: parts.clone(),
+        ids: catalog.parts.iter().map(|p| p.id.as_str()).collect(),
+    };
+    let (mut writer, start) =
+        resume::open_output(&opts.output, opts.resume, &run_parts, &mut progress)?;
     let ctx = JobContext {
         kit: &spec.kit,
         params: &params,
@@ -184,7 +184,7 @@ pub fn run_parts(
                 "{}: a worker's finished part is unusable ({e}); solving it here",
                 jobs[i].part.id
             );
-            let s = solve_part(&ctx, jobs[i].part, Preparation::Fresh);
+            let s = solve_guarded(&ctx, jobs[i].part, Preparation::Fresh);
             part_outcome(&ctx, start + i, jobs[i].part, s)
         })
     };

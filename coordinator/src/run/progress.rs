@@ -16,6 +16,10 @@ pub struct Totals {
     pub no_fixture: usize,
     /// Parts that could not be read or prepared.
     pub invalid: usize,
+    /// Parts whose solve failed (a solver panic), the run going on.
+    pub failed: usize,
+    /// Parts whose estimated work is beyond `--part-budget`.
+    pub over_budget: usize,
     /// Admissible fixtures found, over all parts; `None` once a part did
     /// not count them (top-k mode).
     pub admissible: Option<u64>,
@@ -31,6 +35,8 @@ impl Default for Totals {
             ok: 0,
             no_fixture: 0,
             invalid: 0,
+            failed: 0,
+            over_budget: 0,
             admissible: Some(0),
             kept: 0,
             resumed: 0,
@@ -41,7 +47,7 @@ impl Default for Totals {
 impl Totals {
     /// Parts done, whatever their outcome.
     pub fn parts(&self) -> usize {
-        self.ok + self.no_fixture + self.invalid
+        self.ok + self.no_fixture + self.invalid + self.failed + self.over_budget
     }
 
     /// Counts one part.
@@ -50,6 +56,8 @@ impl Totals {
             Status::Ok => self.ok += 1,
             Status::NoFixture => self.no_fixture += 1,
             Status::Invalid => self.invalid += 1,
+            Status::Failed => self.failed += 1,
+            Status::OverBudget => self.over_budget += 1,
         }
         self.admissible = self.admissible.zip(admissible).map(|(a, b)| a + b);
         self.kept += kept;
@@ -126,9 +134,13 @@ impl Progress {
         let done = self.totals.parts();
         match &self.bar {
             Some(b) => {
-                if outcome.status == Status::Invalid {
+                if matches!(
+                    outcome.status,
+                    Status::Invalid | Status::Failed | Status::OverBudget
+                ) {
+                    let word = crate::view::show::status_word(outcome.status);
                     b.println(format!(
-                        "invalid: {}",
+                        "{word}: {}",
                         outcome.error.as_deref().unwrap_or("?")
                     ));
                 }
@@ -142,9 +154,11 @@ impl Progress {
                         None => format!("ok, top {}", outcome.kept),
                     },
                     Status::NoFixture => "no fixture".to_string(),
-                    Status::Invalid => {
-                        format!("invalid: {}", outcome.error.as_deref().unwrap_or("?"))
-                    }
+                    Status::Invalid | Status::Failed | Status::OverBudget => format!(
+                        "{}: {}",
+                        crate::view::show::status_word(outcome.status),
+                        outcome.error.as_deref().unwrap_or("?")
+                    ),
                 };
                 say(format_args!(
                     "[{done}/{}] {}: {what}  ({} so far, {:.1} s)",
@@ -200,6 +214,14 @@ pub fn summary_table(totals: &Totals, elapsed: Duration, output: &str) -> String
     row(&mut s, "ok", totals.ok.to_string());
     row(&mut s, "no_fixture", totals.no_fixture.to_string());
     row(&mut s, "invalid", totals.invalid.to_string());
+    // Only when there are some: the table of a run where every part
+    // finished stays as it was.
+    if totals.failed > 0 {
+        row(&mut s, "failed", totals.failed.to_string());
+    }
+    if totals.over_budget > 0 {
+        row(&mut s, "over_budget", totals.over_budget.to_string());
+    }
     let found = totals
         .admissible
         .map_or("not counted".into(), |a| a.to_string());

@@ -1,15 +1,31 @@
 //! Where a run writes, and how an interrupted one is continued: a run
 //! writes `OUT.partial` and renames it when complete; the complete chunks
 //! of a killed run's file are a prefix of the catalogue, which `--resume`
-//! copies into a fresh file before carrying on.
+//! copies into a fresh file before carrying on. Only sound parts are
+//! copied (the reader checks each chunk's CRC, decompression and
+//! messages; this checks the run, the catalogue digest and each part's
+//! place and id): from the first part that fails, the run is redone, and
+//! the log says which part and why.
 
 use super::progress::Progress;
 use crate::output::messages::{PartMsg, RunMsg};
-use crate::output::{PartMessages, ReadError, ResultsFile, ResultsWriter};
+use crate::output::reader::Contents;
+use crate::output::{PartMessages, ResultsFile, ResultsFileError, ResultsWriter};
 use anyhow::{bail, Context, Result};
 use std::fs::File;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
+
+/// What a run is: its message, which of the catalogue's parts it solves
+/// and the catalogue's part ids (each kept part must hold its own).
+pub struct RunParts<'a> {
+    /// The run message.
+    pub message: &'a RunMsg,
+    /// The catalogue's parts this run solves (all but for a slice).
+    pub parts: Range<usize>,
+    /// Every part id of the catalogue, in order.
+    pub ids: Vec<&'a str>,
+}
 
 /// `OUT.partial`: where an unfinished run writes.
 pub fn partial_path(output: &Path) -> PathBuf {
@@ -24,14 +40,14 @@ pub fn partial_path(output: &Path) -> PathBuf {
 pub fn open_output(
     output: &Path,
     resume: bool,
-    run_msg: &RunMsg,
-    parts: Range<usize>,
+    run: &RunParts,
     progress: &mut Progress,
 ) -> Result<(ResultsWriter, usize)> {
+    let (run_msg, parts) = (run.message, run.parts.clone());
     let partial = partial_path(output);
     let first = parts.start;
     if resume && partial.exists() {
-        if let Some(r) = resume_from(&partial, run_msg, parts, progress)? {
+        if let Some(r) = resume_from(&partial, run, progress)? {
             return Ok(r);
         }
     } else if resume {
@@ -75,47 +91,76 @@ enum Copied {
     OtherRun,
 }
 
-/// Copies the parts of `old` that are complete and in order, of the run's
-/// `parts`, into `w`.
+/// Why the copy stopped before the parts the old file holds, if it did.
+fn stop_reason(next: usize, contents: &Contents, mismatch: Option<String>) -> Option<String> {
+    if let Some(m) = mismatch {
+        return Some(m);
+    }
+    let damage: Vec<String> = contents.damage.iter().map(ToString::to_string).collect();
+    if !damage.is_empty() {
+        return Some(damage.join("; "));
+    }
+    contents
+        .parts
+        .iter()
+        .any(|&p| p >= next)
+        .then(|| format!("part #{next} is not where it should be"))
+}
+
+/// Copies the parts of `old` that are sound, complete and in order, of
+/// the run's parts, into `w`; logs why it stopped before the end of what
+/// the file holds.
 fn copy_finished(
     old: &ResultsFile,
-    run_msg: &RunMsg,
-    parts: Range<usize>,
+    run: &RunParts,
     w: &mut ResultsWriter,
     progress: &mut Progress,
-) -> Result<Result<Copied, ReadError>> {
-    let mut next = parts.start;
+) -> Result<Result<Copied, ResultsFileError>> {
+    let mut next = run.parts.start;
     let mut other_run = false;
     let mut write_err = None;
-    let read = old.for_each_part(|run, m: PartMessages| {
-        if !run.same_run(run_msg) {
+    let mut mismatch = None;
+    let read = old.for_each_part(|file_run, m: PartMessages| {
+        if !file_run.same_run(run.message) {
             other_run = true;
             return false;
         }
-        if m.index != next || !parts.contains(&next) {
+        if m.index != next || !run.parts.contains(&next) {
+            return false;
+        }
+        let Ok(p) = m.decode::<PartMsg>() else {
+            mismatch = Some(format!("part #{next}: its part message does not decode"));
+            return false;
+        };
+        if run.ids.get(next) != Some(&p.id.as_str()) {
+            mismatch = Some(format!(
+                "part #{next} holds part {:?}, not {:?}",
+                p.id,
+                run.ids.get(next).copied().unwrap_or("(none)")
+            ));
             return false;
         }
         if let Err(e) = w.write_part(&m) {
             write_err = Some(e);
             return false;
         }
-        if let Ok(p) = m.decode::<PartMsg>() {
-            let (status, counts) = (p.status.into(), p.counts.as_ref().map(Into::into));
-            let admissible = super::outcome::admissible_found(status, counts);
-            progress.resumed(status, admissible, p.fixtures);
-        }
+        let (status, counts) = (p.status.into(), p.counts.as_ref().map(Into::into));
+        let admissible = super::outcome::admissible_found(status, counts);
+        progress.resumed(status, admissible, p.fixtures);
         next += 1;
         true
     });
     if let Some(e) = write_err {
         return Err(e.into());
     }
-    Ok(read.map(|_| {
+    Ok(read.map(|contents| {
         if other_run {
-            Copied::OtherRun
-        } else {
-            Copied::Parts(next)
+            return Copied::OtherRun;
         }
+        if let Some(why) = stop_reason(next, &contents, mismatch) {
+            progress.log(&format!("{}: {why}; redoing from part #{next}", old.path));
+        }
+        Copied::Parts(next)
     }))
 }
 
@@ -124,11 +169,10 @@ fn copy_finished(
 /// `None` when the old file holds nothing usable.
 fn resume_from(
     partial: &Path,
-    run_msg: &RunMsg,
-    parts: Range<usize>,
+    run: &RunParts,
     progress: &mut Progress,
 ) -> Result<Option<(ResultsWriter, usize)>> {
-    let first = parts.start;
+    let first = run.parts.start;
     let old = match ResultsFile::open(partial) {
         Ok(f) => f,
         Err(e) => bail!("{e}"),
@@ -138,9 +182,9 @@ fn resume_from(
     let new_path = PathBuf::from(new_path);
     let file = File::create(&new_path)
         .with_context(|| format!("{}: cannot create", new_path.display()))?;
-    let mut w = ResultsWriter::create(file, run_msg)?;
-    let next = match copy_finished(&old, run_msg, parts, &mut w, progress)? {
-        Err(ReadError::Format { message, .. }) => {
+    let mut w = ResultsWriter::create(file, run.message)?;
+    let next = match copy_finished(&old, run, &mut w, progress)? {
+        Err(ResultsFileError::Format { message, .. }) => {
             progress.log(&format!(
                 "{}: nothing usable to resume ({message}); starting from the beginning",
                 partial.display()

@@ -80,6 +80,7 @@ fn open_input(path: &Path) -> Result<Input> {
         first = Some(m.index);
         false
     })?;
+    contents.sound(&file.path)?;
     if !contents.complete {
         bail!(
             "{}: not a finished run (no summary); finish it with --resume first",

@@ -7,7 +7,7 @@
 use super::backend::{Backend, PartJob, RemoteFinish};
 use super::cluster_jobs::Sink;
 use super::ordered::Reorder;
-use crate::job::{solve_part, Solved};
+use crate::job::{solve_guarded, Solved};
 use anyhow::{Context, Result};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{mpsc, Condvar, Mutex};
@@ -157,7 +157,7 @@ impl Drivers<'_, '_> {
             }
             let job = &self.jobs[i];
             let out = self.pool.install(|| {
-                let solved = solve_part(job.ctx, job.part, job.preparation);
+                let solved = solve_guarded(job.ctx, job.part, job.preparation);
                 finish(i, solved)
             });
             if tx.send((i, out)).is_err() {

@@ -1,14 +1,21 @@
 //! `fixplan show` and `fixplan export`: a results file as terminal tables
 //! or as JSON lines.
 
+use crate::output::fields::StatusName;
 use crate::output::messages::{FixturesMsg, Message};
 use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
 use anyhow::Result;
 use fixplan_core::parts::edges_of;
-use fixplan_core::{Counts, FixtureReport, SegmentKind, Vertex};
+use fixplan_core::{Counts, FixtureReport, SegmentKind, Status, Vertex};
 
 use std::io::Write;
 use std::path::Path;
+
+/// A status as the results file's JSON writes it, so the tables and the
+/// gallery's CSS classes use the same words.
+pub fn status_word(status: Status) -> &'static str {
+    StatusName::from(status).text()
+}
 
 fn warn_incomplete(path: &Path, complete: bool, truncated: &Option<String>) {
     if !complete {
@@ -210,7 +217,11 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
         let fixtures = match FixturesMsg::from_json_exact(message) {
             Ok(f) => f,
             Err(e) => {
-                err = Some(anyhow::anyhow!("part {}: {e}", m.index));
+                err = Some(anyhow::anyhow!(
+                    "{}: part #{}: {e}",
+                    path.display(),
+                    m.index
+                ));
                 return false;
             }
         };
@@ -233,6 +244,7 @@ pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Resu
     if let Some(e) = err {
         return Err(e);
     }
+    contents.sound(&file.path)?;
     warn_incomplete(path, contents.complete, &contents.truncated);
     Ok(())
 }

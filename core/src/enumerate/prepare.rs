@@ -16,7 +16,7 @@ use crate::input::setting::{scale, top_k_mode, Setting};
 use crate::input::validate::{check_grid_step, PrepareError, MAX_EXTENT};
 use crate::input::{Kit, MountHole, Params, Part, Units};
 use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
-use crate::outline::{Outline, Vertex};
+use crate::outline::{Edge, Outline, Vertex};
 use crate::segments::{usable_segments, PairTable, Segment};
 use crate::setups::{SearchStats, Setup, SetupScratch, SetupSearch};
 use crate::sweeps::SweptSegment;
@@ -119,11 +119,18 @@ fn lattice_polygons(part: &Part, l: f64) -> Result<(Outline, Vec<Vec<V2>>), Prep
     }
     // Lattice coordinates are enumerated as integers: keep them far from
     // overflow (a part 10^6 spacings across is 25 km on a 25 mm plate).
+    // An arc reaches beyond its end points (a bulge of 1e9 on a 10 mm
+    // chord is a circle of radius 2.5e9 mm): its whole circle counts.
+    let arcs = outline.edges().iter().filter_map(|e| match e {
+        Edge::Arc(arc) => Some(arc.center.x.abs().max(arc.center.y.abs()) + arc.radius),
+        Edge::Line { .. } => None,
+    });
     let extent = outline
         .points()
         .iter()
         .chain(access.iter().flatten())
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let extent = arcs.fold(extent, f64::max);
     if extent > MAX_EXTENT {
         return Err(PrepareError::TooLarge {
             extent,

@@ -468,6 +468,15 @@ fn other_errors_with_arcs() {
         validate_outline(&vs(&[[0., 0., f64::INFINITY], [1., 0., 1.]])),
         Err(OutlineError::BadBulge { index: 0, .. })
     ));
+    // Finite but too flat for a finite radius: said so, not "must be a
+    // finite number".
+    let flat = validate_outline(&vs(&[[0., 0., 1e-320], [1., 0., 0.], [1., 1., 0.]]))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        flat,
+        "vertex 0 has bulge 1e-320, which draws no arc of finite radius; write 0 for a straight edge"
+    );
     assert_eq!(
         validate_outline(&vs(&[[0., 0., 0.5], [1., f64::NAN, 1.]])),
         Err(OutlineError::Polygon(PolygonError::NonFinite { index: 1 }))

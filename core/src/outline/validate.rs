@@ -30,9 +30,19 @@ pub enum OutlineError {
     /// An outline with an arc and fewer than 2 vertices.
     #[error("has {0} vertices; an outline with arcs needs at least 2")]
     TooFewArcVertices(usize),
-    /// A bulge that is not a finite number (or too large to draw an arc).
+    /// A bulge that is not a finite number.
     #[error("vertex {index} has bulge {bulge}; a bulge must be a finite number")]
     BadBulge {
+        /// The vertex whose outgoing edge it is.
+        index: usize,
+        /// The bulge as read.
+        bulge: f64,
+    },
+    /// A finite, non-zero bulge whose arc has no finite radius (too close
+    /// to 0: a straight edge is written with bulge 0; or so large the
+    /// circle overflows).
+    #[error("vertex {index} has bulge {bulge:e}, which draws no arc of finite radius; write 0 for a straight edge")]
+    NoArc {
         /// The vertex whose outgoing edge it is.
         index: usize,
         /// The bulge as read.
@@ -66,7 +76,7 @@ pub fn validate_outline(vertices: &[Vertex]) -> Result<Vec<Vertex>, OutlineError
     repeated_vertex(vertices)?;
     let edges = edges_of(vertices);
     if let Some(index) = (0..n).find(|&i| vertices[i].is_arc() && !edges[i].is_arc()) {
-        return Err(OutlineError::BadBulge {
+        return Err(OutlineError::NoArc {
             index,
             bulge: vertices[index].bulge,
         });

@@ -16,6 +16,12 @@ pub enum Status {
     NoFixture,
     /// The input cannot be enumerated; `error` says why and where.
     Invalid,
+    /// Solving the part failed (a panic in the solver: a bug, not the
+    /// input's fault); `error` says where. The run goes on.
+    Failed,
+    /// The part's estimated work is beyond the run's budget
+    /// (`--part-budget`); `error` gives the estimate and the budget.
+    OverBudget,
 }
 
 /// The per-part counts of SPEC section 4.
@@ -287,6 +293,16 @@ impl SolveResult {
             counts: None,
             segment_kinds: Vec::new(),
             fixtures: Vec::new(),
+        }
+    }
+
+    /// [`SolveResult::invalid`] with another status: a part the run gave
+    /// up on ([`Status::Failed`], [`Status::OverBudget`]), `message` saying
+    /// why.
+    pub fn gave_up(status: Status, message: impl Into<String>) -> SolveResult {
+        SolveResult {
+            status,
+            ..SolveResult::invalid(message)
         }
     }
 }
