@@ -5,10 +5,10 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use fixplan_core::parts::{
     polygon_clearance, polygon_clearance_below, solve_poses, v2, wrench, AngleSet, Feature, Line,
-    LineFeature, LocatorWrenches, MaxForceMetric, Metric, PartContact, Segment, Sweep,
+    LineFeature, LocatorSweep, LocatorWrenches, MaxForceMetric, Metric, PartContact, Segment,
     SweepScratch, SweptSegment,
 };
-use fixplan_core::{prepare, Case};
+use fixplan_core::{prepare, Case, EnumerateOptions};
 use std::hint::black_box;
 
 fn case(name: &str) -> Case {
@@ -131,7 +131,7 @@ fn sweep(c: &mut Criterion) {
         line([3.0, 5.0], 3.6, 4.0),
     ];
     let swept = segs.each_ref().map(SweptSegment::of);
-    let sweep = Sweep::new([&swept[0], &swept[1], &swept[2]], false, 9.0).expect("lines");
+    let sweep = LocatorSweep::new([&swept[0], &swept[1], &swept[2]], false, 9.0).expect("lines");
     let l2 = v2(4.0, 3.0);
     c.bench_function("pivot_point_angle_bands_per_l2", |b| {
         b.iter(|| sweep.pivot_point(black_box(l2)))
@@ -156,10 +156,16 @@ fn whole_parts(c: &mut Criterion) {
         let k = case(name);
         let p = prepare(&k.part(), &k.kit, &k.params, k.units).expect("valid case");
         let n = p.combination_count();
-        g.bench_function(name, |b| b.iter(|| p.enumerate_range_serial(0..n)));
+        g.bench_function(name, |b| {
+            b.iter(|| p.enumerate(0..n, EnumerateOptions::this_thread()).result)
+        });
         let top10 = p.with_top_k(10, false);
         g.bench_function(format!("{name}_top10_mode"), |b| {
-            b.iter(|| top10.enumerate_range_serial(0..n))
+            b.iter(|| {
+                top10
+                    .enumerate(0..n, EnumerateOptions::this_thread())
+                    .result
+            })
         });
     }
     g.finish();

@@ -52,11 +52,11 @@ pub struct Work {
 
 impl Work {
     /// Sums the work of pieces (threads, shards).
-    pub fn add(&mut self, o: &Work) {
-        self.setups_floored += o.setups_floored;
-        self.scored += o.scored;
-        self.score_cut += o.score_cut;
-        self.mount_searches += o.mount_searches;
+    pub fn add(&mut self, other: &Work) {
+        self.setups_floored += other.setups_floored;
+        self.scored += other.scored;
+        self.score_cut += other.score_cut;
+        self.mount_searches += other.mount_searches;
     }
 }
 
@@ -188,7 +188,7 @@ impl ClampSearch<'_> {
         scratch: &mut Scratch,
     ) {
         let clock = scratch.timing.is_some().then(std::time::Instant::now);
-        self.process_setup_untimed(setup, acc, scratch, None);
+        self.offer_setup_candidates(setup, acc, scratch, None);
         let ns = lap(clock);
         if let Some(t) = scratch.timing.as_mut() {
             t.setups_ns += ns;
@@ -207,10 +207,10 @@ impl ClampSearch<'_> {
         clamp_segment: usize,
         rotation: u8,
     ) {
-        self.process_setup_untimed(setup, acc, scratch, Some((clamp_segment, rotation)));
+        self.offer_setup_candidates(setup, acc, scratch, Some((clamp_segment, rotation)));
     }
 
-    fn process_setup_untimed(
+    fn offer_setup_candidates(
         &self,
         setup: &Setup,
         acc: &mut Accumulator,

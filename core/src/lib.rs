@@ -69,8 +69,8 @@ pub mod parts;
 
 pub use enumerate::combinations::combination_count;
 pub use enumerate::prepare::{prepare, PreparedPart};
-pub use enumerate::shards::{merge, PartialResult, Profile};
-pub use enumerate::solve::{report, solve, solve_case};
+pub use enumerate::shards::{merge, EnumerateOptions, Enumeration, PartialResult, Profile};
+pub use enumerate::whole_part::{report, solve, solve_case};
 pub use input::validate::{validate_kit, validate_params, PrepareError};
 pub use input::{Case, Clamp, HoleKind, Kit, MountHole, Params, Part, Pattern, Point, Units};
 pub use outline::Vertex;

@@ -26,4 +26,4 @@ pub use crate::poses::contact_pose::{
 pub use crate::poses::pose::{solve_poses, Line, Pose};
 pub use crate::segments::{Feature, LineFeature, Segment};
 pub use crate::setups::{SearchStats, Setup};
-pub use crate::sweeps::{Sweep, SweepScratch, SweptSegment};
+pub use crate::sweeps::{LocatorSweep, SweepScratch, SweptSegment};

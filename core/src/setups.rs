@@ -24,10 +24,10 @@
 use crate::geometry::angle_set::{wrap_angle, AngleSet};
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
-use crate::poses::contact_pose::solve_contact_poses_within;
-use crate::poses::pose::{solve_poses_where, Line, Pose};
+use crate::poses::contact_pose::solve_contact_poses_at_angles;
+use crate::poses::pose::{solve_poses_at_angles, Line, Pose};
 use crate::segments::{Feature, PairBounds, PairTable, Segment};
-use crate::sweeps::{PivotPoint, Sweep, SweepScratch, SweptSegment};
+use crate::sweeps::{LocatorSweep, PivotPoint, SweepScratch, SweptSegment};
 use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
 
@@ -91,22 +91,12 @@ impl SetupSearch<'_> {
     }
 
     /// Setups of one combination with the given `L2`, `L3` (`L1` = origin),
-    /// with no pruning: the building block that pruned and brute-force
-    /// enumerations share. Returns the number of pose solutions computed
-    /// (kept or not), for the pruning statistics.
+    /// working out only the poses at angles `allowed` lets through (others
+    /// may be reported too; [`Allowed::ALL`]: no pruning, the building
+    /// block that pruned and brute-force enumerations share). Returns the
+    /// number of pose solutions computed (kept or not), for the pruning
+    /// statistics.
     pub(crate) fn setups_for_locators(
-        &self,
-        combo: [usize; 3],
-        l2: [i64; 2],
-        l3: [i64; 2],
-        visit: impl FnMut(&Setup),
-    ) -> usize {
-        self.setups_for_locators_where(combo, l2, l3, Allowed::ALL, visit)
-    }
-
-    /// [`Self::setups_for_locators`] working out only the poses at angles
-    /// `allowed` lets through (others may be reported too).
-    fn setups_for_locators_where(
         &self,
         combo: [usize; 3],
         l2: [i64; 2],
@@ -126,7 +116,7 @@ impl SetupSearch<'_> {
         });
         if let [Some(a), Some(b), Some(c)] = lines {
             // Polygons: SPEC 3's closed form, as before arcs.
-            let (poses, count) = solve_poses_where(&[a, b, c], &locs, |t| allowed.keeps(t));
+            let (poses, count) = solve_poses_at_angles(&[a, b, c], &locs, |t| allowed.keeps(t));
             for pose in &poses[..count] {
                 self.visit_pose(combo, &segs, locs_i, &locs, pose, false, &mut visit);
             }
@@ -154,7 +144,7 @@ impl SetupSearch<'_> {
             return 0;
         }
         let contacts = segs.map(|s| s.contact());
-        let poses = solve_contact_poses_within(&contacts, locs, &|lo, hi| allowed.meets(lo, hi));
+        let poses = solve_contact_poses_at_angles(&contacts, locs, &|lo, hi| allowed.meets(lo, hi));
         for p in poses.iter() {
             self.visit_pose(combo, segs, locators, locs, &p.pose, p.tangential, visit);
         }
@@ -211,7 +201,7 @@ impl SetupSearch<'_> {
     /// Every setup of one combination, pruned by annuli and the swept
     /// region of [`crate::sweeps`], with buffers and pivot points kept
     /// from the combinations this thread did before.
-    pub(crate) fn setups_of_combination_in(
+    pub(crate) fn setups_of_combination(
         &self,
         combo: [usize; 3],
         scratch: &mut SetupScratch,
@@ -280,7 +270,7 @@ impl SetupSearch<'_> {
         ranked[..n].iter().find_map(|&(_, roles)| {
             let [p, q, r] = roles.map(|k| combo[k]);
             let swept = [p, q, r].map(|i| &self.swept[i]);
-            let sweep = Sweep::new(swept, p == q, pair(p, r).dmax)?;
+            let sweep = LocatorSweep::new(swept, p == q, pair(p, r).dmax)?;
             Some(Pivot { roles, sweep })
         })
     }
@@ -318,7 +308,13 @@ impl SetupSearch<'_> {
 
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
     /// `(p, q)` at which some angle keeps both contacts on their segments.
-    fn pivot_points(&self, sweep: &Sweep<'_>, p: usize, q: usize, out: &mut Vec<LatticePivot>) {
+    fn pivot_points(
+        &self,
+        sweep: &LocatorSweep<'_>,
+        p: usize,
+        q: usize,
+        out: &mut Vec<LatticePivot>,
+    ) {
         self.quadrant_points(self.pair(p, q), |d| {
             if let Some(pt) = sweep.pivot_point(lattice_point(d)) {
                 out.push((d, pt));
@@ -422,7 +418,7 @@ impl SetupSearch<'_> {
         if l3 != [0, 0] && l3 != l2 && self.locator_point_allowed(l3) {
             stats.locator_triples += 1;
             stats.pose_solutions +=
-                self.setups_for_locators_where(combo, l2, l3, allowed, &mut *visit) as u64;
+                self.setups_for_locators(combo, l2, l3, allowed, &mut *visit) as u64;
         }
     }
 }
@@ -433,14 +429,14 @@ impl SetupSearch<'_> {
 /// `theta = theta_pivot + turns pi / 2`. Poses elsewhere cannot keep the
 /// pivot's contacts on their segments, so they need not be worked out.
 #[derive(Debug, Clone, Copy)]
-struct Allowed<'a> {
+pub(crate) struct Allowed<'a> {
     angles: Option<&'a AngleSet>,
     turns: u8,
 }
 
 impl Allowed<'_> {
     /// Every angle.
-    const ALL: Allowed<'static> = Allowed {
+    pub(crate) const ALL: Allowed<'static> = Allowed {
         angles: None,
         turns: 0,
     };
@@ -472,7 +468,7 @@ impl Allowed<'_> {
 /// segment it sweeps.
 struct Pivot<'s> {
     roles: [usize; 3],
-    sweep: Sweep<'s>,
+    sweep: LocatorSweep<'s>,
 }
 
 /// Buffers and pivot points one thread reuses across combinations.
@@ -561,13 +557,13 @@ fn in_annuli(pairs: [[PairBounds; 3]; 3], locs: &[V2; 3]) -> bool {
     })
 }
 
-/// Calls `visit` for every lattice point (multiples of `g`) within the
+/// Calls `visit` for every lattice point (multiples of `grid_step`) within the
 /// annulus `ac` around the origin and `bc` around `l2`.
 fn annulus_points(
     l2: [i64; 2],
     ac: PairBounds,
     bc: PairBounds,
-    g: i64,
+    grid_step: i64,
     mut visit: impl FnMut([i64; 2]),
 ) {
     let (lo_a, hi_a) = annulus_sq(ac);
@@ -575,7 +571,7 @@ fn annulus_points(
     let p2 = v2(l2[0] as f64, l2[1] as f64);
     let x_lo = (-ac.dmax).max(p2.x - bc.dmax) - 1.0;
     let x_hi = ac.dmax.min(p2.x + bc.dmax) + 1.0;
-    let mut x = (x_lo / g as f64).floor() as i64 * g;
+    let mut x = (x_lo / grid_step as f64).floor() as i64 * grid_step;
     while (x as f64) <= x_hi {
         let xf = x as f64;
         // y range from the outer circle around the origin and around L2.
@@ -585,17 +581,17 @@ fn annulus_points(
             let (ya, yb) = (ra.sqrt(), rb.sqrt());
             let y_lo = (-ya).max(p2.y - yb);
             let y_hi = ya.min(p2.y + yb);
-            let mut y = (y_lo / g as f64).floor() as i64 * g;
+            let mut y = (y_lo / grid_step as f64).floor() as i64 * grid_step;
             while (y as f64) <= y_hi {
                 let da = (x * x + y * y) as f64;
                 let db = (v2(xf, y as f64) - p2).norm_squared();
                 if da >= lo_a && da <= hi_a && db >= lo_b && db <= hi_b {
                     visit([x, y]);
                 }
-                y += g;
+                y += grid_step;
             }
         }
-        x += g;
+        x += grid_step;
     }
 }
 
@@ -610,9 +606,9 @@ pub struct SearchStats {
 
 impl SearchStats {
     /// Sums the statistics of pieces of work (threads, shards).
-    pub fn add(&mut self, o: &SearchStats) {
-        self.locator_triples += o.locator_triples;
-        self.pose_solutions += o.pose_solutions;
+    pub fn add(&mut self, other: &SearchStats) {
+        self.locator_triples += other.locator_triples;
+        self.pose_solutions += other.pose_solutions;
     }
 }
 

@@ -6,7 +6,7 @@ mod support;
 
 use fixplan_core::combination_count;
 use fixplan_core::parts::{cross, fibonacci_sphere, Feature};
-use fixplan_core::{merge, Fixture, Pattern};
+use fixplan_core::{merge, EnumerateOptions, Fixture, Pattern};
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
@@ -134,7 +134,7 @@ proptest! {
         pr.top_k = top_k;
         let p = prep(&part(&shape, &[]), &kit(Pattern::Square), &pr);
         let n = p.combination_count();
-        let whole = p.enumerate_range_serial(0..n);
+        let whole = p.enumerate(0..n, EnumerateOptions::this_thread()).result;
         let mut points: Vec<u64> = cuts.iter().map(|c| (c * n as f64) as u64).collect();
         points.extend([0, n]);
         points.sort();
@@ -274,8 +274,16 @@ fn good_enough_stops_at_the_same_place_serial_or_parallel() {
     let best = full.fixtures[0].score;
     let worst = full.fixtures.last().unwrap().score;
     // Lenient: the first fixture found is good enough, and it stops early.
-    let (par, hit) = p.enumerate_until(0..n, worst);
-    let (ser, hit_s) = p.enumerate_range_until(0..n, worst);
+    let par = p.enumerate(0..n, EnumerateOptions::good_enough(worst));
+    let (par, hit) = (par.result, par.stopped_at);
+    let ser = p.enumerate(
+        0..n,
+        EnumerateOptions {
+            this_thread: true,
+            ..EnumerateOptions::good_enough(worst)
+        },
+    );
+    let (ser, hit_s) = (ser.result, ser.stopped_at);
     assert_eq!(hit, hit_s);
     let h = hit.expect("some fixture is good enough");
     assert!(h + 1 < n, "stopped at {h} of {n}");
@@ -285,12 +293,15 @@ fn good_enough_stops_at_the_same_place_serial_or_parallel() {
     assert!(par.fixtures[0].score <= worst);
     assert_eq!(par.counts, p.enumerate_range(0..h + 1).counts);
     // Strict: nothing beats the best, so it runs to the end like a full run.
-    let (all, none) = p.enumerate_until(0..n, best - 1.0);
+    let all = p.enumerate(0..n, EnumerateOptions::good_enough(best - 1.0));
+    let (all, none) = (all.result, all.stopped_at);
     assert_eq!(none, None);
     assert_eq!(all.counts, full.counts);
     assert_eq!(all.fixtures, full.fixtures);
     // At the best score exactly it finds the best fixture.
-    let (b, _) = p.enumerate_until(0..n, best);
+    let b = p
+        .enumerate(0..n, EnumerateOptions::good_enough(best))
+        .result;
     assert_eq!(b.fixtures[0], full.fixtures[0]);
 }
 

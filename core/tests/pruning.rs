@@ -24,7 +24,11 @@ fn polygon_bench_cases_solve_at_most_three_poses_per_setup() {
         "bracket-flattened",
     ] {
         let p = case(name);
-        let (res, profile) = p.enumerate_range_profiled(0..p.combination_count(), false);
+        let done = p.enumerate(
+            0..p.combination_count(),
+            fixplan_core::EnumerateOptions::this_thread(),
+        );
+        let (res, profile) = (done.result, done.profile);
         let setups = res.counts.setups;
         let poses = profile.search.pose_solutions;
         assert!(setups > 0, "{name}: no setup");

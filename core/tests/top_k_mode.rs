@@ -7,7 +7,9 @@
 
 mod support;
 
-use fixplan_core::{merge, solve, Kit, Params, Part, PartialResult, Pattern, PreparedPart, Units};
+use fixplan_core::{
+    merge, solve, EnumerateOptions, Kit, Params, Part, PartialResult, Pattern, PreparedPart, Units,
+};
 use proptest::prelude::*;
 use support::*;
 
@@ -43,7 +45,9 @@ fn assert_top_k_mode_exact(part: &Part, kit: &Kit, pr: &Params) {
         assert!(!p.counts_exact());
         let fast = p.enumerate_all();
         assert_eq!(fast.fixtures, want, "top-{k} mode, parallel");
-        let serial = p.enumerate_range_serial(0..p.combination_count());
+        let serial = p
+            .enumerate(0..p.combination_count(), EnumerateOptions::this_thread())
+            .result;
         assert_eq!(serial.fixtures, want, "top-{k} mode, serial");
         assert!(!fast.counts.exact && !serial.counts.exact);
         assert_eq!(fast.counts.admissible(), None);
@@ -65,7 +69,10 @@ fn merged_pieces(p: &PreparedPart, cuts: &[f64]) -> PartialResult {
     points.sort();
     let pieces = points
         .windows(2)
-        .map(|w| p.enumerate_range_serial(w[0]..w[1]))
+        .map(|w| {
+            p.enumerate(w[0]..w[1], EnumerateOptions::this_thread())
+                .result
+        })
         .collect();
     merge(p.top_k(), pieces)
 }
@@ -105,7 +112,7 @@ proptest! {
         let pr = with_k(&params(90.0, 1), top_k, false);
         let pr = if tied { all_tied(pr) } else { pr };
         let p = prep(&part(&shape, &[]), &kit(Pattern::Square), &pr);
-        let whole = p.enumerate_range_serial(0..p.combination_count());
+        let whole = p.enumerate(0..p.combination_count(), EnumerateOptions::this_thread()).result;
         let merged = merged_pieces(&p, &cuts);
         prop_assert_eq!(&merged.counts, &whole.counts);
         prop_assert_eq!(
@@ -147,7 +154,8 @@ fn top_k_mode_says_its_admissible_count_is_not_known() {
     assert!(!back.exact && back.admissible().is_none());
     // It did skip work: one mount search per candidate is the full mode.
     let one = prep(&p, &k, &with_k(&params(90.0, 1), 1, false));
-    let (res, profile) = one.enumerate_range_profiled(0..one.combination_count(), false);
+    let done = one.enumerate(0..one.combination_count(), EnumerateOptions::this_thread());
+    let (res, profile) = (done.result, done.profile);
     assert!(
         profile.work.mount_searches < res.counts.candidates / 2,
         "{profile:?}"

@@ -45,16 +45,18 @@ pub fn run_shard(prep: &PreparedPart, range: Range<u64>) -> PartialResult {
 /// Enumerates a shard, or with `good_enough` the shortest prefix of it that
 /// admits a fixture scoring that or better (the hit index with it): the
 /// prefixes of a part's shards merge into the embedded run's
-/// [`PreparedPart::enumerate_until`] result.
+/// [`PreparedPart::enumerate`] result.
 pub fn run_shard_until(
     prep: &PreparedPart,
     range: Range<u64>,
     good_enough: Option<f64>,
 ) -> (PartialResult, Option<u64>) {
-    match good_enough {
-        Some(g) => prep.enumerate_until(range, g),
-        None => (prep.enumerate_range(range), None),
-    }
+    let options = fixplan_core::EnumerateOptions {
+        good_enough,
+        ..Default::default()
+    };
+    let done = prep.enumerate(range, options);
+    (done.result, done.stopped_at)
 }
 
 /// The message of a caught panic, for the part's `invalid` result: a bug

@@ -105,8 +105,8 @@ fn vertex(v: &Value, i: usize) -> Result<Vertex, JsonError> {
     }
 }
 
-fn polygon(v: &Value, role: PolygonRole) -> Result<Vec<[f64; 2]>, JsonError> {
-    let arr = v.as_array().ok_or(JsonError::NotAList(role))?;
+fn polygon(value: &Value, role: PolygonRole) -> Result<Vec<[f64; 2]>, JsonError> {
+    let arr = value.as_array().ok_or(JsonError::NotAList(role))?;
     arr.iter()
         .enumerate()
         .map(|(i, p)| point(p, role, i))

@@ -12,7 +12,7 @@ mod validate;
 pub use dxf::{read_dxf, read_dxf_parts, write_dxf, DxfError, OpenCause};
 pub use json::{read_json, write_json, JsonError};
 pub(crate) use outline::flatten_vertices;
-pub use outline::OutlineError;
+pub use outline::OutlinePickError;
 pub use raw::{
     ArcMode, Format, LayerFilter, LimitExceeded, Limits, PolygonRole, RawPart, ReadOptions,
     DEFAULT_CHORD_TOLERANCE_MM, DEFAULT_JOIN_TOLERANCE_MM,

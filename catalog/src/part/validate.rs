@@ -223,13 +223,13 @@ impl Cleaning<'_> {
 
 /// Core's message, with the unit after coordinates so that "(12.5, 3)"
 /// cannot be misread in an inch catalogue.
-fn polygon_message(e: &PolygonError, units: Units) -> String {
-    match e {
+fn polygon_message(error: &PolygonError, units: Units) -> String {
+    match error {
         PolygonError::RepeatedVertex { .. } | PolygonError::SelfIntersection { .. } => {
-            format!("{e} {}", units.label())
+            format!("{error} {}", units.label())
         }
         PolygonError::ZeroArea => "has zero area (all its vertices lie on one line)".into(),
-        _ => e.to_string(),
+        _ => error.to_string(),
     }
 }
 

@@ -8,7 +8,9 @@
 //! fixtures with less work (scored, mount searches, setups floored).
 
 use anyhow::{Context, Result};
-use fixplan_core::{prepare, Case, Kit, Params, Part, PartialResult, PreparedPart, Profile, Units};
+use fixplan_core::{
+    prepare, Case, EnumerateOptions, Kit, Params, Part, PartialResult, PreparedPart, Profile, Units,
+};
 use std::path::{Path, PathBuf};
 
 /// One part to measure.
@@ -95,10 +97,14 @@ pub fn measure(prep: &PreparedPart, repeat: usize) -> Measured {
         let n = prep.combination_count();
         // Untimed run for the wall clock (no clock reads in the inner loop)...
         let t = std::time::Instant::now();
-        let result = prep.enumerate_range_serial(0..n);
+        let result = prep.enumerate(0..n, EnumerateOptions::this_thread()).result;
         let wall = t.elapsed().as_nanos() as u64;
         // ...and a timed run for the split.
-        let (_, profile) = prep.enumerate_range_profiled(0..n, true);
+        let timed = EnumerateOptions {
+            timed: true,
+            ..EnumerateOptions::this_thread()
+        };
+        let profile = prep.enumerate(0..n, timed).profile;
         Measured {
             profile,
             wall,

@@ -470,7 +470,8 @@ mod tests {
         scores.sort_by(f64::total_cmp);
         assert!(scores.len() > 4, "{}", scores.len());
         let g = scores[scores.len() / 2];
-        let (res, hit) = prep.enumerate_until(all.clone(), g);
+        let done = prep.enumerate(all.clone(), fixplan_core::EnumerateOptions::good_enough(g));
+        let (res, hit) = (done.result, done.stopped_at);
         let h = hit.expect("the median score is reached");
         assert_eq!(res.counts.combinations, h + 1);
         assert_eq!(check_stop(Some(g), &all, hit, &res), Ok(()));

@@ -7,12 +7,14 @@
 //! adds fixtures; the part's result is the finest step's, the same bytes as
 //! a plain run at that step. With `--good-enough`, every step stops at the
 //! shortest prefix of the combination range (in combination order) that
-//! admits a fixture scoring SCORE or better (`PreparedPart::enumerate_until`,
+//! admits a fixture scoring SCORE or better (`PreparedPart::enumerate`,
 //! deterministic whatever the threads), and a hit ends the part: finer steps
 //! are not run.
 
 use super::enumerate::solve_prepared;
-use fixplan_core::{report, Counts, FixtureReport, PartialResult, PreparedPart, SolveResult};
+use fixplan_core::{
+    report, Counts, EnumerateOptions, FixtureReport, PartialResult, PreparedPart, SolveResult,
+};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -201,8 +203,8 @@ pub fn solve_search(
         let t0 = std::time::Instant::now();
         let (res, hit) = match opts.good_enough {
             Some(g) => {
-                let (partial, hit): (PartialResult, Option<u64>) =
-                    p.enumerate_until(0..p.combination_count(), g);
+                let done = p.enumerate(0..p.combination_count(), EnumerateOptions::good_enough(g));
+                let (partial, hit): (PartialResult, Option<u64>) = (done.result, done.stopped_at);
                 info.shards += 1;
                 (report(&p, &partial), hit)
             }

@@ -24,10 +24,10 @@ pub struct Timing {
 
 impl Timing {
     /// Sums the timings of pieces of work (threads, shards).
-    pub fn add(&mut self, o: &Timing) {
-        self.setups_ns += o.setups_ns;
-        self.admissibility_ns += o.admissibility_ns;
-        self.metric_ns += o.metric_ns;
+    pub fn add(&mut self, other: &Timing) {
+        self.setups_ns += other.setups_ns;
+        self.admissibility_ns += other.admissibility_ns;
+        self.metric_ns += other.metric_ns;
     }
 }
 

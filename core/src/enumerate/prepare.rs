@@ -9,7 +9,7 @@
 use crate::checks::admissibility::{Obstacles, Scratch};
 use crate::clamp::{Accumulator, ClampSearch};
 use crate::enumerate::combinations::combination_count;
-use crate::enumerate::shards::{PartialResult, Profile, Stages};
+use crate::enumerate::shards::{EnumerateOptions, Enumeration, PartialResult, Stages};
 use crate::geometry::polygon::validate_polygon;
 use crate::geometry::{Aabb, V2};
 use crate::input::setting::{scale, top_k_mode, Setting};
@@ -18,7 +18,7 @@ use crate::input::{Kit, MountHole, Params, Part, Units};
 use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
 use crate::outline::{Edge, Outline, Vertex};
 use crate::segments::{usable_segments, PairTable, Segment};
-use crate::setups::{SearchStats, Setup, SetupScratch, SetupSearch};
+use crate::setups::{Allowed, SearchStats, Setup, SetupScratch, SetupSearch};
 use crate::sweeps::SweptSegment;
 use std::ops::Range;
 use std::sync::Arc;
@@ -345,7 +345,7 @@ impl PreparedPart {
         visit: impl FnMut(&Setup),
     ) -> usize {
         self.setup_search()
-            .setups_for_locators(combo, l2, l3, visit)
+            .setups_for_locators(combo, l2, l3, Allowed::ALL, visit)
     }
 
     /// Every setup of one combination, pruned by annuli and by the region
@@ -357,7 +357,7 @@ impl PreparedPart {
         visit: impl FnMut(&Setup),
     ) -> SearchStats {
         self.setup_search()
-            .setups_of_combination_in(combo, &mut SetupScratch::default(), visit)
+            .setups_of_combination(combo, &mut SetupScratch::default(), visit)
     }
 
     /// Counts a setup, and every candidate and admissible fixture it gives.
@@ -386,51 +386,18 @@ impl PreparedPart {
         combination_count(self.segments.len())
     }
 
-    /// Enumerates the combinations with indices in `range` on this thread.
-    pub fn enumerate_range_serial(&self, range: Range<u64>) -> PartialResult {
-        self.enumerate_range_profiled(range, false).0
+    /// Enumerates the combinations with indices in `range` (clipped to
+    /// the part) as `options` say: on the rayon pool or this thread, to
+    /// the end or to the first good-enough fixture, timed or not. Any
+    /// split of a range merges ([`crate::merge`]) to the same result.
+    pub fn enumerate(&self, range: Range<u64>, options: EnumerateOptions) -> Enumeration {
+        self.stages().enumerate(range, options)
     }
 
-    /// Like [`Self::enumerate_range_serial`], also saying where the work
-    /// went; `timed` adds clock reads to the inner loop.
-    pub fn enumerate_range_profiled(
-        &self,
-        range: Range<u64>,
-        timed: bool,
-    ) -> (PartialResult, Profile) {
-        let (res, profile, _) = self.stages().enumerate_serial(range, timed, None);
-        (res, profile)
-    }
-
-    /// Enumerates `range` in order and stops after the first combination
-    /// that admits a fixture scoring `good_enough` or better; returns the
-    /// result of the combinations done and that combination's index.
-    pub fn enumerate_range_until(
-        &self,
-        range: Range<u64>,
-        good_enough: f64,
-    ) -> (PartialResult, Option<u64>) {
-        let (res, _, hit) = self
-            .stages()
-            .enumerate_serial(range, false, Some(good_enough));
-        (res, hit)
-    }
-
-    /// Enumerates `range` on the rayon pool (same result as serial).
+    /// `range` on the rayon pool, every combination:
+    /// [`Self::enumerate`] with the default options.
     pub fn enumerate_range(&self, range: Range<u64>) -> PartialResult {
-        self.stages().enumerate_parallel(range)
-    }
-
-    /// `--good-enough`: the enumeration of the shortest prefix of `range`
-    /// (in combination order) that admits a fixture scoring `good_enough`
-    /// or better, in parallel. The prefix, hence the result, does not depend
-    /// on threads or chunking. Returns the hit index.
-    pub fn enumerate_until(
-        &self,
-        range: Range<u64>,
-        good_enough: f64,
-    ) -> (PartialResult, Option<u64>) {
-        self.stages().enumerate_parallel_until(range, good_enough)
+        self.enumerate(range, EnumerateOptions::default()).result
     }
 
     /// The whole part.

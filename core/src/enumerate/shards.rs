@@ -41,11 +41,11 @@ pub struct Profile {
 
 impl Profile {
     /// Sums the profiles of pieces of work (threads, shards).
-    pub fn add(&mut self, o: &Profile) {
-        self.search.add(&o.search);
-        self.timing.add(&o.timing);
-        self.work.add(&o.work);
-        self.total_ns += o.total_ns;
+    pub fn add(&mut self, other: &Profile) {
+        self.search.add(&other.search);
+        self.timing.add(&other.timing);
+        self.work.add(&other.work);
+        self.total_ns += other.total_ns;
     }
 }
 
@@ -134,7 +134,7 @@ impl Stages<'_> {
             acc.counts.combinations += 1;
             let s = self
                 .setups
-                .setups_of_combination_in(combo, &mut setup_scratch, |s| {
+                .setups_of_combination(combo, &mut setup_scratch, |s| {
                     self.clamp.process_setup(s, &mut acc, &mut scratch)
                 });
             search.add(&s);
@@ -163,59 +163,106 @@ impl Stages<'_> {
         (res, profile, hit)
     }
 
-    /// Enumerates `range` on the rayon pool (same result as serial).
-    pub(crate) fn enumerate_parallel(&self, range: Range<u64>) -> PartialResult {
-        let chunks = self.chunks(&range);
-        let parts: Vec<PartialResult> = chunks
-            .into_par_iter()
-            .map(|r| self.enumerate_serial(r, false, None).0)
-            .collect();
-        let mut out = merge(self.clamp.setting.top_k, parts);
-        out.range = range;
-        out.counts.segments = self.setups.segments.len() as u64;
-        out.counts.exact = self.counts_exact();
-        out
-    }
-
-    /// The enumeration of the shortest prefix of `range` (in combination
-    /// order) that admits a fixture scoring `good_enough` or better, in
-    /// parallel. The prefix, hence the result, does not depend on threads
-    /// or chunking: chunks run concurrently, the first hit in index order
-    /// wins and later chunks are dropped. Returns the hit index.
-    pub(crate) fn enumerate_parallel_until(
-        &self,
-        range: Range<u64>,
-        good_enough: f64,
-    ) -> (PartialResult, Option<u64>) {
+    /// Enumerates `range` as `options` say: on the rayon pool (same result
+    /// as on one thread: fixed chunks, merged in order) or on this thread,
+    /// to its end or to the first good-enough fixture. With `good_enough`,
+    /// the result is the enumeration of the shortest prefix of `range` (in
+    /// combination order) that admits a fixture scoring that or better;
+    /// the prefix, hence the result, does not depend on threads or
+    /// chunking: chunks run concurrently, the first hit in index order wins
+    /// and later chunks are dropped.
+    pub(crate) fn enumerate(&self, range: Range<u64>, options: EnumerateOptions) -> Enumeration {
+        if options.this_thread {
+            let (result, profile, stopped_at) =
+                self.enumerate_serial(range, options.timed, options.good_enough);
+            return Enumeration {
+                result,
+                stopped_at,
+                profile,
+            };
+        }
         use std::sync::atomic::{AtomicU64, Ordering};
         let first_hit = AtomicU64::new(u64::MAX);
         let chunks = self.chunks(&range);
-        let parts: Vec<(PartialResult, Option<u64>)> = chunks
+        let parts: Vec<(PartialResult, Profile, Option<u64>)> = chunks
             .into_par_iter()
             .filter_map(|r| {
                 // A chunk wholly after a known hit cannot matter.
                 if r.start > first_hit.load(Ordering::Relaxed) {
                     return None;
                 }
-                let (res, _, hit) = self.enumerate_serial(r, false, Some(good_enough));
-                if let Some(h) = hit {
+                let piece = self.enumerate_serial(r, options.timed, options.good_enough);
+                if let Some(h) = piece.2 {
                     first_hit.fetch_min(h, Ordering::Relaxed);
                 }
-                Some((res, hit))
+                Some(piece)
             })
             .collect();
-        let stop = parts.iter().filter_map(|p| p.1).min();
-        let kept: Vec<PartialResult> = parts
-            .into_iter()
-            .map(|p| p.0)
-            .filter(|p| stop.is_none_or(|s| p.range.start <= s))
-            .collect();
-        let mut out = merge(self.clamp.setting.top_k, kept);
-        out.range = range.start..stop.map_or(range.end, |s| s + 1);
-        out.counts.segments = self.setups.segments.len() as u64;
-        out.counts.exact = self.counts_exact();
-        (out, stop)
+        let stop = parts.iter().filter_map(|p| p.2).min();
+        let mut profile = Profile::default();
+        let mut kept = Vec::with_capacity(parts.len());
+        for (piece, piece_profile, _) in parts {
+            if stop.is_none_or(|s| piece.range.start <= s) {
+                profile.add(&piece_profile);
+                kept.push(piece);
+            }
+        }
+        let mut result = merge(self.clamp.setting.top_k, kept);
+        result.range = range.start..stop.map_or(range.end, |s| s + 1);
+        result.counts.segments = self.setups.segments.len() as u64;
+        result.counts.exact = self.counts_exact();
+        Enumeration {
+            result,
+            stopped_at: stop,
+            profile,
+        }
     }
+}
+
+/// How [`crate::PreparedPart::enumerate`] runs a range of combinations.
+/// The default: on the rayon pool, every combination, untimed.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnumerateOptions {
+    /// On the calling thread only (a worker's thread, a bench), rather
+    /// than on the rayon pool; the result is the same.
+    pub this_thread: bool,
+    /// `--good-enough`: stop after the first combination, in index order,
+    /// that admits a fixture scoring this or better.
+    pub good_enough: Option<f64>,
+    /// Time each stage for the profile: clock reads in the inner loop.
+    pub timed: bool,
+}
+
+impl EnumerateOptions {
+    /// Every combination, on the calling thread.
+    pub fn this_thread() -> EnumerateOptions {
+        EnumerateOptions {
+            this_thread: true,
+            ..EnumerateOptions::default()
+        }
+    }
+
+    /// On the rayon pool, up to the first fixture scoring `good_enough` or
+    /// better.
+    pub fn good_enough(good_enough: f64) -> EnumerateOptions {
+        EnumerateOptions {
+            good_enough: Some(good_enough),
+            ..EnumerateOptions::default()
+        }
+    }
+}
+
+/// What [`crate::PreparedPart::enumerate`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Enumeration {
+    /// Counts and best fixtures of the combinations enumerated.
+    pub result: PartialResult,
+    /// With `good_enough`, the combination that admitted a good-enough
+    /// fixture, the last one enumerated.
+    pub stopped_at: Option<u64>,
+    /// Where the work went, summed over the pieces that ran (a
+    /// measurement: never part of a result).
+    pub profile: Profile,
 }
 
 /// Merges partial results of disjoint ranges of one part.

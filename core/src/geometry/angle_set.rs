@@ -84,9 +84,9 @@ impl AngleSet {
     }
 
     /// The angles in both sets.
-    pub fn intersect(&self, o: &AngleSet) -> AngleSet {
+    pub fn intersect(&self, other: &AngleSet) -> AngleSet {
         let mut out = AngleSet::empty();
-        let (a, b) = (self.intervals(), o.intervals());
+        let (a, b) = (self.intervals(), other.intervals());
         let (mut i, mut j) = (0, 0);
         while i < a.len() && j < b.len() {
             let [a0, a1] = a[i];
@@ -107,11 +107,11 @@ impl AngleSet {
     /// A superset of the angles in either set: their union, with the
     /// narrowest gaps filled while it has more intervals than a set holds
     /// (a filter that may only over-approximate can afford that).
-    pub fn union_covering(&self, o: &AngleSet) -> AngleSet {
+    pub fn union_covering(&self, other: &AngleSet) -> AngleSet {
         let mut all = [[0.0; 2]; 2 * CAPACITY];
-        let n = self.len + o.len;
+        let n = self.len + other.len;
         all[..self.len].copy_from_slice(self.intervals());
-        all[self.len..n].copy_from_slice(o.intervals());
+        all[self.len..n].copy_from_slice(other.intervals());
         let all = &mut all[..n];
         all.sort_unstable_by(|a, b| a[0].total_cmp(&b[0]));
         let mut merged: [[f64; 2]; 2 * CAPACITY] = [[0.0; 2]; 2 * CAPACITY];

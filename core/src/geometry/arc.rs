@@ -63,9 +63,9 @@ impl Closest {
         }
     }
 
-    fn min(self, o: Closest) -> Closest {
-        if o.distance < self.distance {
-            o
+    fn min(self, other: Closest) -> Closest {
+        if other.distance < self.distance {
+            other
         } else {
             self
         }
@@ -83,15 +83,15 @@ impl Closest {
 
 /// Counter-clockwise quarter turn.
 #[inline]
-fn perp(v: V2) -> V2 {
-    v2(-v.y, v.x)
+fn perp(vector: V2) -> V2 {
+    v2(-vector.y, vector.x)
 }
 
-/// Rotation of `v` by `angle`.
+/// Rotation of `vector` by `angle`.
 #[inline]
-fn rotate(v: V2, angle: f64) -> V2 {
+fn rotate(vector: V2, angle: f64) -> V2 {
     let (s, c) = angle.sin_cos();
-    v2(c * v.x - s * v.y, s * v.x + c * v.y)
+    v2(c * vector.x - s * vector.y, s * vector.x + c * vector.y)
 }
 
 impl CircArc {

@@ -193,16 +193,20 @@ impl Aabb {
         Aabb { min, max }
     }
 
-    /// Lower bound of the distance between anything in `self` and in `o`.
-    pub fn gap(&self, o: &Aabb) -> f64 {
-        self.gap2(o).sqrt()
+    /// Lower bound of the distance between anything in `self` and in `other`.
+    pub fn gap(&self, other: &Aabb) -> f64 {
+        self.gap2(other).sqrt()
     }
 
     /// Square of [`Self::gap`].
     #[inline]
-    pub fn gap2(&self, o: &Aabb) -> f64 {
-        let dx = (o.min.x - self.max.x).max(self.min.x - o.max.x).max(0.0);
-        let dy = (o.min.y - self.max.y).max(self.min.y - o.max.y).max(0.0);
+    pub fn gap2(&self, other: &Aabb) -> f64 {
+        let dx = (other.min.x - self.max.x)
+            .max(self.min.x - other.max.x)
+            .max(0.0);
+        let dy = (other.min.y - self.max.y)
+            .max(self.min.y - other.max.y)
+            .max(0.0);
         dx * dx + dy * dy
     }
 }

@@ -94,8 +94,8 @@ fn polygon_probes_inside_region(poly: &[V2], region: &Outline) -> bool {
 
 /// Whether the segment `[a, b]` crosses the edge at a point interior to
 /// both, transversally (touching is not crossing).
-fn crosses(a: V2, b: V2, e: &Edge) -> bool {
-    match e {
+fn crosses(a: V2, b: V2, edge: &Edge) -> bool {
+    match edge {
         Edge::Line { a: c, b: d } => proper_crossing(a, b, *c, *d),
         Edge::Arc(arc) => segment_crosses_arc(a, b, arc),
     }

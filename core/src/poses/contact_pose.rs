@@ -227,7 +227,7 @@ fn max_residual(contacts: &[Contact; 3], locs: &[V2; 3], cos: f64, sin: f64, w: 
 /// within 1e-6, are one pose. Non-finite input or a radius `<= 0` gives
 /// no pose.
 pub fn solve_contact_poses(contacts: &[Contact; 3], locs: &[V2; 3]) -> ContactPoses {
-    solve_contact_poses_within(contacts, locs, &|_, _| true)
+    solve_contact_poses_at_angles(contacts, locs, &|_, _| true)
 }
 
 /// [`solve_contact_poses`] when only some angles matter: `within(lo, hi)`
@@ -235,7 +235,7 @@ pub fn solve_contact_poses(contacts: &[Contact; 3], locs: &[V2; 3]) -> ContactPo
 /// root search skips those stretches of the circle (most of it, when the
 /// setup sweep knows the angles at which two contacts stay on their
 /// segments). Poses elsewhere may still be reported.
-pub fn solve_contact_poses_within(
+pub fn solve_contact_poses_at_angles(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
     within: &dyn Fn(f64, f64) -> bool,

@@ -27,8 +27,8 @@ impl Pose {
 
     /// Plate-frame direction of a part-frame direction (normals, edges).
     #[inline]
-    pub fn rotate(&self, v: V2) -> V2 {
-        rot(self.cos, self.sin, v)
+    pub fn rotate(&self, vector: V2) -> V2 {
+        rot(self.cos, self.sin, vector)
     }
 
     /// Part-frame point of a plate point.
@@ -50,14 +50,14 @@ pub struct Line {
 /// Up to two poses; degenerate configurations (all normals parallel, or a
 /// locator triangle that leaves the angle free) give none.
 pub fn solve_poses(lines: &[Line; 3], locs: &[V2; 3]) -> ([Pose; 2], usize) {
-    solve_poses_where(lines, locs, |_| true)
+    solve_poses_at_angles(lines, locs, |_| true)
 }
 
 /// [`solve_poses`] keeping only the roots whose angle (in `[0, 2 pi)`)
 /// passes `keep`, which is asked before the translation is worked out: the
 /// setup search knows the angles at which two of the contacts stay on
 /// their segments and skips the rest.
-pub fn solve_poses_where(
+pub fn solve_poses_at_angles(
     lines: &[Line; 3],
     locs: &[V2; 3],
     keep: impl Fn(f64) -> bool,

@@ -41,22 +41,24 @@ pub struct Fixture {
 impl Fixture {
     /// SPEC's canonical key `(a, b, c, L2, L3, theta, x, y, clamp segment,
     /// k, m)`.
-    pub fn key_cmp(&self, o: &Fixture) -> Ordering {
+    pub fn key_cmp(&self, other: &Fixture) -> Ordering {
         self.segments
-            .cmp(&o.segments)
-            .then(self.locators[1].cmp(&o.locators[1]))
-            .then(self.locators[2].cmp(&o.locators[2]))
-            .then(self.theta.total_cmp(&o.theta))
-            .then(self.t[0].total_cmp(&o.t[0]))
-            .then(self.t[1].total_cmp(&o.t[1]))
-            .then(self.clamp_segment.cmp(&o.clamp_segment))
-            .then(self.rotation.cmp(&o.rotation))
-            .then(self.mount.cmp(&o.mount))
+            .cmp(&other.segments)
+            .then(self.locators[1].cmp(&other.locators[1]))
+            .then(self.locators[2].cmp(&other.locators[2]))
+            .then(self.theta.total_cmp(&other.theta))
+            .then(self.t[0].total_cmp(&other.t[0]))
+            .then(self.t[1].total_cmp(&other.t[1]))
+            .then(self.clamp_segment.cmp(&other.clamp_segment))
+            .then(self.rotation.cmp(&other.rotation))
+            .then(self.mount.cmp(&other.mount))
     }
 
     /// Ascending score, then the canonical key.
-    pub fn rank_cmp(&self, o: &Fixture) -> Ordering {
-        self.score.total_cmp(&o.score).then_with(|| self.key_cmp(o))
+    pub fn rank_cmp(&self, other: &Fixture) -> Ordering {
+        self.score
+            .total_cmp(&other.score)
+            .then_with(|| self.key_cmp(other))
     }
 }
 
@@ -65,19 +67,19 @@ impl Fixture {
 struct Ranked(Fixture);
 
 impl PartialEq for Ranked {
-    fn eq(&self, o: &Self) -> bool {
-        self.0.rank_cmp(&o.0) == Ordering::Equal
+    fn eq(&self, other: &Self) -> bool {
+        self.0.rank_cmp(&other.0) == Ordering::Equal
     }
 }
 impl Eq for Ranked {}
 impl PartialOrd for Ranked {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
     }
 }
 impl Ord for Ranked {
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.0.rank_cmp(&o.0)
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.rank_cmp(&other.0)
     }
 }
 

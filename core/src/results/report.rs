@@ -67,13 +67,13 @@ impl Default for Counts {
 impl Counts {
     /// Counts of disjoint pieces of one part's combination range add up;
     /// `segments` is a property of the part, not of the piece.
-    pub fn add(&mut self, o: &Counts) {
-        self.segments = self.segments.max(o.segments);
-        self.combinations += o.combinations;
-        self.setups += o.setups;
-        self.candidates += o.candidates;
-        self.admissible += o.admissible;
-        self.exact &= o.exact;
+    pub fn add(&mut self, other: &Counts) {
+        self.segments = self.segments.max(other.segments);
+        self.combinations += other.combinations;
+        self.setups += other.setups;
+        self.candidates += other.candidates;
+        self.admissible += other.admissible;
+        self.exact &= other.exact;
     }
 
     /// The admissible count, when it was counted.

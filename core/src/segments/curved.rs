@@ -122,9 +122,9 @@ fn removed_pieces(
 }
 
 /// Parameters where the grown edge `f` crosses the curves at distance
-/// `rho` from edge `e`.
-fn edge_cuts(f: &Feature, e: &Edge, rho: f64, cuts: &mut Vec<f64>) {
-    match e {
+/// `rho` from edge `edge`.
+fn edge_cuts(f: &Feature, edge: &Edge, rho: f64, cuts: &mut Vec<f64>) {
+    match edge {
         Edge::Line { a, b } => {
             let d = b - a;
             let len = d.norm();

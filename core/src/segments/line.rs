@@ -49,9 +49,9 @@ pub(super) fn polygon_segments(part: &[V2], access: &[Vec<V2>], r: f64, trim: f6
     out
 }
 
-/// Open parameter interval of the line `o + s u` (|u| = 1) that lies within
+/// Open parameter interval of the line `origin + s u` (|u| = 1) that lies within
 /// distance `rho` of the segment `[a, b]` (a capsule, hence one interval).
-pub(super) fn capsule_interval(o: V2, u: V2, a: V2, b: V2, rho: f64) -> Option<(f64, f64)> {
+pub(super) fn capsule_interval(origin: V2, u: V2, a: V2, b: V2, rho: f64) -> Option<(f64, f64)> {
     if rho <= 0.0 {
         return None;
     }
@@ -65,16 +65,16 @@ pub(super) fn capsule_interval(o: V2, u: V2, a: V2, b: V2, rho: f64) -> Option<(
             }
         }
     };
-    add(disk_interval(o, u, a, rho));
-    add(disk_interval(o, u, b, rho));
+    add(disk_interval(origin, u, a, rho));
+    add(disk_interval(origin, u, b, rho));
     let ab = b - a;
     let l = ab.norm();
     if l > 0.0 {
         let e = ab / l;
         let m = v2(-e.y, e.x);
         // |(p(s) - a) . m| < rho and 0 < (p(s) - a) . e < l
-        let strip_m = slab(m.dot(&(o - a)), m.dot(&u), -rho, rho);
-        let strip_e = slab(e.dot(&(o - a)), e.dot(&u), 0.0, l);
+        let strip_m = slab(m.dot(&(origin - a)), m.dot(&u), -rho, rho);
+        let strip_e = slab(e.dot(&(origin - a)), e.dot(&u), 0.0, l);
         if let (Some((l1, h1)), Some((l2, h2))) = (strip_m, strip_e) {
             add(Some((l1.max(l2), h1.min(h2))));
         }
@@ -91,9 +91,9 @@ fn slab(p0: f64, dp: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
     Some((x.min(y), x.max(y)))
 }
 
-/// `{ s : |o + s u - c| < rho }` for a unit `u`.
-fn disk_interval(o: V2, u: V2, c: V2, rho: f64) -> Option<(f64, f64)> {
-    let w = o - c;
+/// `{ s : |origin + s u - c| < rho }` for a unit `u`.
+fn disk_interval(origin: V2, u: V2, c: V2, rho: f64) -> Option<(f64, f64)> {
+    let w = origin - c;
     let bh = u.dot(&w);
     let disc = bh * bh - (w.norm_squared() - rho * rho);
     if disc <= 0.0 {
@@ -104,20 +104,20 @@ fn disk_interval(o: V2, u: V2, c: V2, rho: f64) -> Option<(f64, f64)> {
 }
 
 /// Parameter intervals of the line within distance `rho` of a filled polygon.
-pub(super) fn polygon_interval(o: V2, u: V2, poly: &[V2], rho: f64) -> Vec<(f64, f64)> {
+pub(super) fn polygon_interval(origin: V2, u: V2, poly: &[V2], rho: f64) -> Vec<(f64, f64)> {
     let m = poly.len();
     let mut out = Vec::new();
     let mut crossings = Vec::new();
     for j in 0..m {
         let (a, b) = (poly[j], poly[(j + 1) % m]);
-        if let Some(iv) = capsule_interval(o, u, a, b, rho) {
+        if let Some(iv) = capsule_interval(origin, u, a, b, rho) {
             out.push(iv);
         }
         let d = b - a;
         let den = cross(u, d);
         if den != 0.0 {
-            let s = cross(a - o, d) / den;
-            let t = cross(a - o, u) / den;
+            let s = cross(a - origin, d) / den;
+            let t = cross(a - origin, u) / den;
             if (0.0..=1.0).contains(&t) {
                 crossings.push(s);
             }
@@ -125,7 +125,7 @@ pub(super) fn polygon_interval(o: V2, u: V2, poly: &[V2], rho: f64) -> Vec<(f64,
     }
     crossings.sort_by(f64::total_cmp);
     for w in crossings.windows(2) {
-        let mid = o + u * (0.5 * (w[0] + w[1]));
+        let mid = origin + u * (0.5 * (w[0] + w[1]));
         if w[1] > w[0] && point_in_polygon(mid, poly) {
             out.push((w[0], w[1]));
         }

@@ -77,7 +77,7 @@ impl SweptSegment {
 /// The sweep of one combination, by the kind of its pivot: two lines
 /// (exact angle sets, the common case) or a line and an arc.
 #[derive(Debug, Clone, Copy)]
-pub enum Sweep<'s> {
+pub enum LocatorSweep<'s> {
     /// Pivot on two lines.
     Lines(LineSweep<'s>),
     /// Pivot on a line (locator 1) and an arc (locator 2).
@@ -94,38 +94,42 @@ pub enum PivotPoint {
     LineArc(Box<ArcPoint>),
 }
 
-impl<'s> Sweep<'s> {
+impl<'s> LocatorSweep<'s> {
     /// The sweep pivoting on `segs[0]` and `segs[1]` (two lines, or a line
     /// then an arc) with `segs[2]` third; `None` when neither applies
     /// (arcs first, nearly parallel lines). `dmax_ac` bounds the distance
     /// between points of `segs[0]` and `segs[2]`.
-    pub fn new(segs: [&'s SweptSegment; 3], same_ab: bool, dmax_ac: f64) -> Option<Sweep<'s>> {
+    pub fn new(
+        segs: [&'s SweptSegment; 3],
+        same_ab: bool,
+        dmax_ac: f64,
+    ) -> Option<LocatorSweep<'s>> {
         if let (Some(p), Some(q)) = (&segs[0].line, &segs[1].arc) {
-            return Some(Sweep::LineArc(LineArcSweep::new(
+            return Some(LocatorSweep::LineArc(LineArcSweep::new(
                 p,
                 q,
                 &segs[2].third,
                 dmax_ac,
             )));
         }
-        LineSweep::new(segs, same_ab, dmax_ac).map(Sweep::Lines)
+        LineSweep::new(segs, same_ab, dmax_ac).map(LocatorSweep::Lines)
     }
 
     /// Whether the pivot is two lines.
     pub fn is_lines(&self) -> bool {
-        matches!(self, Sweep::Lines(_))
+        matches!(self, LocatorSweep::Lines(_))
     }
 
     /// What the region needs of `L2 = l2`; `None` when no angle keeps both
     /// pivot contacts on their segments.
     pub fn pivot_point(&self, l2: V2) -> Option<PivotPoint> {
         match self {
-            Sweep::Lines(s) => s.pivot_point(l2).map(PivotPoint::Lines),
-            Sweep::LineArc(s) => s.pivot_point(l2).map(|p| PivotPoint::LineArc(Box::new(p))),
+            LocatorSweep::Lines(s) => s.pivot_point(l2).map(PivotPoint::Lines),
+            LocatorSweep::LineArc(s) => s.pivot_point(l2).map(|p| PivotPoint::LineArc(Box::new(p))),
         }
     }
 
-    /// Calls `visit` once for every lattice point (multiples of `g`) of the
+    /// Calls `visit` once for every lattice point (multiples of `grid_step`) of the
     /// region of `L3` for the pivot point's `L2`, row by row, with (a
     /// superset of) the angles at which the pivot's contacts stay on their
     /// segments, for the pose solver to look only there; `false` (and no call)
@@ -134,7 +138,7 @@ impl<'s> Sweep<'s> {
     pub fn for_each_third_locator(
         &self,
         pt: &PivotPoint,
-        g: i64,
+        grid_step: i64,
         scratch: &mut SweepScratch,
         mut visit: impl FnMut([i64; 2], Option<&AngleSet>),
     ) -> bool {
@@ -147,7 +151,7 @@ impl<'s> Sweep<'s> {
             PivotPoint::Lines(p) => &p.angles,
             PivotPoint::LineArc(p) => &p.angles,
         };
-        scan_quads(quads, g, spans, |l3| visit(l3, Some(angles)));
+        scan_quads(quads, grid_step, spans, |l3| visit(l3, Some(angles)));
         true
     }
 
@@ -156,8 +160,8 @@ impl<'s> Sweep<'s> {
     /// pieces.
     pub fn region(&self, pt: &PivotPoint, out: &mut Vec<Quad>) -> bool {
         match (self, pt) {
-            (Sweep::Lines(s), PivotPoint::Lines(p)) => s.region(p, out),
-            (Sweep::LineArc(s), PivotPoint::LineArc(p)) => s.region(p, out),
+            (LocatorSweep::Lines(s), PivotPoint::Lines(p)) => s.region(p, out),
+            (LocatorSweep::LineArc(s), PivotPoint::LineArc(p)) => s.region(p, out),
             // A point of another kind of pivot: nothing is known, so the
             // caller scans the annuli (never happens: points are kept per
             // pivot pair, whose kind is fixed).
@@ -455,12 +459,12 @@ pub struct Span {
     pub hi: f64,
 }
 
-/// Pushes, for every lattice row (multiple of `g`) that `q` reaches, the
+/// Pushes, for every lattice row (multiple of `grid_step`) that `q` reaches, the
 /// x range of `q` on that row (a superset: the hull clipped to the strip
 /// `|y - row| <= margin`, widened by the margin).
-pub fn quad_spans(q: &Quad, g: i64, out: &mut Vec<Span>) {
+pub fn quad_spans(q: &Quad, grid_step: i64, out: &mut Vec<Span>) {
     let e = q.margin;
-    let gf = g as f64;
+    let gf = grid_step as f64;
     let (xs, ys) = (q.pts.map(|p| p.x), q.pts.map(|p| p.y));
     let x_min = xs.iter().copied().fold(f64::INFINITY, f64::min) - e;
     let x_max = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
@@ -470,7 +474,7 @@ pub fn quad_spans(q: &Quad, g: i64, out: &mut Vec<Span>) {
     }
     let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min) - e;
     let y_max = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
-    let mut y = (y_min / gf).ceil() as i64 * g;
+    let mut y = (y_min / gf).ceil() as i64 * grid_step;
     while (y as f64) <= y_max {
         let (s_lo, s_hi) = (y as f64 - e, y as f64 + e);
         let mut lo = f64::INFINITY;
@@ -490,7 +494,7 @@ pub fn quad_spans(q: &Quad, g: i64, out: &mut Vec<Span>) {
                 hi: hi + e,
             });
         }
-        y += g;
+        y += grid_step;
     }
 }
 
@@ -513,22 +517,27 @@ fn clip_to_strip(p: V2, q: V2, y0: f64, y1: f64) -> Option<(f64, f64)> {
     Some((xa.min(xb), xa.max(xb)))
 }
 
-/// Buffers of [`Sweep::for_each_third_locator`], reused across `L2`.
+/// Buffers of [`LocatorSweep::for_each_third_locator`], reused across `L2`.
 #[derive(Debug, Default)]
 pub struct SweepScratch {
     quads: Vec<Quad>,
     spans: Vec<Span>,
 }
 
-/// Every lattice point (multiples of `g`) of the union of `quads`, row
+/// Every lattice point (multiples of `grid_step`) of the union of `quads`, row
 /// by row, each once.
-fn scan_quads(quads: &[Quad], g: i64, spans: &mut Vec<Span>, mut visit: impl FnMut([i64; 2])) {
+fn scan_quads(
+    quads: &[Quad],
+    grid_step: i64,
+    spans: &mut Vec<Span>,
+    mut visit: impl FnMut([i64; 2]),
+) {
     spans.clear();
     for q in quads {
-        quad_spans(q, g, spans);
+        quad_spans(q, grid_step, spans);
     }
     spans.sort_unstable_by(|a, b| a.y.cmp(&b.y).then(a.lo.total_cmp(&b.lo)));
-    let gf = g as f64;
+    let gf = grid_step as f64;
     let mut row = i64::MIN;
     let mut next_x = i64::MIN;
     for s in spans.iter() {
@@ -536,10 +545,10 @@ fn scan_quads(quads: &[Quad], g: i64, spans: &mut Vec<Span>, mut visit: impl FnM
             row = s.y;
             next_x = i64::MIN;
         }
-        let mut x = ((s.lo / gf).ceil() as i64 * g).max(next_x);
+        let mut x = ((s.lo / gf).ceil() as i64 * grid_step).max(next_x);
         while (x as f64) <= s.hi {
             visit([x, s.y]);
-            x += g;
+            x += grid_step;
         }
         next_x = next_x.max(x);
     }
@@ -598,12 +607,13 @@ mod tests {
         let l3 = rot(cos, sin, p[2] - p[0]);
         let dmax_ac = crate::segments::PairBounds::between(segs[0], segs[2]).dmax;
         let swept = segs.map(SweptSegment::of);
-        let Some(sweep) = Sweep::new([&swept[0], &swept[1], &swept[2]], same_ab, dmax_ac) else {
+        let Some(sweep) = LocatorSweep::new([&swept[0], &swept[1], &swept[2]], same_ab, dmax_ac)
+        else {
             return false; // nearly parallel: the caller scans annuli
         };
         if matches!(
             sweep,
-            Sweep::Lines(LineSweep {
+            LocatorSweep::Lines(LineSweep {
                 degenerate: true,
                 ..
             })

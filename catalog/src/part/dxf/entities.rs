@@ -67,8 +67,8 @@ pub(super) struct Curves {
 
 /// The shape of an entity other than an INSERT (which the caller
 /// explodes).
-pub(super) fn entity_shape(e: &EntityType, curves: Curves) -> Shape {
-    match e {
+pub(super) fn entity_shape(entity: &EntityType, curves: Curves) -> Shape {
+    match entity {
         EntityType::Line(l) => Shape::Open(straight(vec![[l.p1.x, l.p1.y], [l.p2.x, l.p2.y]])),
         EntityType::Arc(a) => arc_shape(a, curves),
         EntityType::Circle(c) => circle_shape(c, curves),

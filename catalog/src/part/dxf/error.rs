@@ -1,6 +1,6 @@
 //! Why a DXF file gives no part, in words that say what to do.
 
-use super::super::outline::{fmt, fmt_pt, OutlineError};
+use super::super::outline::{fmt, fmt_pt, OutlinePickError};
 use super::super::raw::LimitExceeded;
 use crate::units::LengthUnit;
 use fixplan_core::Units;
@@ -47,7 +47,7 @@ pub enum DxfError {
     Limit(#[from] LimitExceeded),
     /// The loops found do not make one part.
     #[error(transparent)]
-    Outline(#[from] OutlineError),
+    Outline(#[from] OutlinePickError),
 }
 
 /// What lies near the free ends of a chain that does not close.

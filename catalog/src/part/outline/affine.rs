@@ -14,10 +14,10 @@ impl Affine {
     /// The identity: no transform.
     pub(crate) const ID: Affine = Affine([1.0, 0.0, 0.0, 1.0, 0.0, 0.0]);
 
-    /// `self` then `o` applied first (SVG nesting: parent * child).
-    pub(crate) fn mul(self, o: Affine) -> Affine {
+    /// `self` then `other` applied first (SVG nesting: parent * child).
+    pub(crate) fn mul(self, other: Affine) -> Affine {
         let [a, b, c, d, e, f] = self.0;
-        let [a2, b2, c2, d2, e2, f2] = o.0;
+        let [a2, b2, c2, d2, e2, f2] = other.0;
         Affine([
             a * a2 + c * b2,
             b * a2 + d * b2,

@@ -89,8 +89,8 @@ pub(crate) fn straight(pts: Vec<P>) -> Vec<Vertex> {
 
 /// The positions of vertices, dropping bulges (for access constraints,
 /// which are polygons and are always flattened before this).
-pub(crate) fn positions(v: &[Vertex]) -> Vec<P> {
-    v.iter().map(|q| [q.x, q.y]).collect()
+pub(crate) fn positions(vertices: &[Vertex]) -> Vec<P> {
+    vertices.iter().map(|q| [q.x, q.y]).collect()
 }
 
 /// An exact circular arc of centre `c` and radius `r` from angle `a0`

@@ -9,12 +9,16 @@ use std::collections::HashMap;
 /// A piece read backwards: the points reversed, each bulge negated and
 /// moved with its edge (the edge `v(k) -> v(k+1)` becomes `v(k+1) -> v(k)`),
 /// the new last vertex (an open end) straight.
-pub(crate) fn reversed(v: &[Vertex]) -> Vec<Vertex> {
-    let n = v.len();
+pub(crate) fn reversed(vertices: &[Vertex]) -> Vec<Vertex> {
+    let n = vertices.len();
     (0..n)
         .map(|k| {
-            let p = v[n - 1 - k];
-            let b = if k + 1 < n { -v[n - 2 - k].bulge } else { 0.0 };
+            let p = vertices[n - 1 - k];
+            let b = if k + 1 < n {
+                -vertices[n - 2 - k].bulge
+            } else {
+                0.0
+            };
             Vertex::new(p.x, p.y, if b == 0.0 { 0.0 } else { b })
         })
         .collect()
@@ -29,8 +33,8 @@ pub(crate) struct Piece {
     pub label: String,
 }
 
-pub(crate) fn pt(v: Vertex) -> P {
-    [v.x, v.y]
+pub(crate) fn pt(vertex: Vertex) -> P {
+    [vertex.x, vertex.y]
 }
 
 /// A chain that could not be closed.

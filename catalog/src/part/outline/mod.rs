@@ -18,5 +18,5 @@ pub(crate) use curves::{
     fmt_pt, positions, scale_of, straight, MAX_ARC_PIECES, P,
 };
 pub(crate) use join::{join_pieces, nearest_other_end, reversed, OpenChain, Piece};
-pub use pick::OutlineError;
+pub use pick::OutlinePickError;
 pub(crate) use pick::{pick_outline, pick_outlines};

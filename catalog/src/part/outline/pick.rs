@@ -13,7 +13,7 @@ use fixplan_core::{Units, Vertex};
 
 /// Why the loops of a drawing do not make one part.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum OutlineError {
+pub enum OutlinePickError {
     /// No closed loop at all, or only access loops: nothing to hold.
     #[error("no closed loop: {}", if *.only_access { "only access/keepout loops, no part outline" } else { "the file has no closed outline" })]
     NoClosedLoop {
@@ -80,9 +80,9 @@ pub(crate) fn pick_outline(
     access: Vec<Vec<P>>,
     mut warnings: Vec<String>,
     units: Units,
-) -> Result<RawPart, OutlineError> {
+) -> Result<RawPart, OutlinePickError> {
     if loops.is_empty() {
-        return Err(OutlineError::NoClosedLoop {
+        return Err(OutlinePickError::NoClosedLoop {
             only_access: !access.is_empty(),
         });
     }
@@ -100,7 +100,7 @@ pub(crate) fn pick_outline(
         if aabb_within(&boxes[i], &boxes[outer_i]) && loop_inside(l, outer) {
             warnings.push(hole_warning(label, l, units));
         } else {
-            return Err(OutlineError::MoreThanOne {
+            return Err(OutlinePickError::MoreThanOne {
                 label: label.clone(),
                 near: pt(l[0]),
                 units,
@@ -136,9 +136,9 @@ pub(crate) fn pick_outlines(
     access: Vec<Vec<P>>,
     warnings: Vec<String>,
     units: Units,
-) -> Result<Vec<RawPart>, OutlineError> {
+) -> Result<Vec<RawPart>, OutlinePickError> {
     if loops.is_empty() {
-        return Err(OutlineError::NoClosedLoop {
+        return Err(OutlinePickError::NoClosedLoop {
             only_access: !access.is_empty(),
         });
     }

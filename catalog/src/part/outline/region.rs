@@ -39,21 +39,21 @@ pub(crate) fn aabb_within(a: &Aabb, b: &Aabb) -> bool {
 }
 
 /// Crossings of the ray from `p` towards +x with a y-monotone piece of
-/// curve from `s` to `e` whose crossing lies at `x_at`: the half-open rule
+/// curve from `s` to `edge` whose crossing lies at `x_at`: the half-open rule
 /// (an end counts as above the ray when its y is greater) makes a ray
 /// through a vertex count once.
-fn crosses(p: V2, s: V2, e: V2, x_at: impl Fn() -> f64) -> bool {
-    (s.y > p.y) != (e.y > p.y) && x_at() > p.x
+fn crosses(p: V2, s: V2, edge: V2, x_at: impl Fn() -> f64) -> bool {
+    (s.y > p.y) != (edge.y > p.y) && x_at() > p.x
 }
 
-/// Whether the ray from `p` towards +x crosses `e` an odd number of times.
+/// Whether the ray from `p` towards +x crosses `edge` an odd number of times.
 /// An arc is cut at the top and bottom of its circle into y-monotone
 /// pieces, each on one half of the circle, where the crossing is
 /// `cx +- sqrt(r^2 - (y - cy)^2)`; the cut points are the circle's exact
 /// extremes, the ends the edge's own vertices, so neighbouring edges agree
 /// on every shared point.
-fn edge_parity(p: V2, e: &Edge) -> bool {
-    match e {
+fn edge_parity(p: V2, edge: &Edge) -> bool {
+    match edge {
         Edge::Line { a, b } => crosses(p, *a, *b, || a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)),
         Edge::Arc(arc) => {
             let c = arc.center;

@@ -4,7 +4,7 @@
 use super::limits::{Exceeded, Refusal};
 use super::path::PathError;
 use super::transform::TransformError;
-use crate::part::outline::{fmt, fmt_pt, OutlineError, P};
+use crate::part::outline::{fmt, fmt_pt, OutlinePickError, P};
 
 /// Why an SVG file does not give a part.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -107,7 +107,7 @@ pub enum SvgError {
     },
     /// The shapes found do not make one part.
     #[error(transparent)]
-    Outline(#[from] OutlineError),
+    Outline(#[from] OutlinePickError),
 }
 
 /// What is wrong inside one element.
@@ -153,10 +153,10 @@ pub(super) fn chain_name(pieces: usize, first: &str) -> String {
 }
 
 impl From<Exceeded> for SvgError {
-    fn from(e: Exceeded) -> Self {
+    fn from(exceeded: Exceeded) -> Self {
         SvgError::TooBig {
-            what: e.what,
-            limit: e.limit,
+            what: exceeded.what,
+            limit: exceeded.limit,
         }
     }
 }

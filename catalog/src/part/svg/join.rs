@@ -5,7 +5,7 @@
 //! that says where the ends are and whether they look like a gap.
 
 use super::error::{chain_name, SvgError};
-use crate::part::outline::OutlineError;
+use crate::part::outline::OutlinePickError;
 use crate::part::outline::{
     dist, fmt_pt, join_pieces, nearest_other_end, positions, OpenChain, Piece, P,
 };
@@ -129,7 +129,7 @@ fn degenerate(p: &Piece, tol: f64) -> bool {
 /// guess). `k` maps user units to catalogue units as the loops were
 /// mapped (y flipped).
 pub(super) fn settle_open(
-    picked: Result<RawPart, OutlineError>,
+    picked: Result<RawPart, OutlinePickError>,
     open: Vec<Open>,
     k: f64,
     tol: f64,
@@ -137,7 +137,7 @@ pub(super) fn settle_open(
     let mut parts = settle_open_parts(picked.map(|raw| vec![raw]), open, k, tol)?;
     parts
         .pop()
-        .ok_or(SvgError::Outline(OutlineError::NoClosedLoop {
+        .ok_or(SvgError::Outline(OutlinePickError::NoClosedLoop {
             only_access: false,
         }))
 }
@@ -145,7 +145,7 @@ pub(super) fn settle_open(
 /// [`settle_open`] for a sheet: a chain is linework inside a part when it
 /// lies within the extent of one of the parts, and is reported on that one.
 pub(super) fn settle_open_parts(
-    picked: Result<Vec<RawPart>, OutlineError>,
+    picked: Result<Vec<RawPart>, OutlinePickError>,
     open: Vec<Open>,
     k: f64,
     tol: f64,
@@ -156,7 +156,7 @@ pub(super) fn settle_open_parts(
     let mut parts = match picked {
         Ok(parts) => parts,
         // The open chain is why there is no outline.
-        Err(OutlineError::NoClosedLoop { .. }) => return Err(first.path.clone()),
+        Err(OutlinePickError::NoClosedLoop { .. }) => return Err(first.path.clone()),
         Err(e) => return Err(e.into()),
     };
     // Each outline's extent back in user units (y flipped back).

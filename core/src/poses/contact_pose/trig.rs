@@ -156,9 +156,9 @@ pub(super) struct Trig {
 }
 
 /// Fourier coefficient `j` (cosine and sine parts) of 16 equispaced samples.
-fn harmonic(v: &[f64; SAMPLES], j: usize) -> (f64, f64) {
+fn harmonic(samples: &[f64; SAMPLES], j: usize) -> (f64, f64) {
     let (mut ca, mut sb) = (0.0, 0.0);
-    for (m, &x) in v.iter().enumerate() {
+    for (m, &x) in samples.iter().enumerate() {
         let k = (j * m) % SAMPLES;
         ca += x * COS16[k];
         sb += x * SIN16[k];
@@ -170,16 +170,16 @@ fn harmonic(v: &[f64; SAMPLES], j: usize) -> (f64, f64) {
 /// that the zero and unit table entries fold away at compile time (see
 /// [`Trig::from_samples`] for why the result is the same).
 #[inline(always)]
-fn harmonic_sums<const J: usize>(v: &[f64; SAMPLES]) -> (f64, f64) {
+fn harmonic_sums<const J: usize>(samples: &[f64; SAMPLES]) -> (f64, f64) {
     let (mut ca, mut sb) = (0.0, 0.0);
     macro_rules! terms {
         ($($m:literal)*) => {$(
             let k = (J * $m) % SAMPLES;
             if COS16[k] != 0.0 {
-                ca += v[$m] * COS16[k];
+                ca += samples[$m] * COS16[k];
             }
             if SIN16[k] != 0.0 {
-                sb += v[$m] * SIN16[k];
+                sb += samples[$m] * SIN16[k];
             }
         )*};
     }
@@ -207,16 +207,16 @@ impl Trig {
     /// `x * 0 = +-0` leaves a sum that starts at `+0` unchanged, so the
     /// coefficients are the same to the bit. A non-finite sample makes the plain sum of harmonic 0
     /// non-finite, and then the literal transform is used.
-    pub fn from_samples(v: &[f64; SAMPLES]) -> Trig {
+    pub fn from_samples(samples: &[f64; SAMPLES]) -> Trig {
         let sums = [
-            harmonic_sums::<0>(v),
-            harmonic_sums::<1>(v),
-            harmonic_sums::<2>(v),
-            harmonic_sums::<3>(v),
-            harmonic_sums::<4>(v),
+            harmonic_sums::<0>(samples),
+            harmonic_sums::<1>(samples),
+            harmonic_sums::<2>(samples),
+            harmonic_sums::<3>(samples),
+            harmonic_sums::<4>(samples),
         ];
         if !sums[0].0.is_finite() {
-            return Trig::from_samples_literal(v);
+            return Trig::from_samples_literal(samples);
         }
         let mut t = Trig::default();
         for (j, &sum) in sums.iter().enumerate() {
@@ -228,10 +228,10 @@ impl Trig {
     }
 
     /// [`Trig::from_samples`] without the shortcuts.
-    fn from_samples_literal(v: &[f64; SAMPLES]) -> Trig {
+    fn from_samples_literal(samples: &[f64; SAMPLES]) -> Trig {
         let mut t = Trig::default();
         for j in 0..=DEG {
-            let (a, b) = harmonic(v, j);
+            let (a, b) = harmonic(samples, j);
             t.a[j] = a;
             t.b[j] = if j == 0 { 0.0 } else { b };
         }
@@ -242,10 +242,10 @@ impl Trig {
     /// rounding) exactly when the sampled function has degree <= 4, which
     /// the tests use to check the elimination's degree claim.
     #[cfg(test)]
-    pub fn alias(v: &[f64; SAMPLES]) -> f64 {
+    pub fn alias(samples: &[f64; SAMPLES]) -> f64 {
         (DEG + 1..=SAMPLES / 2)
             .map(|j| {
-                let (a, b) = harmonic(v, j);
+                let (a, b) = harmonic(samples, j);
                 a.abs().max(b.abs())
             })
             .fold(0.0, f64::max)
