@@ -272,7 +272,12 @@ impl Walk {
         });
         let (chunk, data) = match read {
             Ok(x) => x,
-            Err(message) => return self.damaged_chunk(r.offset, None, message),
+            Err(message) => {
+                let index = ChunkRecord::parse(r.body)
+                    .ok()
+                    .and_then(|c| self.claimed(&c));
+                return self.damaged_chunk(r.offset, index, message);
+            }
         };
         let messages = match records::messages(&data) {
             Ok(m) => m,
@@ -302,6 +307,21 @@ impl Walk {
             }
             Err((index, message)) => self.damaged_chunk(r.offset, index, message),
         }
+    }
+
+    /// The part a damaged chunk's head names, when that is the part
+    /// expected next (a damaged head could name any).
+    fn claimed(&self, chunk: &ChunkRecord<'_>) -> Option<usize> {
+        let time = chunk.start_time;
+        if !time.is_multiple_of(NS_PER_PART) || chunk.end_time != time {
+            return None;
+        }
+        let index = usize::try_from(time / NS_PER_PART).ok()?;
+        let expected = match self.last {
+            Some(last) => index == last + 1 + self.damaged_since,
+            None => self.run.as_ref().is_some_and(|r| index < r.catalog.parts),
+        };
+        expected.then_some(index)
     }
 
     fn damaged_chunk(
