@@ -839,3 +839,54 @@ fn an_invalid_part_shows_what_was_read() {
     assert!(svg.contains("<polygon"), "{svg}");
     assert!(svg.contains("edge 0 crosses edge 2"), "{svg}");
 }
+
+/// `fixplan run --sheet` on a drawing of two plates: without the flag the
+/// file is refused with a message that names it; with it each plate is a
+/// part of its own, `id#1` from the left.
+#[test]
+fn the_sheet_flag_reads_every_outer_loop_as_a_part() {
+    let dir = tempfile::tempdir().unwrap();
+    let cat = dir.path().join("parts");
+    std::fs::create_dir(&cat).unwrap();
+    std::fs::write(
+        cat.join("sheet.svg"),
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="300mm" height="100mm" viewBox="0 0 300 100">
+  <rect x="10" y="10" width="80" height="50"/>
+  <rect x="150" y="10" width="90" height="50"/>
+</svg>"#,
+    )
+    .unwrap();
+    let run = |sheet: bool, name: &str| {
+        let res = dir.path().join(name);
+        let mut cmd = fixplan();
+        cmd.args(["run", "-q", "--top-k", "1", "--catalog"])
+            .arg(&cat)
+            .arg("-o")
+            .arg(&res);
+        if sheet {
+            cmd.arg("--sheet");
+        }
+        ok(cmd.output().unwrap());
+        export_lines(&res)
+    };
+    let one = run(false, "one.mcap");
+    assert_eq!(one.len(), 1);
+    assert_eq!(one[0]["part"], "sheet");
+    assert_eq!(one[0]["status"], "invalid");
+    let err = one[0]["error"].as_str().unwrap();
+    assert!(
+        err.contains("more than one outline") && err.contains("--sheet"),
+        "{err}"
+    );
+    let parts: Vec<(Value, Value)> = run(true, "sheet.mcap")
+        .iter()
+        .map(|l| (l["part"].clone(), l["status"].clone()))
+        .collect();
+    assert_eq!(
+        parts,
+        [
+            ("sheet#1".into(), "ok".into()),
+            ("sheet#2".into(), "ok".into())
+        ]
+    );
+}
