@@ -1,7 +1,7 @@
 //! Why an SVG file does not give a part: the reader's errors and the
 //! wording of their messages.
 
-use super::limits::{Exceeded, Refusal};
+use super::limits::{Exceeded, PrescanRefusal};
 use super::path::PathError;
 use super::transform::TransformError;
 use crate::part::outline::{fmt, fmt_pt, OutlinePickError, P};
@@ -161,12 +161,12 @@ impl From<Exceeded> for SvgError {
     }
 }
 
-impl From<Refusal> for SvgError {
-    fn from(r: Refusal) -> Self {
+impl From<PrescanRefusal> for SvgError {
+    fn from(r: PrescanRefusal) -> Self {
         match r {
-            Refusal::Exceeded(e) => e.into(),
-            Refusal::EntityLoop(name) => SvgError::EntityLoop(name),
-            Refusal::ExternalEntity { name, kind, uri } => {
+            PrescanRefusal::Exceeded(e) => e.into(),
+            PrescanRefusal::EntityLoop(name) => SvgError::EntityLoop(name),
+            PrescanRefusal::ExternalEntity { name, kind, uri } => {
                 SvgError::ExternalEntity { name, kind, uri }
             }
         }

@@ -33,7 +33,7 @@ pub(super) struct Exceeded {
 /// Why the bytes are refused before parsing; becomes an
 /// [`SvgError`](super::SvgError).
 #[derive(Debug)]
-pub(super) enum Refusal {
+pub(super) enum PrescanRefusal {
     Exceeded(Exceeded),
     EntityLoop(String),
     ExternalEntity {
@@ -89,8 +89,8 @@ fn spend(left: &mut usize, n: usize, what: &'static str, limit: usize) -> Result
 /// guard per top-level reference that still lets a small file grow
 /// quadratically; it never reads external ones, but a reference to one
 /// would fail with a less helpful message).
-pub(super) fn prescan(text: &str) -> Result<(), Refusal> {
-    let limit = |what, limit| Refusal::Exceeded(Exceeded { what, limit });
+pub(super) fn prescan(text: &str) -> Result<(), PrescanRefusal> {
+    let limit = |what, limit| PrescanRefusal::Exceeded(Exceeded { what, limit });
     if text.len() > MAX_BYTES {
         return Err(limit("bytes in an SVG file", MAX_BYTES));
     }
@@ -180,13 +180,13 @@ fn references(s: &str) -> impl Iterator<Item = &str> {
 
 /// Bounds what all entity references of the document expand to, and
 /// refuses references to external entities.
-fn check_entities(text: &str) -> Result<(), Refusal> {
+fn check_entities(text: &str) -> Result<(), PrescanRefusal> {
     if !text.contains("<!ENTITY") {
         return Ok(());
     }
     let decls = declarations(text);
     let too_much = || {
-        Refusal::Exceeded(Exceeded {
+        PrescanRefusal::Exceeded(Exceeded {
             what: "bytes of entity expansion",
             limit: MAX_ENTITY_EXPANSION,
         })
@@ -199,9 +199,9 @@ fn check_entities(text: &str) -> Result<(), Refusal> {
         decls: &[(&'a str, Entity<'a>)],
         sizes: &mut std::collections::HashMap<&'a str, Option<usize>>,
         stack: &mut Vec<&'a str>,
-    ) -> Result<usize, Refusal> {
+    ) -> Result<usize, PrescanRefusal> {
         if let Some(s) = sizes.get(name) {
-            return s.ok_or_else(|| Refusal::EntityLoop(name.to_string()));
+            return s.ok_or_else(|| PrescanRefusal::EntityLoop(name.to_string()));
         }
         let Some((_, e)) = decls.iter().find(|(n, _)| *n == name) else {
             return Ok(0);
@@ -209,7 +209,7 @@ fn check_entities(text: &str) -> Result<(), Refusal> {
         let value = match e {
             Entity::Internal(v) => *v,
             Entity::External(kind, uri) => {
-                return Err(Refusal::ExternalEntity {
+                return Err(PrescanRefusal::ExternalEntity {
                     name: name.to_string(),
                     kind,
                     uri: uri.to_string(),
@@ -217,7 +217,7 @@ fn check_entities(text: &str) -> Result<(), Refusal> {
             }
         };
         if stack.len() > 64 {
-            return Err(Refusal::EntityLoop(name.to_string()));
+            return Err(PrescanRefusal::EntityLoop(name.to_string()));
         }
         sizes.insert(name, None);
         stack.push(name);
