@@ -300,6 +300,7 @@ fn read_file_parts(path: &Path, ropts: &ReadOptions, extra_access: &[Vec<[f64; 2
 fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErrorKind> {
     let read = Part {
         outline: raw.outline.clone(),
+        holes: Vec::new(),
         access: raw.access.clone(),
     };
     validate_part(raw, units).map_err(|problem| PartErrorKind::Invalid {

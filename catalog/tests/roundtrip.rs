@@ -12,6 +12,7 @@ use proptest::prelude::*;
 fn arc_sample() -> Part {
     let v = Vertex::new;
     Part {
+        holes: Vec::new(),
         outline: vec![
             v(0.0, 0.0, 0.0),
             v(100.0, 0.0, 0.41421356237309503),
@@ -87,6 +88,7 @@ fn arc_parts_round_trip_exactly() {
     // A circle: two half arcs.
     let circle = Part {
         outline: vec![Vertex::new(30.0, 5.0, 1.0), Vertex::new(-10.0, 5.0, 1.0)],
+        holes: Vec::new(),
         access: Vec::new(),
     };
     for format in [Format::Dxf, Format::Svg, Format::Json] {
@@ -145,7 +147,11 @@ proptest! {
     #[test]
     fn random_arc_parts_round_trip(outline in arc_outline(), inch in any::<bool>()) {
         let units = if inch { Units::In } else { Units::Mm };
-        let part = Part { outline, access: Vec::new() };
+        let part = Part {
+            outline,
+            holes: Vec::new(),
+            access: Vec::new(),
+        };
         // Skip invalid draws and those that validation repairs (collinear
         // vertices between straight edges). Not through JSON: serde_json
         // reads some shortest-form floats back one ulp off.

@@ -80,6 +80,7 @@ pub fn catalog() -> (Catalog, KitSpec) {
                         outline: [[0.0, 0.0], [50.0, 50.0], [50.0, 0.0], [0.0, 50.0]]
                             .map(Into::into)
                             .to_vec(),
+                        holes: vec![],
                         access: vec![],
                     }),
                 },
@@ -101,6 +102,7 @@ pub fn catalog() -> (Catalog, KitSpec) {
                 ]
                 .map(Into::into)
                 .to_vec(),
+                holes: vec![],
                 access: vec![],
             }),
             ..part("hex", vec![])

@@ -95,6 +95,7 @@ fn arc_part(id: &str, bulge: f64) -> CatalogPart {
     CatalogPart {
         part: Ok(Part {
             outline: outline.map(Vertex::from).to_vec(),
+            holes: vec![],
             access: vec![],
         }),
         ..part(id, vec![])

@@ -152,6 +152,7 @@ impl PartInput {
                     .iter()
                     .map(|&(x, y, b)| Vertex::new(x, y, b))
                     .collect(),
+                holes: Vec::new(),
                 access: w.part.access.into_owned(),
             },
             kit: Kit {

@@ -70,7 +70,14 @@ pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), 
         let cleaned = clean_and_validate(&a, PolygonRole::Access(i), units, &mut warnings)?;
         access.push(cleaned.iter().map(|v| [v.x, v.y]).collect());
     }
-    Ok((Part { outline, access }, warnings))
+    Ok((
+        Part {
+            outline,
+            holes: Vec::new(),
+            access,
+        },
+        warnings,
+    ))
 }
 
 /// Relative size under which two consecutive vertices are the same point.

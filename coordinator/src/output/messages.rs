@@ -675,6 +675,7 @@ mod tests {
             file: Some("p.dxf".into()),
             part: Ok(Part {
                 outline: outline.clone(),
+                holes: Vec::new(),
                 access: access.clone(),
             }),
             warnings: vec!["w".into()],

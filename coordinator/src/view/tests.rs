@@ -54,6 +54,7 @@ fn run_msg() -> RunMsg {
 fn record(run: &RunMsg, id: &str, outline: Vec<Vertex>) -> PartRecord {
     let part = Part {
         outline,
+        holes: Vec::new(),
         access: Vec::new(),
     };
     let result: SolveResult = solve(&part, &run.kit(), &run.params(), Units::Mm);

@@ -275,6 +275,11 @@ pub struct Part {
     /// Simple closed outline of lines and circular arcs (SPEC 8.1), either
     /// orientation (normalised to CCW).
     pub outline: Vec<Vertex>,
+    /// Holes cut through the part (SPEC 9.1), each a closed loop of lines
+    /// and arcs in either orientation (normalised to clockwise). Absent in
+    /// files of parts without holes, so their bytes do not change.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub holes: Vec<Vec<Vertex>>,
     /// Regions no fixture component may touch (machining, markings).
     #[serde(default)]
     pub access: Vec<Vec<Point>>,
@@ -285,6 +290,7 @@ impl Part {
     pub fn polygon(points: &[Point]) -> Part {
         Part {
             outline: points.iter().map(|&p| p.into()).collect(),
+            holes: Vec::new(),
             access: Vec::new(),
         }
     }
@@ -300,6 +306,9 @@ pub struct Case {
     /// The part's outline (flat in the file, as Appendix A writes it);
     /// a vertex may carry a bulge (SPEC 8.1).
     pub part: Vec<Vertex>,
+    /// The part's holes (SPEC 9.6), beside `part`; absent means none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub holes: Vec<Vec<Vertex>>,
     /// The part's access constraints.
     #[serde(default)]
     pub access: Vec<Vec<Point>>,
@@ -315,6 +324,7 @@ impl Case {
     pub fn part(&self) -> Part {
         Part {
             outline: self.part.clone(),
+            holes: self.holes.clone(),
             access: self.access.clone(),
         }
     }

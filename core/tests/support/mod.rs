@@ -72,6 +72,7 @@ pub fn shape_strategy() -> impl proptest::strategy::Strategy<Value = Vec<[f64; 2
 pub fn part(outline: &[[f64; 2]], access: &[Vec<[f64; 2]>]) -> Part {
     Part {
         outline: outline.iter().map(|&p| p.into()).collect(),
+        holes: Vec::new(),
         access: access.to_vec(),
     }
 }
@@ -236,6 +237,7 @@ pub fn check_fixture_independently(p: &PreparedPart, f: &Fixture) {
 pub fn arc_part(outline: &[[f64; 3]], access: &[Vec<[f64; 2]>]) -> Part {
     Part {
         outline: outline.iter().map(|&v| v.into()).collect(),
+        holes: Vec::new(),
         access: access.to_vec(),
     }
 }
