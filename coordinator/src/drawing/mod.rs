@@ -4,5 +4,5 @@
 //! format: the Foxglove scene of the results file (`output::scene`) and
 //! the SVG pictures of `view` both draw from it, so it sits below both.
 
-pub mod draw;
-pub mod outline;
+pub(crate) mod draw;
+pub(crate) mod outline;
