@@ -480,6 +480,7 @@ impl FixturesMsg {
             error: self.error.clone(),
             counts: self.counts.as_ref().map(Into::into),
             segment_kinds: self.segment_kinds.iter().map(|&k| k.into()).collect(),
+            segment_loops: Vec::new(),
             fixtures: self.fixtures.iter().map(Into::into).collect(),
         }
     }
@@ -605,6 +606,7 @@ mod tests {
             error: Some("\u{e9}\"\\\n".into()),
             counts: Some(exact_counts()),
             segment_kinds: vec![SegmentKind::Arc],
+            segment_loops: Vec::new(),
             fixtures: vec![f],
         };
         let written = FixturesMsg::of_result("p\u{1f600}", &result);
@@ -690,6 +692,7 @@ mod tests {
             error: None,
             counts: Some(counts),
             segment_kinds: vec![SegmentKind::Line; 3],
+            segment_loops: Vec::new(),
             fixtures: vec![fixture()],
         };
         let search = SearchInfo {
@@ -740,6 +743,7 @@ mod tests {
             error: None,
             counts: Some(exact_counts()),
             segment_kinds: vec![SegmentKind::Line, SegmentKind::Arc, SegmentKind::Line],
+            segment_loops: Vec::new(),
             fixtures: vec![fixture()],
         };
         let fixtures = FixturesMsg::of_result("p", &result);
