@@ -5,29 +5,30 @@
 //! origin, the other at every lattice point of their annulus (up to
 //! quarter turns), and the third locator only in the region the third
 //! segment sweeps while the pivot's contacts stay on their segments
-//! ([`crate::sweeps`]); on three lines, poses are worked out only at the
-//! angles that keep the pivot's contacts on their segments. The pivot is
-//! two lines when the combination has two (of the pairs of lines, the one
-//! with the thinnest annulus: the region is built once per lattice point
-//! of that annulus, so the pair with the fewest points costs least), else
-//! a line and an arc (again the thinnest such pair), so the arc is only
-//! swept, never solved for at every point of its annuli. Each triple is
-//! then moved to SPEC's canonical frame (`L1` at the origin, `L2` in the
-//! quadrant `Q`) and solved there, so a setup's numbers never depend on
-//! which pair pivoted. Without a pivot (three arcs, or nearly parallel
-//! lines the sweep refuses), `L2` comes from the annulus (a, b) and `L3`
-//! from the annuli (a, c) around `L1` and (b, c) around `L2`. Only lattice
-//! points and angles that cannot give a setup are skipped, so the set
-//! found is exactly SPEC's; the brute-force tests enumerate without
-//! pruning.
+//! ([`crate::sweeps`]); poses are worked out only at the angles that keep
+//! the pivot's contacts on their segments. Which ordered pairs can pivot,
+//! and which kind a combination prefers, the sweeps' dispatcher says
+//! ([`PivotPair`]: two lines first, else a line then an arc, so an arc is
+//! only swept, never solved for at every point of its annuli); of the
+//! preferred kind the pair with the thinnest annulus pivots (the region is
+//! built once per lattice point of that annulus, so the pair with the
+//! fewest points costs least). Each triple is then moved to SPEC's
+//! canonical frame (`L1` at the origin, `L2` in the quadrant `Q`) and
+//! solved there by the solver the poses' dispatcher picks
+//! ([`TripleContacts`]), so a setup's numbers never depend on which pair
+//! pivoted. Without a pivot (no pair pivots, or nearly parallel lines the
+//! sweep refuses), `L2` comes from the annulus (a, b) and `L3` from the
+//! annuli (a, c) around `L1` and (b, c) around `L2`. Only lattice points
+//! and angles that cannot give a setup are skipped, so the set found is
+//! exactly SPEC's; the brute-force tests enumerate without pruning.
 
 use crate::geometry::angle_set::{wrap_angle, AngleSet};
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
-use crate::poses::contact_pose::solve_contact_poses_at_angles;
-use crate::poses::pose::{solve_poses_at_angles, Line, Pose};
-use crate::segments::{Feature, PairBounds, PairTable, Segment};
-use crate::sweeps::{LocatorSweep, PivotPoint, SweepScratch, SweptSegment};
+use crate::poses::pose::Pose;
+use crate::poses::TripleContacts;
+use crate::segments::{PairBounds, PairTable, Segment};
+use crate::sweeps::{LocatorSweep, PivotPair, PivotPoint, SweepScratch, SweptSegment};
 use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
 
@@ -69,13 +70,13 @@ pub(crate) struct SetupSearch<'a> {
 }
 
 impl SetupSearch<'_> {
-    /// Whether `p` is a lattice offset allowed for locators 2 and 3 (grid step
+    /// Whether `point` is a lattice offset allowed for locators 2 and 3 (grid step
     /// and, on alternating plates, dowel-hole parity).
     #[inline]
-    pub(crate) fn locator_point_allowed(&self, p: [i64; 2]) -> bool {
-        p[0].rem_euclid(self.grid_step) == 0
-            && p[1].rem_euclid(self.grid_step) == 0
-            && (self.pattern == Pattern::Square || (p[0] + p[1]).rem_euclid(2) == 0)
+    pub(crate) fn locator_point_allowed(&self, point: [i64; 2]) -> bool {
+        point[0].rem_euclid(self.grid_step) == 0
+            && point[1].rem_euclid(self.grid_step) == 0
+            && (self.pattern == Pattern::Square || (point[0] + point[1]).rem_euclid(2) == 0)
     }
 
     /// Every pair's distance bounds, `a * n + b`.
@@ -110,45 +111,21 @@ impl SetupSearch<'_> {
         let segs = combo.map(|i| &self.segments[i]);
         let locs_i = [[0, 0], l2, l3];
         let locs = locs_i.map(|p| v2(p[0] as f64, p[1] as f64));
-        let lines = segs.map(|s| match s.feature {
-            Feature::Line(l) => Some(Line { n: l.n, c: l.c }),
-            Feature::Arc(_) => None,
-        });
-        if let [Some(a), Some(b), Some(c)] = lines {
-            // Polygons: SPEC 3's closed form, as before arcs.
-            let (poses, count) = solve_poses_at_angles(&[a, b, c], &locs, |t| allowed.keeps(t));
-            for pose in &poses[..count] {
-                self.visit_pose(combo, &segs, locs_i, &locs, pose, false, &mut visit);
-            }
-            return count;
-        }
-        self.curved_setups(combo, &segs, locs_i, &locs, allowed, &mut visit)
-    }
-
-    /// [`Self::setups_for_locators`] when a segment is an arc (SPEC 8.4),
-    /// kept out of line so the polygon loop stays as small as it was.
-    #[inline(never)]
-    fn curved_setups(
-        &self,
-        combo: [usize; 3],
-        segs: &[&Segment; 3],
-        locators: [[i64; 2]; 3],
-        locs: &[V2; 3],
-        allowed: Allowed<'_>,
-        visit: &mut impl FnMut(&Setup),
-    ) -> usize {
+        let contacts = TripleContacts::of(segs.map(|segment| &segment.feature));
         // The sweep places `L3` in its region without the annuli, which
         // cost nothing next to an arc pose solution: about one swept
         // triple in seven of `bracket-arcs` is dropped here.
-        if allowed.angles.is_some() && !self.in_annuli(combo, locs) {
+        if contacts.is_costly() && allowed.angles.is_some() && !self.in_annuli(combo, &locs) {
             return 0;
         }
-        let contacts = segs.map(|s| s.contact());
-        let poses = solve_contact_poses_at_angles(&contacts, locs, &|lo, hi| allowed.meets(lo, hi));
-        for p in poses.iter() {
-            self.visit_pose(combo, segs, locators, locs, &p.pose, p.tangential, visit);
-        }
-        poses.len()
+        contacts.solve_at_angles(
+            &locs,
+            |theta| allowed.keeps(theta),
+            &|lo, hi| allowed.meets(lo, hi),
+            |pose, tangential| {
+                self.visit_pose(combo, &segs, locs_i, &locs, pose, tangential, &mut visit);
+            },
+        )
     }
 
     /// Whether every two locators lie as far apart as some points of the
@@ -215,16 +192,17 @@ impl SetupSearch<'_> {
         stats
     }
 
-    /// The two lines of the combination the sweep turns the part about,
-    /// `a` and `b` when both are lines. With one arc the sweep still
-    /// applies, pivoting on the other two segments: the arc then only has
-    /// to be swept (chords), never solved for at every lattice point of
-    /// its annuli.
+    /// The pivot of a combination: of the ordered pairs of its segments a
+    /// sweep pivots on ([`PivotPair::of`]), those of the kind preferred
+    /// ([`PivotPair::preference`]), and of these the one with the thinnest
+    /// annulus (the region is built once per lattice point of that
+    /// annulus, so the pair with the fewest points costs least). Orders are
+    /// ranked first, so a sweep is built only for the winner (and the next
+    /// ones when nearly parallel lines refuse it).
     fn pivot(&self, combo: [usize; 3]) -> Option<Pivot<'_>> {
-        const LINE_PAIRS: [[usize; 3]; 3] = [[0, 1, 2], [0, 2, 1], [1, 2, 0]];
-        // Line first, arc second: every order, the combination's order
-        // says nothing about which is which.
-        const LINE_ARC: [[usize; 3]; 6] = [
+        // Every order of the roles (pivot's first, pivot's second, swept):
+        // the combination's order says nothing about which is which.
+        const ROLES: [[usize; 3]; 6] = [
             [0, 1, 2],
             [0, 2, 1],
             [1, 0, 2],
@@ -232,42 +210,30 @@ impl SetupSearch<'_> {
             [2, 0, 1],
             [2, 1, 0],
         ];
-        self.thinnest_pivot(combo, &LINE_PAIRS, true)
-            .or_else(|| self.thinnest_pivot(combo, &LINE_ARC, false))
-    }
-
-    /// Of the role orders whose sweep applies (two lines when `lines`,
-    /// else a line then an arc), the one with the thinnest pivot annulus.
-    /// Orders are ranked by their annulus first, so a sweep is built only
-    /// for the winner (and the next ones when nearly parallel lines refuse
-    /// it).
-    fn thinnest_pivot(
-        &self,
-        combo: [usize; 3],
-        orders: &[[usize; 3]],
-        lines: bool,
-    ) -> Option<Pivot<'_>> {
-        let is_line = |k: usize| self.swept[combo[k]].is_line();
-        let (table, nseg) = (self.pair_table(), self.segments.len());
-        let pair = |a: usize, b: usize| table[a * nseg + b];
-        let mut ranked = [(f64::INFINITY, [0usize; 3]); 6];
-        let mut n = 0;
-        for &roles in orders {
+        let (table, count) = (self.pair_table(), self.segments.len());
+        let pair = |first: usize, second: usize| table[first * count + second];
+        let mut ranked = [(0u8, f64::INFINITY, [0usize; 3]); 6];
+        let mut len = 0;
+        for roles in ROLES {
             let [p, q, _] = roles;
-            if !is_line(p) || is_line(q) != lines {
+            let Some(kind) = PivotPair::of(&self.swept[combo[p]], &self.swept[combo[q]]) else {
+                continue;
+            };
+            if kind.symmetric() && p > q {
                 continue;
             }
+            let preference = kind.preference();
             let (lo, hi) = annulus_sq(pair(combo[p], combo[q]));
-            // Insertion keeps the first of equal areas first.
-            let mut k = n;
-            while k > 0 && ranked[k - 1].0 > hi - lo {
+            // Insertion keeps the first of equal keys first.
+            let mut k = len;
+            while k > 0 && ranks_after(ranked[k - 1], preference, hi - lo) {
                 ranked[k] = ranked[k - 1];
                 k -= 1;
             }
-            ranked[k] = (hi - lo, roles);
-            n += 1;
+            ranked[k] = (preference, hi - lo, roles);
+            len += 1;
         }
-        ranked[..n].iter().find_map(|&(_, roles)| {
+        ranked[..len].iter().find_map(|&(_, _, roles)| {
             let [p, q, r] = roles.map(|k| combo[k]);
             let swept = [p, q, r].map(|i| &self.swept[i]);
             let sweep = LocatorSweep::new(swept, p == q, pair(p, r).dmax)?;
@@ -307,15 +273,15 @@ impl SetupSearch<'_> {
     }
 
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
-    /// `(p, q)` at which some angle keeps both contacts on their segments.
+    /// `(first, second)` at which some angle keeps both contacts on their segments.
     fn pivot_points(
         &self,
         sweep: &LocatorSweep<'_>,
-        p: usize,
-        q: usize,
+        first: usize,
+        second: usize,
         out: &mut Vec<LatticePivot>,
     ) {
-        self.quadrant_points(self.pair(p, q), |d| {
+        self.quadrant_points(self.pair(first, second), |d| {
             if let Some(pt) = sweep.pivot_point(lattice_point(d)) {
                 out.push((d, pt));
             }
@@ -348,26 +314,26 @@ impl SetupSearch<'_> {
         }
     }
 
-    /// Solves the triple with the pivot's locators at `0` and `d` and the
-    /// third at `e`, after moving it to the canonical frame: `L1` at the
+    /// Solves the triple with the pivot's locators at `0` and `second` and
+    /// the third at `third`, after moving it to the canonical frame: `L1` at the
     /// origin, turned by quarter turns (which map the lattice onto itself)
     /// until `L2` lies in `Q`. Each setup has exactly one placement with
-    /// `d` in `Q`, so each is solved once. `angles` (pivot frame) lets
+    /// `second` in `Q`, so each is solved once. `angles` (pivot frame) lets
     /// three lines work out only the poses the sweep allows.
     #[allow(clippy::too_many_arguments)] // one lattice triple, unpacked
     fn solve_placed(
         &self,
         combo: [usize; 3],
         pivot: &Pivot<'_>,
-        d: [i64; 2],
-        e: [i64; 2],
+        second: [i64; 2],
+        third: [i64; 2],
         angles: Option<&AngleSet>,
         stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
         let mut placed = [[0i64; 2]; 3];
         let [p, q, r] = pivot.roles;
-        (placed[p], placed[q], placed[r]) = ([0, 0], d, e);
+        (placed[p], placed[q], placed[r]) = ([0, 0], second, third);
         let o = placed[0];
         let (l2, l3) = (sub(placed[1], o), sub(placed[2], o));
         if l2 == [0, 0] {
@@ -375,18 +341,18 @@ impl SetupSearch<'_> {
         }
         let turns = quarter_turns_into_q(l2);
         let (l2, l3) = (quarter_turn(l2, turns), quarter_turn(l3, turns));
-        // `d` was checked; any other L2 is a difference of checked points
+        // `second` was checked; any other L2 is a difference of checked points
         // turned, which keeps grid step and dowel parity, but say so here
         // rather than rely on it.
-        if l2 != d && !self.locator_point_allowed(l2) {
+        if l2 != second && !self.locator_point_allowed(l2) {
             return;
         }
         let allowed = Allowed { angles, turns };
         self.solve_triple(combo, l2, l3, allowed, stats, visit);
     }
 
-    /// Setups when no pair of lines can pivot (two or three arcs, or nearly
-    /// parallel lines): `L2` in the annulus (a, b), `L3` in the annuli
+    /// Setups when no pair can pivot (no [`PivotPair`]: two or three arcs;
+    /// or nearly parallel lines): `L2` in the annulus (a, b), `L3` in the annuli
     /// (a, c) around `L1` and (b, c) around `L2`.
     fn annulus_setups(
         &self,
@@ -445,13 +411,13 @@ impl Allowed<'_> {
         f64::from(self.turns) * FRAC_PI_2
     }
 
-    /// Whether the canonical angle `t` is allowed.
-    fn keeps(&self, t: f64) -> bool {
+    /// Whether the canonical angle `theta` is allowed.
+    fn keeps(&self, theta: f64) -> bool {
         self.angles.is_none_or(|a| {
             a.contains(if self.turns == 0 {
-                t
+                theta
             } else {
-                wrap_angle(t - self.back())
+                wrap_angle(theta - self.back())
             })
         })
     }
@@ -464,8 +430,8 @@ impl Allowed<'_> {
 }
 
 /// A combination's roles for the sweep: `roles[0]`, `roles[1]` (positions
-/// in the combination) are the two lines it pivots on, `roles[2]` the
-/// segment it sweeps.
+/// in the combination) are the two segments it pivots on (a
+/// [`PivotPair`]), `roles[2]` the segment it sweeps.
 struct Pivot<'s> {
     roles: [usize; 3],
     sweep: LocatorSweep<'s>,
@@ -502,11 +468,11 @@ struct PivotCache {
 impl PivotCache {
     fn points(
         &mut self,
-        p: usize,
-        q: usize,
+        first: usize,
+        second: usize,
         push: impl FnOnce(&mut Vec<LatticePivot>),
     ) -> &[LatticePivot] {
-        let range = match self.pairs.get(&(p, q)) {
+        let range = match self.pairs.get(&(first, second)) {
             Some(r) => r.clone(),
             None => {
                 if self.points.len() > PIVOT_CACHE_POINTS {
@@ -516,7 +482,7 @@ impl PivotCache {
                 let start = self.points.len();
                 push(&mut self.points);
                 let r = start..self.points.len();
-                self.pairs.insert((p, q), r.clone());
+                self.pairs.insert((first, second), r.clone());
                 r
             }
         };
@@ -524,13 +490,13 @@ impl PivotCache {
     }
 }
 
-fn sub(a: [i64; 2], b: [i64; 2]) -> [i64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
+fn sub(point: [i64; 2], origin: [i64; 2]) -> [i64; 2] {
+    [point[0] - origin[0], point[1] - origin[1]]
 }
 
-/// `p` turned by `turns` quarter turns counterclockwise.
-fn quarter_turn(p: [i64; 2], turns: u8) -> [i64; 2] {
-    (0..turns).fold(p, |[x, y], _| [-y, x])
+/// `point` turned by `turns` quarter turns counterclockwise.
+fn quarter_turn(point: [i64; 2], turns: u8) -> [i64; 2] {
+    (0..turns).fold(point, |[x, y], _| [-y, x])
 }
 
 /// The quarter turns that bring `v != 0` into `Q = {i > 0, j >= 0}`.
@@ -612,17 +578,24 @@ impl SearchStats {
     }
 }
 
+/// Whether a ranked pivot order comes after one of kind `preference` and
+/// annulus area `area`: a less preferred kind, or the same kind and a
+/// wider annulus.
+fn ranks_after(ranked: (u8, f64, [usize; 3]), preference: u8, area: f64) -> bool {
+    ranked.0 > preference || (ranked.0 == preference && ranked.1 > area)
+}
+
 /// Squared annulus bounds with slack.
-fn annulus_sq(p: PairBounds) -> (f64, f64) {
-    let lo = (p.dmin - ANNULUS_SLACK).max(0.0);
-    let hi = p.dmax + ANNULUS_SLACK;
+fn annulus_sq(pair: PairBounds) -> (f64, f64) {
+    let lo = (pair.dmin - ANNULUS_SLACK).max(0.0);
+    let hi = pair.dmax + ANNULUS_SLACK;
     (lo * lo, hi * hi)
 }
 
 /// Plate position of a lattice point.
 #[inline]
-pub fn lattice_point(p: [i64; 2]) -> V2 {
-    v2(p[0] as f64, p[1] as f64)
+pub fn lattice_point(point: [i64; 2]) -> V2 {
+    v2(point[0] as f64, point[1] as f64)
 }
 
 #[cfg(test)]
@@ -630,7 +603,7 @@ mod tests {
     use super::*;
     use crate::geometry::arc::GrownArc;
     use crate::geometry::rot;
-    use crate::segments::LineFeature;
+    use crate::segments::{Feature, LineFeature};
 
     /// The segment from `a` to `b`.
     fn line(a: V2, b: V2) -> Segment {
@@ -662,31 +635,37 @@ mod tests {
     }
 
     /// The distance bounds of every two of three segments.
-    fn pairs(s: [&Segment; 3]) -> [[PairBounds; 3]; 3] {
-        s.map(|a| s.map(|b| PairBounds::between(a, b)))
+    fn pairs(segments: [&Segment; 3]) -> [[PairBounds; 3]; 3] {
+        segments.map(|a| segments.map(|b| PairBounds::between(a, b)))
     }
 
-    /// `L1` at the origin, `L2 = d`, `L3 = e`.
-    fn at(pairs: [[PairBounds; 3]; 3], d: [i64; 2], e: [i64; 2]) -> bool {
-        in_annuli(pairs, &[v2(0.0, 0.0), lattice_point(d), lattice_point(e)])
+    /// `L1` at the origin, `L2 = second`, `L3 = third`.
+    fn at(pairs: [[PairBounds; 3]; 3], second: [i64; 2], third: [i64; 2]) -> bool {
+        in_annuli(
+            pairs,
+            &[v2(0.0, 0.0), lattice_point(second), lattice_point(third)],
+        )
     }
 
     #[test]
     fn annuli_reject_distances_no_segments_have() {
-        // p along the x axis, q and r parallel to it 2 and 5 above: |e| in
-        // [5, sqrt 125] from p, |e - d| in [3, sqrt 109] from q.
+        // p along the x axis, q and r parallel to it 2 and 5 above: |third| in
+        // [5, sqrt 125] from p, |third - second| in [3, sqrt 109] from q.
         let p = line(v2(0.0, 0.0), v2(10.0, 0.0));
         let q = line(v2(0.0, 2.0), v2(10.0, 2.0));
         let r = line(v2(0.0, 5.0), v2(10.0, 5.0));
         let pq = pairs([&p, &q, &r]);
-        let d = [0, 2];
-        assert!(at(pq, d, [0, 5]) && at(pq, d, [10, 2]));
-        assert!(!at(pq, d, [4, 0]), "|e| = 4 < 5 from p");
-        assert!(!at(pq, d, [12, 0]), "|e| = 12 > sqrt 125 from p");
-        assert!(!at(pq, d, [11, 0]), "|e - d| = sqrt 125 > sqrt 109 from q");
-        assert!(!at(pq, [0, 1], [0, 5]), "|d| = 1 < 2 from p to q");
+        let second = [0, 2];
+        assert!(at(pq, second, [0, 5]) && at(pq, second, [10, 2]));
+        assert!(!at(pq, second, [4, 0]), "|third| = 4 < 5 from p");
+        assert!(!at(pq, second, [12, 0]), "|third| = 12 > sqrt 125 from p");
+        assert!(
+            !at(pq, second, [11, 0]),
+            "|third - second| = sqrt 125 > sqrt 109 from q"
+        );
+        assert!(!at(pq, [0, 1], [0, 5]), "|second| = 1 < 2 from p to q");
         // The roles are not interchangeable.
-        assert!(!at(pairs([&q, &p, &r]), d, [0, 5]));
+        assert!(!at(pairs([&q, &p, &r]), second, [0, 5]));
     }
 
     proptest::proptest! {
@@ -717,14 +696,14 @@ mod tests {
                     arc(a, r, to[k].1, sweeps[k])
                 }
             };
-            let s = [seg(0), seg(1), seg(2)];
+            let segments = [seg(0), seg(1), seg(2)];
             let (sin, cos) = theta.sin_cos();
             let locs = [0, 1, 2].map(|k| {
-                let p = s[k].point(s[k].s0 + fr[k] * (s[k].s1 - s[k].s0));
+                let p = segments[k].point(segments[k].s0 + fr[k] * (segments[k].s1 - segments[k].s0));
                 rot(cos, sin, p) + v2(shift.0, shift.1)
             });
-            let pq = pairs([&s[0], &s[1], &s[2]]);
-            proptest::prop_assert!(in_annuli(pq, &locs), "{s:?} {locs:?}");
+            let pq = pairs([&segments[0], &segments[1], &segments[2]]);
+            proptest::prop_assert!(in_annuli(pq, &locs), "{segments:?} {locs:?}");
         }
     }
 }

@@ -112,13 +112,13 @@ impl ContactPoses {
         }
     }
 
-    fn push(&mut self, p: ContactPose) {
+    fn push(&mut self, pose: ContactPose) {
         debug_assert!(
             self.len < MAX_CONTACT_POSES,
             "more isolated poses than possible"
         );
         if self.len < MAX_CONTACT_POSES {
-            self.items[self.len] = p;
+            self.items[self.len] = pose;
             self.len += 1;
         }
     }
@@ -146,8 +146,8 @@ pub const TANGENTIAL_DET: f64 = BORDERLINE;
 /// The row of the Jacobian of one contact's equation in `(theta, w)` and
 /// its residual. A locator exactly at a circle's centre has no normal: its
 /// row is zero, which makes the pose tangential, as it is in the limit.
-fn jacobian_row(contact: &Contact, l: V2, cos: f64, sin: f64, w: V2) -> (Vector3<f64>, f64) {
-    let a = rot_t(cos, sin, l);
+fn jacobian_row(contact: &Contact, locator: V2, cos: f64, sin: f64, w: V2) -> (Vector3<f64>, f64) {
+    let a = rot_t(cos, sin, locator);
     let da = v2(a.y, -a.x);
     let p = a - w;
     let (u, f) = match contact {
@@ -351,20 +351,20 @@ const DEGENERATE_REL: f64 = 1e-12;
 /// where the line of solutions of one row meets the circle are also tried.
 const NEAR_PARALLEL_REL: f64 = 1e-4;
 
-fn perp(b: V2) -> V2 {
-    v2(b.y, -b.x)
+fn perp(vector: V2) -> V2 {
+    v2(vector.y, -vector.x)
 }
 
 impl Row {
-    /// `(b, r, |terms of r|)` at the angle with cosine `c`, sine `s`.
-    fn eval(&self, c: f64, s: f64, rho0: f64) -> (V2, f64, f64) {
+    /// `(b, r, |terms of r|)` at the angle with cosine `cos`, sine `sin`.
+    fn eval(&self, cos: f64, sin: f64, rho0: f64) -> (V2, f64, f64) {
         match *self {
             Row::Line { n, c: off, l } => {
-                let a = n.dot(&rot_t(c, s, l));
+                let a = n.dot(&rot_t(cos, sin, l));
                 (n, a - off, a.abs() + off.abs())
             }
             Row::Circle { centre, rho, l } => {
-                let g = rot_t(c, s, l) - centre;
+                let g = rot_t(cos, sin, l) - centre;
                 let g2 = g.norm_squared();
                 let (r2, r02) = (rho * rho, rho0 * rho0);
                 (g, 0.5 * (g2 - r2 + r02), 0.5 * (g2 + r2 + r02))
@@ -372,17 +372,17 @@ impl Row {
         }
     }
 
-    fn shifted(contact: &Contact, l: V2, part: V2, plate: V2) -> Row {
+    fn shifted(contact: &Contact, locator: V2, part: V2, plate: V2) -> Row {
         match contact {
             Contact::Line(line) => Row::Line {
                 n: line.n,
                 c: line.c - line.n.dot(&part),
-                l: l - plate,
+                l: locator - plate,
             },
             Contact::Circle(c) => Row::Circle {
                 centre: c.centre - part,
                 rho: c.radius,
-                l: l - plate,
+                l: locator - plate,
             },
         }
     }
@@ -436,8 +436,8 @@ impl Reduced {
         ok.then_some(rem_tau(theta0))
     }
 
-    fn rows_at(&self, c: f64, s: f64) -> [(V2, f64, f64); 2] {
-        self.rows.map(|r| r.eval(c, s, self.rho0))
+    fn rows_at(&self, cos: f64, sin: f64) -> [(V2, f64, f64); 2] {
+        self.rows.map(|r| r.eval(cos, sin, self.rho0))
     }
 
     /// `F`, `D`, `N` sampled at 16 angles, `F` and `D` turned into
@@ -540,8 +540,8 @@ impl Reduced {
     /// the rows are nearly parallel also the two points where the line of
     /// solutions of the longer row meets the circle `|w'| = rho0` (the
     /// shared-angle pair), or its closest point when it misses.
-    fn w_starts(&self, c: f64, s: f64, out: &mut [V2; 3]) -> usize {
-        let [(b1, r1, _), (b2, r2, _)] = self.rows_at(c, s);
+    fn w_starts(&self, cos: f64, sin: f64, out: &mut [V2; 3]) -> usize {
+        let [(b1, r1, _), (b2, r2, _)] = self.rows_at(cos, sin);
         let (n1, n2) = (b1.norm(), b2.norm());
         let mut k = 0;
         let det = cross(b1, b2);
@@ -667,23 +667,23 @@ fn polish(
     polished(contacts, locs, best.0, best.1)
 }
 
-/// The pose at Newton's best iterate `x` (whose angle has cosine and sine
+/// The pose at Newton's best `iterate` (whose angle has cosine and sine
 /// `cs`), if it satisfies every equation to `eps`, with its residual. The
 /// angle is wrapped into `[0, 2 pi)`; only a wrap that moves it needs its
 /// cosine and sine anew.
 fn polished(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
-    x: Vector3<f64>,
+    iterate: Vector3<f64>,
     cs: (f64, f64),
 ) -> Option<(ContactPose, f64)> {
-    let theta = wrap_angle(x[0]);
-    let (cos, sin) = if theta.to_bits() == x[0].to_bits() {
+    let theta = wrap_angle(iterate[0]);
+    let (cos, sin) = if theta.to_bits() == iterate[0].to_bits() {
         cs
     } else {
         cos_sin(theta)
     };
-    let w = v2(x[1], x[2]);
+    let w = v2(iterate[1], iterate[2]);
     let res = max_residual(contacts, locs, cos, sin, w);
     if res.is_nan() || res > EPS {
         return None;
@@ -715,11 +715,11 @@ struct Found {
 
 /// SPEC 8.4: one pose when `theta` differs by <= 1e-9 and `w` by <= 1e-6,
 /// or both are tangential and within 1e-6 in both.
-fn same_pose(a: &ContactPose, b: &ContactPose) -> bool {
-    let dt = circ_dist(a.pose.theta, b.pose.theta);
-    let dw = (a.w - b.w).norm();
+fn same_pose(pose: &ContactPose, other: &ContactPose) -> bool {
+    let dt = circ_dist(pose.pose.theta, other.pose.theta);
+    let dw = (pose.w - other.w).norm();
     (dt <= EPS && dw <= BORDERLINE)
-        || (a.tangential && b.tangential && dt <= BORDERLINE && dw <= BORDERLINE)
+        || (pose.tangential && other.tangential && dt <= BORDERLINE && dw <= BORDERLINE)
 }
 
 impl Found {
@@ -733,12 +733,12 @@ impl Found {
 
     /// Adds a solution, or keeps the better-satisfied of it and the pose it
     /// duplicates (tangential if either is).
-    fn insert(&mut self, p: ContactPose, res: f64) {
+    fn insert(&mut self, pose: ContactPose, res: f64) {
         for i in 0..self.n {
-            if same_pose(&self.poses[i], &p) {
-                let tangential = self.poses[i].tangential || p.tangential;
+            if same_pose(&self.poses[i], &pose) {
+                let tangential = self.poses[i].tangential || pose.tangential;
                 if res < self.res[i] {
-                    self.poses[i] = p;
+                    self.poses[i] = pose;
                     self.res[i] = res;
                 }
                 self.poses[i].tangential = tangential;
@@ -747,7 +747,7 @@ impl Found {
         }
         debug_assert!(self.n < FOUND_CAP, "too many distinct solutions");
         if self.n < FOUND_CAP {
-            self.poses[self.n] = p;
+            self.poses[self.n] = pose;
             self.res[self.n] = res;
             self.n += 1;
         }

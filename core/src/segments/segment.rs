@@ -4,8 +4,6 @@
 
 use crate::geometry::arc::{arc_arc_closest, segment_arc_closest, CircArc, GrownArc};
 use crate::geometry::{segment_segment_dist2, EPS, V2};
-use crate::poses::contact_pose::{Circle, Contact};
-use crate::poses::pose::Line;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -111,25 +109,6 @@ impl Segment {
         match &self.feature {
             Feature::Line(l) => -l.n,
             Feature::Arc(a) => arc_inward_normal(a.center, a.radius, a.is_convex(), p),
-        }
-    }
-
-    /// What the pose solver puts a locator centre on.
-    pub fn contact(&self) -> Contact {
-        match &self.feature {
-            Feature::Line(l) => Contact::Line(Line { n: l.n, c: l.c }),
-            Feature::Arc(a) => Contact::Circle(Circle {
-                centre: a.center,
-                radius: a.radius,
-            }),
-        }
-    }
-
-    /// Angle of a line segment's direction `u` (0 on an arc).
-    pub fn direction_angle(&self) -> f64 {
-        match &self.feature {
-            Feature::Line(l) => l.u.y.atan2(l.u.x),
-            Feature::Arc(_) => 0.0,
         }
     }
 

@@ -22,8 +22,9 @@
 
 use super::pieces::{LinePiece, Quad, ThirdPiece, MAX_CHORDS, QUAD_SLACK, S_SLACK};
 use crate::geometry::angle_set::{rem_tau, AngleSet};
+use crate::geometry::arc::GrownArc;
 use crate::geometry::{cross, rot, V2};
-use crate::segments::{Feature, Segment};
+use crate::segments::Segment;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Angle slack of the bands, radians (as for two lines).
@@ -46,7 +47,7 @@ const ARC_TARGET_MARGIN: f64 = 0.25;
 /// An arc segment as a pivot: its grown circle and the directions from the
 /// centre its contacts may take.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct ArcPiece {
+pub(crate) struct ArcPiece {
     center: V2,
     radius: f64,
     /// Contact directions `[beta0, beta1]`, `beta0 <= beta1`.
@@ -54,10 +55,9 @@ pub(super) struct ArcPiece {
 }
 
 impl ArcPiece {
-    pub(super) fn of(seg: &Segment) -> Option<ArcPiece> {
-        let Feature::Arc(arc) = &seg.feature else {
-            return None;
-        };
+    /// Segment `seg`, which lies on `arc`; `None` for an arc of no radius,
+    /// which no sweep pivots on.
+    pub(super) fn of(seg: &Segment, arc: &GrownArc) -> Option<ArcPiece> {
         if arc.radius.is_nan() || arc.radius <= 0.0 {
             return None;
         }
@@ -99,9 +99,12 @@ impl Sinusoid {
 /// What one combination pivoting on line `p` and arc `q` needs.
 #[derive(Debug, Clone, Copy)]
 pub struct LineArcSweep<'s> {
-    p: &'s LinePiece,
-    q: &'s ArcPiece,
-    c: &'s ThirdPiece,
+    /// The pivot's line `p`.
+    line: &'s LinePiece,
+    /// The pivot's arc `q`.
+    arc: &'s ArcPiece,
+    /// The third segment.
+    third: &'s ThirdPiece,
     /// `n . (C - o)` and `u . (C - o)`.
     gc: f64,
     hc: f64,
@@ -147,26 +150,27 @@ impl ArcPoint {
 }
 
 impl<'s> LineArcSweep<'s> {
-    /// `p` a line and `q` an arc, else `None`; `dmax_pc` bounds the
-    /// distance between points of `p` and `c`.
+    /// The sweep pivoting on `line` (`p`) then `arc` (`q`), with `third`
+    /// swept; `dmax_pc` bounds the distance between points of `p` and
+    /// `third`.
     pub(super) fn new(
-        p: &'s LinePiece,
-        q: &'s ArcPiece,
-        c: &'s ThirdPiece,
+        line: &'s LinePiece,
+        arc: &'s ArcPiece,
+        third: &'s ThirdPiece,
         dmax_pc: f64,
     ) -> LineArcSweep<'s> {
-        let (u, n) = (p.line.u, p.line.n);
-        let co = q.center - p.line.origin;
+        let (u, n) = (line.line.u, line.line.n);
+        let co = arc.center - line.line.origin;
         LineArcSweep {
-            p,
-            q,
-            c,
+            line,
+            arc,
+            third,
             gc: n.dot(&co),
             hc: u.dot(&co),
             psi_n: n.y.atan2(n.x),
-            psi_u: p.direction,
+            psi_u: line.direction,
             nu: cross(u, n).signum(),
-            rmax: dmax_pc + c.margin + 2.0 * S_SLACK + 1e-6,
+            rmax: dmax_pc + third.margin + 2.0 * S_SLACK + 1e-6,
         }
     }
 
@@ -197,7 +201,7 @@ impl<'s> LineArcSweep<'s> {
         };
         for sigma in [1.0, -1.0] {
             for [m0, m1] in self.mu_ranges(sigma).into_iter().flatten() {
-                let rho = self.q.radius;
+                let rho = self.arc.radius;
                 let (g0, g1) = (rho * m0.sin() - S_SLACK, rho * m1.sin() + S_SLACK);
                 let angles = AngleSet::sinusoid_band(g.alpha, g.amp, g.phi, g0, g1, ANGLE_SLACK);
                 if !angles.is_empty() {
@@ -214,7 +218,7 @@ impl<'s> LineArcSweep<'s> {
     /// contact of branch `sigma` lies on the arc: its direction is `psi_u -
     /// nu mu` (`sigma = 1`) or `psi_u + nu (mu + pi)` (`sigma = -1`).
     fn mu_ranges(&self, sigma: f64) -> [Option<[f64; 2]>; 3] {
-        let [b0, b1] = self.q.beta;
+        let [b0, b1] = self.arc.beta;
         // direction in [b0, b1] as a range of nu-signed offsets.
         let (lo, hi) = if sigma > 0.0 {
             (b0 - self.psi_u, b1 - self.psi_u)
@@ -227,7 +231,7 @@ impl<'s> LineArcSweep<'s> {
         // nu * mu (sigma = -1) or -nu * mu (sigma = 1) lies in [lo, hi].
         let sign = if sigma > 0.0 { -self.nu } else { self.nu };
         let (m0, m1) = if sign > 0.0 { (lo, hi) } else { (-hi, -lo) };
-        let slack = 1e-7 + S_SLACK / self.q.radius;
+        let slack = 1e-7 + S_SLACK / self.arc.radius;
         // An interval of at most a turn meets a half turn at most twice.
         let mut out = [None; 3];
         let mut k = 0;
@@ -287,13 +291,13 @@ impl<'s> LineArcSweep<'s> {
             return self.cover(pt, sigma, t0, m, budget, out)
                 && self.cover(pt, sigma, m, t1, budget, out);
         }
-        let x1 = self.p.point(0.5 * (lo + hi));
+        let x1 = self.line.point(0.5 * (lo + hi));
         let mut ends = [[V2::zeros(); MAX_CHORDS + 1]; 2];
         for (e, t) in ends.iter_mut().zip([t0, t1]) {
             let (sin, cos) = t.sin_cos();
-            self.c.map_into(|y| rot(cos, sin, y - x1), e);
+            self.third.map_into(|y| rot(cos, sin, y - x1), e);
         }
-        self.c
+        self.third
             .push_quads(&ends[0], &ends[1], margin + QUAD_SLACK, out);
         true
     }
@@ -302,7 +306,7 @@ impl<'s> LineArcSweep<'s> {
     /// branch `sigma`, within the segment (with slack); `None` when it
     /// misses the segment.
     fn contact_range(&self, pt: &ArcPoint, sigma: f64, t0: f64, t1: f64) -> Option<(f64, f64)> {
-        let rho = self.q.radius;
+        let rho = self.arc.radius;
         let (g_lo, g_hi) = pt.g.range(t0, t1);
         let (h_lo, h_hi) = pt.h.range(t0, t1);
         let g2_max = (g_lo * g_lo).max(g_hi * g_hi);
@@ -320,8 +324,8 @@ impl<'s> LineArcSweep<'s> {
         };
         // The square root's rounding: a few ulps of rho.
         let e = S_SLACK + 1e-12 * (rho + h_lo.abs().max(h_hi.abs()));
-        let lo = (s_lo - e).max(self.p.s0 - S_SLACK);
-        let hi = (s_hi + e).min(self.p.s1 + S_SLACK);
+        let lo = (s_lo - e).max(self.line.s0 - S_SLACK);
+        let hi = (s_hi + e).min(self.line.s1 + S_SLACK);
         (lo <= hi).then_some((lo, hi))
     }
 }

@@ -1,9 +1,11 @@
 //! The shapes the sweeps are made of: the pivot's line, the third segment
 //! as chords, and the grown quadrilaterals that cover a region. Shared by
-//! the sweep of two lines and that of a line and an arc.
+//! every kind of sweep; which one a segment gets is chosen in
+//! [`super::SweptSegment::of`].
 
+use crate::geometry::arc::GrownArc;
 use crate::geometry::V2;
-use crate::segments::{Feature, LineFeature, Segment};
+use crate::segments::{LineFeature, Segment};
 
 /// Contact-parameter slack of the angle sets (lattice units). The pose
 /// solver's contacts and the sinusoids here are the same quantities
@@ -27,7 +29,7 @@ pub struct Quad {
 
 /// A segment on a grown line with its contact range.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct LinePiece {
+pub(crate) struct LinePiece {
     pub(super) line: LineFeature,
     pub(super) s0: f64,
     pub(super) s1: f64,
@@ -36,15 +38,13 @@ pub(super) struct LinePiece {
 }
 
 impl LinePiece {
-    pub(super) fn of(s: &Segment) -> Option<LinePiece> {
-        match s.feature {
-            Feature::Line(line) => Some(LinePiece {
-                line,
-                s0: s.s0,
-                s1: s.s1,
-                direction: s.direction_angle(),
-            }),
-            Feature::Arc(_) => None,
+    /// Segment `seg`, which lies on `line`.
+    pub(super) fn of(seg: &Segment, line: LineFeature) -> LinePiece {
+        LinePiece {
+            line,
+            s0: seg.s0,
+            s1: seg.s1,
+            direction: line.u.y.atan2(line.u.x),
         }
     }
 
@@ -69,18 +69,24 @@ pub(super) struct ThirdPiece {
 }
 
 impl ThirdPiece {
-    pub(super) fn of(seg: &Segment) -> ThirdPiece {
+    /// A line segment: itself, one chord.
+    pub(super) fn straight(seg: &Segment) -> ThirdPiece {
+        ThirdPiece::of_chords(seg, 1, 0.0)
+    }
+
+    /// A segment of `arc`: chords of at most an eighth of a turn, within
+    /// their sagitta.
+    pub(super) fn chords(seg: &Segment, arc: &GrownArc) -> ThirdPiece {
+        let len = seg.s1 - seg.s0;
+        let eighth = arc.radius * std::f64::consts::FRAC_PI_4;
+        let count = ((len / eighth).ceil() as usize).clamp(1, MAX_CHORDS);
+        let half_angle = len / count as f64 / arc.radius / 2.0;
+        ThirdPiece::of_chords(seg, count, arc.radius * (1.0 - half_angle.cos()) + 1e-9)
+    }
+
+    /// `chords` equal pieces of `seg` (by its parameter), `margin` from it.
+    fn of_chords(seg: &Segment, chords: usize, margin: f64) -> ThirdPiece {
         let mut pts = [V2::zeros(); MAX_CHORDS + 1];
-        let (chords, margin) = match &seg.feature {
-            Feature::Line(_) => (1, 0.0),
-            Feature::Arc(arc) => {
-                let len = seg.s1 - seg.s0;
-                let eighth = arc.radius * std::f64::consts::FRAC_PI_4;
-                let k = ((len / eighth).ceil() as usize).clamp(1, MAX_CHORDS);
-                let half_angle = len / k as f64 / arc.radius / 2.0;
-                (k, arc.radius * (1.0 - half_angle.cos()) + 1e-9)
-            }
-        };
         for (j, p) in pts.iter_mut().enumerate().take(chords + 1) {
             let s = if j == chords {
                 seg.s1
@@ -113,11 +119,11 @@ impl ThirdPiece {
         }
     }
 
-    /// The chord points under the map `f`, into `out`.
+    /// The chord points under `map`, into `out`.
     #[inline]
-    pub(super) fn map_into(&self, f: impl Fn(V2) -> V2, out: &mut [V2; MAX_CHORDS + 1]) {
+    pub(super) fn map_into(&self, map: impl Fn(V2) -> V2, out: &mut [V2; MAX_CHORDS + 1]) {
         for (o, p) in out.iter_mut().zip(&self.pts).take(self.chords + 1) {
-            *o = f(*p);
+            *o = map(*p);
         }
     }
 }

@@ -129,9 +129,12 @@ const START_SIN: [f64; START] = [
 /// correction (at most 0.22) is within 0.6 eps and the final sum adds at
 /// most eps / 2: within 2 eps of the true values all told, against libm's
 /// 1 ulp, and the same `f64` angle is evaluated.
-fn cos_sin_near(t: f64, i: usize) -> (f64, f64) {
-    let d = t - START_MID[i];
-    debug_assert!(d.abs() <= 0.5 * STEP * (1.0 + 1e-12), "{t} outside {i}");
+fn cos_sin_near(theta: f64, start: usize) -> (f64, f64) {
+    let d = theta - START_MID[start];
+    debug_assert!(
+        d.abs() <= 0.5 * STEP * (1.0 + 1e-12),
+        "{theta} outside {start}"
+    );
     let z = d * d;
     let cm = z
         * (-1.0 / 2.0
@@ -144,7 +147,7 @@ fn cos_sin_near(t: f64, i: usize) -> (f64, f64) {
         * (-1.0 / 6.0
             + z * (1.0 / 120.0
                 + z * (-1.0 / 5_040.0 + z * (1.0 / 362_880.0 + z * (-1.0 / 39_916_800.0)))));
-    let (c0, s0) = (START_COS[i], START_SIN[i]);
+    let (c0, s0) = (START_COS[start], START_SIN[start]);
     (c0 + (c0 * cm - s0 * sd), s0 + (s0 * cm + c0 * sd))
 }
 
@@ -156,14 +159,14 @@ pub(super) struct Trig {
 }
 
 /// Fourier coefficient `j` (cosine and sine parts) of 16 equispaced samples.
-fn harmonic(samples: &[f64; SAMPLES], j: usize) -> (f64, f64) {
+fn harmonic(samples: &[f64; SAMPLES], order: usize) -> (f64, f64) {
     let (mut ca, mut sb) = (0.0, 0.0);
     for (m, &x) in samples.iter().enumerate() {
-        let k = (j * m) % SAMPLES;
+        let k = (order * m) % SAMPLES;
         ca += x * COS16[k];
         sb += x * SIN16[k];
     }
-    scaled((ca, sb), j)
+    scaled((ca, sb), order)
 }
 
 /// The sums of [`harmonic`] for a constant `J`, written out term by term so
@@ -260,9 +263,9 @@ impl Trig {
     }
 
     /// `sum_j j^p (|a_j| + |b_j|)`: bounds `|f^(p)|` everywhere.
-    fn bound(&self, p: i32) -> f64 {
+    fn bound(&self, power: i32) -> f64 {
         (1..=DEG)
-            .map(|j| (j as f64).powi(p) * (self.a[j].abs() + self.b[j].abs()))
+            .map(|j| (j as f64).powi(power) * (self.a[j].abs() + self.b[j].abs()))
             .sum()
     }
 
@@ -273,18 +276,18 @@ impl Trig {
     /// so a root at exactly `theta = 0` (common: an axis-aligned part on
     /// the lattice) would otherwise read as a tiny value of the same sign
     /// as its neighbour at both ends of the circle and be missed.
-    pub fn eval3(&self, t: f64) -> (f64, f64, f64) {
-        let t = if t == TAU { 0.0 } else { t };
-        let (s1, c1) = t.sin_cos();
+    pub fn eval3(&self, theta: f64) -> (f64, f64, f64) {
+        let theta = if theta == TAU { 0.0 } else { theta };
+        let (s1, c1) = theta.sin_cos();
         self.eval3_cs(c1, s1)
     }
 
-    /// [`Trig::eval3`] at the angle with cosine `c1` and sine `s1`.
-    fn eval3_cs(&self, c1: f64, s1: f64) -> (f64, f64, f64) {
+    /// [`Trig::eval3`] at the angle with cosine `cos` and sine `sin`.
+    fn eval3_cs(&self, cos: f64, sin: f64) -> (f64, f64, f64) {
         let (mut c, mut s) = (1.0, 0.0);
         let (mut f, mut d1, mut d2) = (self.a[0], 0.0, 0.0);
         for j in 1..=DEG {
-            (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+            (c, s) = (c * cos - s * sin, s * cos + c * sin);
             let jf = j as f64;
             let (cc, ss) = (self.a[j] * c, self.b[j] * s);
             f += cc + ss;
@@ -294,24 +297,24 @@ impl Trig {
         (f, d1, d2)
     }
 
-    fn value(&self, t: f64) -> f64 {
-        self.eval3(t).0
+    fn value(&self, theta: f64) -> f64 {
+        self.eval3(theta).0
     }
 }
 
 /// The roots of a polynomial of degree <= 1 (`a[0] + a[1] cos t + b[1] sin
 /// t`; higher harmonics, rounding noise for the callers, are ignored), in
 /// closed form; a double root when the line only touches the circle.
-pub(super) fn linear_roots(f: &Trig, out: &mut Angles) {
-    let r = f.a[1].hypot(f.b[1]);
+pub(super) fn linear_roots(poly: &Trig, out: &mut Angles) {
+    let r = poly.a[1].hypot(poly.b[1]);
     if r == 0.0 {
         return;
     }
-    let x = -f.a[0] / r;
+    let x = -poly.a[0] / r;
     if x.abs() > 1.0 + 1e-12 {
         return;
     }
-    let phi = f.b[1].atan2(f.a[1]);
+    let phi = poly.b[1].atan2(poly.a[1]);
     let delta = x.clamp(-1.0, 1.0).acos();
     out.push(rem_tau(phi - delta));
     out.push(rem_tau(phi + delta));
@@ -340,18 +343,21 @@ impl Angles {
     }
 
     /// Adds `t` unless an angle within 1e-12 (around the circle) is listed.
-    pub fn push(&mut self, t: f64) {
-        if !t.is_finite() {
+    pub fn push(&mut self, angle: f64) {
+        if !angle.is_finite() {
             return;
         }
-        if self.v[..self.n].iter().any(|&u| circ_dist(u, t) <= 1e-12) {
+        if self.v[..self.n]
+            .iter()
+            .any(|&u| circ_dist(u, angle) <= 1e-12)
+        {
             return;
         }
         if self.n == ANGLE_CAP {
             self.overflow = true;
             return;
         }
-        self.v[self.n] = t;
+        self.v[self.n] = angle;
         self.n += 1;
     }
 
@@ -361,19 +367,24 @@ impl Angles {
 }
 
 /// Distance between two angles around the circle.
-pub(super) fn circ_dist(a: f64, b: f64) -> f64 {
-    let d = rem_tau(a - b);
+pub(super) fn circ_dist(angle: f64, other: f64) -> f64 {
+    let d = rem_tau(angle - other);
     d.min(TAU - d)
 }
 
-/// Root of `g` (value, derivative) in `[lo, hi]`, given that `g` changes
+/// Root of `value_slope` (value, derivative) in `[lo, hi]`, given that it changes
 /// sign there and `glo` is its value at `lo`: Newton steps, falling back to
 /// bisection whenever a step would leave the shrinking bracket.
-fn bracketed_root(g: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, glo: f64) -> f64 {
+fn bracketed_root(
+    value_slope: impl Fn(f64) -> (f64, f64),
+    mut lo: f64,
+    mut hi: f64,
+    glo: f64,
+) -> f64 {
     let neg_lo = glo < 0.0;
     let mut x = 0.5 * (lo + hi);
     for _ in 0..100 {
-        let (v, d) = g(x);
+        let (v, d) = value_slope(x);
         if v == 0.0 {
             return x;
         }
@@ -400,15 +411,15 @@ fn bracketed_root(g: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, glo: 
 
 /// The sign-change root of `f` in `[lo, hi]`, if any (the caller knows `f`
 /// is monotone there, so there is at most one).
-fn monotone_root(f: &Trig, lo: f64, hi: f64, out: &mut Angles) {
-    let (flo, fhi) = (f.value(lo), f.value(hi));
+fn monotone_root(poly: &Trig, lo: f64, hi: f64, out: &mut Angles) {
+    let (flo, fhi) = (poly.value(lo), poly.value(hi));
     if flo == 0.0 {
         out.push(lo);
     } else if fhi == 0.0 {
         out.push(hi);
     } else if (flo < 0.0) != (fhi < 0.0) {
         let g = |t: f64| {
-            let (v, d, _) = f.eval3(t);
+            let (v, d, _) = poly.eval3(t);
             (v, d)
         };
         out.push(bracketed_root(g, lo, hi, flo));
@@ -418,11 +429,11 @@ fn monotone_root(f: &Trig, lo: f64, hi: f64, out: &mut Angles) {
 /// `f` is strictly convex or concave on `[lo, hi]`: at most two roots, one
 /// on each side of the extremum, and when there is none the extremum itself
 /// is a candidate if `|f| <= tol` there (a tangency or a near miss).
-fn convex_roots(f: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
-    let (flo, dlo, _) = f.eval3(lo);
-    let (fhi, dhi, _) = f.eval3(hi);
+fn convex_roots(poly: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
+    let (flo, dlo, _) = poly.eval3(lo);
+    let (fhi, dhi, _) = poly.eval3(hi);
     if dlo != 0.0 && dhi != 0.0 && (dlo < 0.0) == (dhi < 0.0) {
-        monotone_root(f, lo, hi, out);
+        monotone_root(poly, lo, hi, out);
         return;
     }
     let tc = if dlo == 0.0 {
@@ -431,12 +442,12 @@ fn convex_roots(f: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
         hi
     } else {
         let g = |t: f64| {
-            let (_, d, dd) = f.eval3(t);
+            let (_, d, dd) = poly.eval3(t);
             (d, dd)
         };
         bracketed_root(g, lo, hi, dlo)
     };
-    let fc = f.value(tc);
+    let fc = poly.value(tc);
     let before = out.n;
     let mut side = |a: f64, b: f64, fa: f64, fb: f64| {
         if fa == 0.0 {
@@ -445,7 +456,7 @@ fn convex_roots(f: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
             out.push(b);
         } else if (fa < 0.0) != (fb < 0.0) {
             let g = |t: f64| {
-                let (v, d, _) = f.eval3(t);
+                let (v, d, _) = poly.eval3(t);
                 (v, d)
             };
             out.push(bracketed_root(g, a, b, fa));
@@ -487,25 +498,25 @@ struct Bounds {
     noise2: f64,
 }
 
-/// What [`Class`] `[lo, hi]`, inside start interval `i`, falls in.
-fn classify(f: &Trig, b: &Bounds, i: usize, lo: f64, hi: f64) -> Class {
+/// What [`Class`] `[lo, hi]`, inside start interval `start`, falls in.
+fn classify(poly: &Trig, bounds: &Bounds, start: usize, lo: f64, hi: f64) -> Class {
     let h = 0.5 * (hi - lo);
-    let (c, s) = cos_sin_near(lo + h, i);
-    let (f0, f1, f2) = f.eval3_cs(c, s);
+    let (c, s) = cos_sin_near(lo + h, start);
+    let (f0, f1, f2) = poly.eval3_cs(c, s);
     let h2 = h * h;
-    let spread = h * f1.abs() + 0.5 * h2 * f2.abs() + b.m3 * h2 * h / 6.0;
-    if f0.abs() - spread > b.tol {
+    let spread = h * f1.abs() + 0.5 * h2 * f2.abs() + bounds.m3 * h2 * h / 6.0;
+    if f0.abs() - spread > bounds.tol {
         Class::Empty
-    } else if f0.abs() + spread <= b.noise {
+    } else if f0.abs() + spread <= bounds.noise {
         Class::Flat
-    } else if f1.abs() - h * f2.abs() - 0.5 * b.m3 * h2 > b.noise1 {
+    } else if f1.abs() - h * f2.abs() - 0.5 * bounds.m3 * h2 > bounds.noise1 {
         // Most monotone intervals hold no root, which the Taylor values at
         // the ends show without evaluating there.
-        let err = b.m3 * h2 * h / 6.0 + b.noise;
+        let err = bounds.m3 * h2 * h / 6.0 + bounds.noise;
         let (flo, fhi) = (f0 - h * f1 + 0.5 * h2 * f2, f0 + h * f1 + 0.5 * h2 * f2);
         let sure = flo.abs() > err && fhi.abs() > err;
         Class::Monotone(sure.then_some((flo, fhi)))
-    } else if f2.abs() - b.m3 * h > b.noise2 {
+    } else if f2.abs() - bounds.m3 * h > bounds.noise2 {
         Class::Convex
     } else {
         Class::Split
@@ -525,9 +536,9 @@ struct Run {
 }
 
 impl Run {
-    fn add(run: &mut Option<Run>, lo: f64, hi: f64, f: &Trig, out: &mut Angles) {
+    fn add(run: &mut Option<Run>, lo: f64, hi: f64, poly: &Trig, out: &mut Angles) {
         let m = 0.5 * (lo + hi);
-        let v = f.value(m).abs();
+        let v = poly.value(m).abs();
         match run {
             Some(r) if lo <= r.end + 1e-12 => {
                 r.end = hi;
@@ -572,8 +583,8 @@ pub(super) type Within<'a> = dyn Fn(f64, f64) -> bool + 'a;
 /// counted as zero beyond it, to catch near misses. The work is
 /// bounded (`out.overflow` is set if the bound is reached, which takes a
 /// polynomial that is zero to within `tol` almost everywhere).
-pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut Angles) {
-    let m3 = f.bound(3);
+pub(super) fn roots(poly: &Trig, tol: f64, noise: f64, within: &Within, out: &mut Angles) {
+    let m3 = poly.bound(3);
     if m3 == 0.0 {
         // A constant: no isolated root (zero is a continuum, caught earlier).
         return;
@@ -584,13 +595,13 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut A
     // come within about 25 eps of the sums of their terms' magnitudes, well
     // inside the 64 eps allowed below. A coefficient error `noise` moves f'
     // by up to sum 2j noise and f'' by sum 2j^2 noise.
-    let noise = noise + 64.0 * f64::EPSILON * (f.a[0].abs() + f.bound(0));
+    let noise = noise + 64.0 * f64::EPSILON * (poly.a[0].abs() + poly.bound(0));
     let b = Bounds {
         m3,
         noise,
         tol: tol + noise,
-        noise1: 20.0 * noise + 64.0 * f64::EPSILON * f.bound(1),
-        noise2: 60.0 * noise + 64.0 * f64::EPSILON * f.bound(2),
+        noise1: 20.0 * noise + 64.0 * f64::EPSILON * poly.bound(1),
+        noise2: 60.0 * noise + 64.0 * f64::EPSILON * poly.bound(2),
     };
     let mut budget = 20_000usize;
     let mut run = None;
@@ -605,11 +616,11 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut A
             n -= 1;
             let (lo, hi) = stack[n];
             budget = budget.saturating_sub(1);
-            match classify(f, &b, i, lo, hi) {
+            match classify(poly, &b, i, lo, hi) {
                 Class::Empty => {}
                 Class::Monotone(Some((flo, fhi))) if (flo < 0.0) == (fhi < 0.0) => {}
-                Class::Monotone(_) => monotone_root(f, lo, hi, out),
-                Class::Convex => convex_roots(f, b.tol, lo, hi, out),
+                Class::Monotone(_) => monotone_root(poly, lo, hi, out),
+                Class::Convex => convex_roots(poly, b.tol, lo, hi, out),
                 Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
                     // Halves with no wanted angle are dropped unexamined:
                     // the halves kept are split exactly as before.
@@ -625,7 +636,7 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut A
                 }
                 Class::Split | Class::Flat => {
                     out.overflow |= budget == 0;
-                    Run::add(&mut run, lo, hi, f, out);
+                    Run::add(&mut run, lo, hi, poly, out);
                 }
             }
         }
@@ -637,8 +648,8 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut A
 mod tests {
     use super::*;
 
-    fn sampled(f: impl Fn(f64) -> f64) -> [f64; SAMPLES] {
-        std::array::from_fn(|m| f(TAU * m as f64 / SAMPLES as f64))
+    fn sampled(func: impl Fn(f64) -> f64) -> [f64; SAMPLES] {
+        std::array::from_fn(|m| func(TAU * m as f64 / SAMPLES as f64))
     }
 
     #[test]
@@ -696,8 +707,12 @@ mod tests {
         assert!(worst <= f64::EPSILON, "{worst:e}");
     }
 
-    fn bits(t: &Trig) -> Vec<u64> {
-        t.a.iter().chain(t.b.iter()).map(|x| x.to_bits()).collect()
+    fn bits(poly: &Trig) -> Vec<u64> {
+        poly.a
+            .iter()
+            .chain(poly.b.iter())
+            .map(|x| x.to_bits())
+            .collect()
     }
 
     #[test]
@@ -719,9 +734,9 @@ mod tests {
         assert_eq!(bits(&Trig::from_samples(&v)), want);
     }
 
-    fn found(f: &Trig, tol: f64) -> Vec<f64> {
+    fn found(poly: &Trig, tol: f64) -> Vec<f64> {
         let mut out = Angles::new();
-        roots(f, tol, 0.0, &|_, _| true, &mut out);
+        roots(poly, tol, 0.0, &|_, _| true, &mut out);
         assert!(!out.overflow);
         out.as_slice().to_vec()
     }
