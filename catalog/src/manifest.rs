@@ -338,7 +338,7 @@ fn inline_part(
 
 #[derive(serde::Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Entry {
+struct ManifestEntry {
     id: String,
     #[serde(default)]
     file: Option<PathBuf>,
@@ -579,7 +579,7 @@ fn load_entry(
         .and_then(|x| x.as_str())
         .map(str::to_string)
         .unwrap_or_else(|| format!("part #{}", i + 1));
-    let entry: Entry = match v.try_into() {
+    let entry: ManifestEntry = match v.try_into() {
         Ok(e) => e,
         Err(e) => {
             let kind = PartErrorKind::ManifestEntry {
@@ -609,7 +609,7 @@ fn load_entry(
 }
 
 /// The catalogue's read options with the entry's own choices.
-fn entry_options(entry: &Entry, ctx: &EntryContext) -> Result<ReadOptions, PartErrorKind> {
+fn entry_options(entry: &ManifestEntry, ctx: &EntryContext) -> Result<ReadOptions, PartErrorKind> {
     let mut ropts = ctx.ropts.clone();
     if let Some(t) = entry.chord_tolerance.filter(|_| !ctx.chord_tolerance_given) {
         ropts.chord_tolerance = t;
@@ -632,7 +632,7 @@ fn entry_options(entry: &Entry, ctx: &EntryContext) -> Result<ReadOptions, PartE
 
 /// Reads an entry that passed [`check_entry`].
 fn read_entry(
-    entry: &Entry,
+    entry: &ManifestEntry,
     geometry: Geometry,
     ctx: &EntryContext,
     ropts: ReadOptions,
@@ -646,7 +646,7 @@ fn read_entry(
 /// The entry's fields on their own and against the ids `seen` before it
 /// (entry `i` from 0); the id is recorded unless it is empty or taken.
 fn check_entry<'e>(
-    e: &'e Entry,
+    e: &'e ManifestEntry,
     seen: &mut HashMap<String, usize>,
     i: usize,
 ) -> Result<Geometry<'e>, EntryProblem> {

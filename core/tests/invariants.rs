@@ -12,9 +12,9 @@ use proptest::prelude::*;
 use std::collections::BTreeMap;
 use support::*;
 
-type Key = ([usize; 3], [i64; 2], [i64; 2], usize, u8, [i64; 2]);
+type FixtureKey = ([usize; 3], [i64; 2], [i64; 2], usize, u8, [i64; 2]);
 
-fn key(f: &Fixture) -> Key {
+fn key(f: &Fixture) -> FixtureKey {
     (
         f.segments,
         f.locators[1],
@@ -25,8 +25,8 @@ fn key(f: &Fixture) -> Key {
     )
 }
 
-fn by_key(fs: &[Fixture]) -> BTreeMap<Key, Vec<&Fixture>> {
-    let mut m: BTreeMap<Key, Vec<&Fixture>> = BTreeMap::new();
+fn by_key(fs: &[Fixture]) -> BTreeMap<FixtureKey, Vec<&Fixture>> {
+    let mut m: BTreeMap<FixtureKey, Vec<&Fixture>> = BTreeMap::new();
     for f in fs {
         m.entry(key(f)).or_default().push(f);
     }

@@ -32,16 +32,16 @@ fn run(cmd: &mut Command) -> Value {
     serde_json::from_slice(&out.stdout).expect("JSON result")
 }
 
-type Key = (Vec<u64>, Vec<Vec<i64>>, u64, u64, Vec<i64>, i64);
+type ReferenceKey = (Vec<u64>, Vec<Vec<i64>>, u64, u64, Vec<i64>, i64);
 
-fn fixtures(v: &Value) -> BTreeMap<Key, (f64, bool)> {
+fn fixtures(v: &Value) -> BTreeMap<ReferenceKey, (f64, bool)> {
     let mut m = BTreeMap::new();
     for f in v["fixtures"].as_array().unwrap() {
         let theta = f["pose"]["theta_deg"]
             .as_f64()
             .or(f["theta_deg"].as_f64())
             .unwrap();
-        let key: Key = (
+        let key: ReferenceKey = (
             serde_json::from_value(f["segments"].clone()).unwrap(),
             serde_json::from_value(f["locators"].clone()).unwrap(),
             f["clamp"]["segment"].as_u64().unwrap(),

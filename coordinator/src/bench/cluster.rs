@@ -84,7 +84,7 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
 }
 
 /// One measured run.
-struct Run {
+struct MeasuredRun {
     /// Start to finish (workers started, parts done, workers gone).
     wall: f64,
     /// First part out to last part out: the enumeration itself.
@@ -100,7 +100,7 @@ fn throughput(
     transport: TransportChoice,
     shard_size: Option<u64>,
     verify: VerifyPolicy,
-) -> Result<Run> {
+) -> Result<MeasuredRun> {
     let opts = ClusterOptions {
         key_prefix: fixplan_worker::host::unique_name("bench"),
         transport,
@@ -130,7 +130,7 @@ fn throughput(
         first.get_or_insert(last);
     }
     let stats = d.finish();
-    Ok(Run {
+    Ok(MeasuredRun {
         wall: t0.elapsed().as_secs_f64(),
         steady: last - first.unwrap_or(0.0),
         coordinator_cpu: crate::cluster::cpu_time::process_micros().saturating_sub(cpu0) as f64
@@ -290,7 +290,7 @@ pub fn bench_main(a: &BenchArgs) -> Result<()> {
 }
 
 /// Wall and steady times of each run, against the first (one worker).
-fn print_throughput(out: &[(&str, Run)], parts: usize) {
+fn print_throughput(out: &[(&str, MeasuredRun)], parts: usize) {
     let Some((_, base)) = out.first() else {
         return;
     };
@@ -318,7 +318,7 @@ fn print_throughput(out: &[(&str, Run)], parts: usize) {
 
 /// What the coordinator spent per shard in each run: time handling
 /// requests, bytes in and out, checks.
-fn print_coordinator(out: &[(&str, Run)]) {
+fn print_coordinator(out: &[(&str, MeasuredRun)]) {
     for (name, r) in out {
         let s = &r.stats;
         let n = s.shards.max(1) as f64;

@@ -19,9 +19,9 @@ use std::sync::Mutex;
 /// shards took (it is in the part's message, and a shard enumerated twice
 /// in the warm-up may be replayed with the other time; the merged
 /// fixtures are the same in every run of one catalogue).
-type Key = (Digest, u64, u64, Option<u64>, Option<Bytes>, Option<u64>);
+type OutcomeKey = (Digest, u64, u64, Option<u64>, Option<Bytes>, Option<u64>);
 
-fn key(a: &Assign) -> Key {
+fn key(a: &Assign) -> OutcomeKey {
     let (range, good_enough, context, merged) = match &a.task {
         Task::Enumerate { range, good_enough } => (range.clone(), *good_enough, None, None),
         Task::EnumerateAndFinish { range, context } => {
@@ -43,7 +43,7 @@ fn key(a: &Assign) -> Key {
 
 /// The key of `a`'s enumeration alone (no finish context), for a part
 /// listed many times: enumerated once, finished under each place.
-fn enumeration_key(a: &Assign) -> Key {
+fn enumeration_key(a: &Assign) -> OutcomeKey {
     let mut shard = key(a);
     shard.4 = None;
     shard
@@ -60,9 +60,9 @@ fn renamed(o: &mut Outcome, id: u64) {
 /// Task outcomes computed once, replayed after.
 #[derive(Default)]
 pub struct Replay {
-    results: Mutex<HashMap<Key, Outcome>>,
+    results: Mutex<HashMap<OutcomeKey, Outcome>>,
     /// The outcomes of enumerations by [`enumeration_key`].
-    enumerations: Mutex<HashMap<Key, Outcome>>,
+    enumerations: Mutex<HashMap<OutcomeKey, Outcome>>,
     hits: AtomicU64,
     misses: AtomicU64,
 }

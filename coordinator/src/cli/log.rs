@@ -114,7 +114,7 @@ impl<S: Subscriber> Layer<S> for LinkRefusals {
         let Some(start) = refusal_target(event) else {
             return true;
         };
-        let mut f = Fields::default();
+        let mut f = EventFields::default();
         event.record(&mut f);
         f.message.starts_with(start)
     }
@@ -162,13 +162,13 @@ impl Default for LineFormat {
 
 /// The fields of one event, sorted into the parts of the line.
 #[derive(Default)]
-struct Fields {
+struct EventFields {
     message: String,
     role: Option<String>,
     rest: String,
 }
 
-impl Visit for Fields {
+impl Visit for EventFields {
     fn record_str(&mut self, field: &Field, value: &str) {
         match field.name() {
             "message" => self.message.push_str(value),
@@ -215,7 +215,7 @@ where
         mut w: Writer<'_>,
         event: &Event<'_>,
     ) -> fmt::Result {
-        let mut f = Fields::default();
+        let mut f = EventFields::default();
         event.record(&mut f);
         let meta = event.metadata();
         let role = f.role.as_deref().unwrap_or(meta.target());

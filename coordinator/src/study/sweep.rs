@@ -74,7 +74,7 @@ pub enum ClauseError {
     #[error("{name} takes no unit {unit:?}", name = .key.name())]
     NoUnit {
         /// The clause's key.
-        key: Key,
+        key: SweepKey,
         /// The unit written.
         unit: String,
     },
@@ -133,7 +133,7 @@ pub enum ClauseError {
 
 /// What a clause sets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Key {
+pub enum SweepKey {
     /// `locator_radius` (length).
     LocatorRadius,
     /// `spacing`: the hole spacing (length).
@@ -153,15 +153,15 @@ pub enum Key {
 }
 
 /// The keys as written in a sweep, in the order the help lists them.
-pub const KEYS: &[(&str, Key)] = &[
-    ("locator_radius", Key::LocatorRadius),
-    ("spacing", Key::Spacing),
-    ("edge_trim", Key::EdgeTrim),
-    ("min_clearance", Key::MinClearance),
-    ("plate", Key::Plate),
-    ("travel", Key::Travel),
-    ("max_clamp_angle", Key::MaxClampAngle),
-    ("grid_step", Key::GridStep),
+pub const KEYS: &[(&str, SweepKey)] = &[
+    ("locator_radius", SweepKey::LocatorRadius),
+    ("spacing", SweepKey::Spacing),
+    ("edge_trim", SweepKey::EdgeTrim),
+    ("min_clearance", SweepKey::MinClearance),
+    ("plate", SweepKey::Plate),
+    ("travel", SweepKey::Travel),
+    ("max_clamp_angle", SweepKey::MaxClampAngle),
+    ("grid_step", SweepKey::GridStep),
 ];
 
 fn key_names() -> String {
@@ -169,7 +169,7 @@ fn key_names() -> String {
     names.join(", ")
 }
 
-impl Key {
+impl SweepKey {
     /// The key as written in a sweep (and in a point's label).
     pub fn name(self) -> &'static str {
         KEYS.iter()
@@ -180,14 +180,18 @@ impl Key {
     fn is_length(self) -> bool {
         matches!(
             self,
-            Key::LocatorRadius | Key::Spacing | Key::EdgeTrim | Key::MinClearance | Key::Travel
+            SweepKey::LocatorRadius
+                | SweepKey::Spacing
+                | SweepKey::EdgeTrim
+                | SweepKey::MinClearance
+                | SweepKey::Travel
         )
     }
 }
 
 /// One value of a clause, lengths already in the catalogue's unit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Value {
+pub enum SweepValue {
     /// A number: a length, an angle or a grid step.
     Num(f64),
     /// A plate, `COLS x ROWS` holes.
@@ -198,12 +202,12 @@ pub enum Value {
     TravelPair(f64, f64),
 }
 
-impl fmt::Display for Value {
+impl fmt::Display for SweepValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Value::Num(x) | Value::TravelMax(x) => write!(f, "{}", fmt_num(*x)),
-            Value::Plate(c, r) => write!(f, "{c}x{r}"),
-            Value::TravelPair(a, b) => write!(f, "{}..{}", fmt_num(*a), fmt_num(*b)),
+            SweepValue::Num(x) | SweepValue::TravelMax(x) => write!(f, "{}", fmt_num(*x)),
+            SweepValue::Plate(c, r) => write!(f, "{c}x{r}"),
+            SweepValue::TravelPair(a, b) => write!(f, "{}..{}", fmt_num(*a), fmt_num(*b)),
         }
     }
 }
@@ -222,9 +226,9 @@ fn fmt_num(x: f64) -> String {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Clause {
     /// What the clause sets.
-    pub key: Key,
+    pub key: SweepKey,
     /// The values, ranges expanded, in the order written.
-    pub values: Vec<Value>,
+    pub values: Vec<SweepValue>,
 }
 
 /// A parsed sweep.
@@ -235,7 +239,7 @@ pub struct Sweep {
 }
 
 /// One point of a sweep: a value per clause.
-pub type SweepPoint = Vec<(Key, Value)>;
+pub type SweepPoint = Vec<(SweepKey, SweepValue)>;
 
 fn round(x: f64) -> f64 {
     // Ranges accumulate rounding (0.1 + 0.2): keep 9 decimals.
@@ -336,10 +340,10 @@ fn split_unit(values: &str) -> (&str, Option<&str>) {
 }
 
 /// The factor from the clause's unit to the catalogue's `units`.
-fn unit_factor(unit: Option<&str>, key: Key, units: Units) -> Result<f64, ClauseError> {
+fn unit_factor(unit: Option<&str>, key: SweepKey, units: Units) -> Result<f64, ClauseError> {
     match (unit, key) {
         (None, _) => Ok(1.0),
-        (Some("deg"), Key::MaxClampAngle) => Ok(1.0),
+        (Some("deg"), SweepKey::MaxClampAngle) => Ok(1.0),
         (Some(u @ ("mm" | "in")), k) if k.is_length() => {
             let from = if u == "mm" { Units::Mm } else { Units::In };
             Ok(from.mm_per_unit() / units.mm_per_unit())
@@ -374,8 +378,8 @@ fn parse_clause(text: &str, units: Units) -> Result<Clause, ClauseError> {
             return Err(ClauseError::UnitInValue(item.to_string()));
         }
         match key {
-            Key::Plate => out.push(parse_plate(item)?),
-            Key::Travel => out.push(parse_travel(item, factor)?),
+            SweepKey::Plate => out.push(parse_plate(item)?),
+            SweepKey::Travel => out.push(parse_travel(item, factor)?),
             _ => out.extend(parse_numbers(key, item, factor)?),
         }
     }
@@ -383,7 +387,7 @@ fn parse_clause(text: &str, units: Units) -> Result<Clause, ClauseError> {
 }
 
 /// `COLSxROWS`, or `N` for `N x N`.
-fn parse_plate(item: &str) -> Result<Value, ClauseError> {
+fn parse_plate(item: &str) -> Result<SweepValue, ClauseError> {
     if item.contains("..") {
         return Err(ClauseError::PlateRange);
     }
@@ -394,11 +398,11 @@ fn parse_plate(item: &str) -> Result<Value, ClauseError> {
             (n, n)
         }
     };
-    Ok(Value::Plate(c, r))
+    Ok(SweepValue::Plate(c, r))
 }
 
 /// `MAX` or `MIN..MAX`, times `factor`.
-fn parse_travel(item: &str, factor: f64) -> Result<Value, ClauseError> {
+fn parse_travel(item: &str, factor: f64) -> Result<SweepValue, ClauseError> {
     if item.contains(['/', ':']) {
         return Err(ClauseError::TravelRange);
     }
@@ -408,14 +412,14 @@ fn parse_travel(item: &str, factor: f64) -> Result<Value, ClauseError> {
             if a > b {
                 return Err(ClauseError::TravelDown(item.to_string()));
             }
-            Ok(Value::TravelPair(round(a), round(b)))
+            Ok(SweepValue::TravelPair(round(a), round(b)))
         }
-        None => Ok(Value::TravelMax(round(parse_num(item)? * factor))),
+        None => Ok(SweepValue::TravelMax(round(parse_num(item)? * factor))),
     }
 }
 
 /// A number or a range, times `factor`; grid steps must come out whole.
-fn parse_numbers(key: Key, item: &str, factor: f64) -> Result<Vec<Value>, ClauseError> {
+fn parse_numbers(key: SweepKey, item: &str, factor: f64) -> Result<Vec<SweepValue>, ClauseError> {
     if item.contains('x') {
         return Err(ClauseError::NotANumber(item.to_string()));
     }
@@ -427,10 +431,10 @@ fn parse_numbers(key: Key, item: &str, factor: f64) -> Result<Vec<Value>, Clause
     nums.into_iter()
         .map(|x| {
             let x = round(x * factor);
-            if key == Key::GridStep && (x.fract() != 0.0 || x < 1.0) {
+            if key == SweepKey::GridStep && (x.fract() != 0.0 || x < 1.0) {
                 return Err(ClauseError::GridStep(x));
             }
-            Ok(Value::Num(x))
+            Ok(SweepValue::Num(x))
         })
         .collect()
 }
@@ -490,7 +494,7 @@ impl Sweep {
 }
 
 /// `key=value, key=value` of a point (lengths in the catalogue's unit).
-pub fn point_label(p: &[(Key, Value)]) -> String {
+pub fn point_label(p: &[(SweepKey, SweepValue)]) -> String {
     p.iter()
         .map(|(k, v)| format!("{}={v}", k.name()))
         .collect::<Vec<_>>()
@@ -499,23 +503,23 @@ pub fn point_label(p: &[(Key, Value)]) -> String {
 
 /// The base kit with a point applied, checked (SPEC section 1). Its name is
 /// `BASE{key=value, ...}`.
-pub fn apply(base: &KitSpec, p: &[(Key, Value)]) -> Result<KitSpec, SweepError> {
+pub fn apply(base: &KitSpec, p: &[(SweepKey, SweepValue)]) -> Result<KitSpec, SweepError> {
     let mut k = base.clone();
     k.name = format!("{}{{{}}}", base.name, point_label(p));
     for &(key, v) in p {
         match (key, v) {
-            (Key::LocatorRadius, Value::Num(x)) => k.kit.locator_radius = x,
-            (Key::Spacing, Value::Num(x)) => k.kit.spacing = x,
-            (Key::EdgeTrim, Value::Num(x)) => k.params.edge_trim = Some(x),
-            (Key::MinClearance, Value::Num(x)) => k.params.min_clearance = Some(x),
-            (Key::MaxClampAngle, Value::Num(x)) => k.params.max_clamp_angle_deg = x,
-            (Key::GridStep, Value::Num(x)) => k.params.grid_step = x as u32,
-            (Key::Plate, Value::Plate(c, r)) => {
+            (SweepKey::LocatorRadius, SweepValue::Num(x)) => k.kit.locator_radius = x,
+            (SweepKey::Spacing, SweepValue::Num(x)) => k.kit.spacing = x,
+            (SweepKey::EdgeTrim, SweepValue::Num(x)) => k.params.edge_trim = Some(x),
+            (SweepKey::MinClearance, SweepValue::Num(x)) => k.params.min_clearance = Some(x),
+            (SweepKey::MaxClampAngle, SweepValue::Num(x)) => k.params.max_clamp_angle_deg = x,
+            (SweepKey::GridStep, SweepValue::Num(x)) => k.params.grid_step = x as u32,
+            (SweepKey::Plate, SweepValue::Plate(c, r)) => {
                 k.kit.cols = c;
                 k.kit.rows = r;
             }
-            (Key::Travel, Value::TravelMax(t)) => k.kit.clamp.travel[1] = t,
-            (Key::Travel, Value::TravelPair(a, b)) => k.kit.clamp.travel = [a, b],
+            (SweepKey::Travel, SweepValue::TravelMax(t)) => k.kit.clamp.travel[1] = t,
+            (SweepKey::Travel, SweepValue::TravelPair(a, b)) => k.kit.clamp.travel = [a, b],
             (key, v) => {
                 return Err(SweepError::Kit {
                     kit: k.name.clone(),
@@ -543,7 +547,7 @@ mod tests {
             .values
             .iter()
             .map(|v| match v {
-                Value::Num(x) | Value::TravelMax(x) => *x,
+                SweepValue::Num(x) | SweepValue::TravelMax(x) => *x,
                 _ => f64::NAN,
             })
             .collect()
@@ -559,9 +563,12 @@ mod tests {
         assert_eq!(nums(&s, 0), vec![4.0, 6.0, 8.0]);
         assert_eq!(
             s.clauses[1].values,
-            vec![Value::Plate(18, 18), Value::Plate(24, 24)]
+            vec![SweepValue::Plate(18, 18), SweepValue::Plate(24, 24)]
         );
-        assert_eq!(s.clauses[2].values, vec![Value::TravelPair(30.0, 70.0)]);
+        assert_eq!(
+            s.clauses[2].values,
+            vec![SweepValue::TravelPair(30.0, 70.0)]
+        );
         assert_eq!(s.points().len(), 6);
         assert_eq!(
             point_label(&s.points()[1]),
@@ -580,9 +587,9 @@ mod tests {
         assert_eq!(nums(&s, 0), vec![6.35]);
         let s = Sweep::parse("locator_radius=6.35 mm; travel=2", Units::In).unwrap();
         assert_eq!(nums(&s, 0), vec![0.25]);
-        assert_eq!(s.clauses[1].values, vec![Value::TravelMax(2.0)]);
+        assert_eq!(s.clauses[1].values, vec![SweepValue::TravelMax(2.0)]);
         let s = Sweep::parse("plate=20; grid_step=1..3:1;", Units::Mm).unwrap();
-        assert_eq!(s.clauses[0].values, vec![Value::Plate(20, 20)]);
+        assert_eq!(s.clauses[0].values, vec![SweepValue::Plate(20, 20)]);
         assert_eq!(nums(&s, 1), vec![1.0, 2.0, 3.0]);
         assert_eq!(s.points().len(), 3);
     }
