@@ -457,7 +457,15 @@ def reference(name, opts):
         outer.sort(key=lambda m: (round(m[0][2][0], 3), round(m[0][2][1], 3)))
     else:
         outer = measured[:1]
-    parts = [{"area_mm2": abs(a), "perimeter_mm": p, "bbox_mm": b} for (a, p, b), _ in outer]
+    # A part's holes: the loops whose smallest enclosing loop is the
+    # part's outline (SPEC 9; loops inside a hole are not counted).
+    parent = []
+    for i, m in enumerate(measured):
+        parent.append(next((j for j in range(i - 1, -1, -1) if inside(m, measured[j])), None))
+    index = {id(m): i for i, m in enumerate(measured)}
+    parts = [{"area_mm2": abs(a), "perimeter_mm": p, "bbox_mm": b,
+              "holes": sum(1 for q in parent if q == index[id(o)])}
+             for o in outer for (a, p, b) in [o[0]]]
     return {
         "file": name,
         "options": opts,

@@ -127,6 +127,11 @@ pub enum EntryProblem {
     /// Neither `file` nor `outline`.
     #[error("no file and no outline")]
     NoFileNorOutline,
+    /// `holes` beside `file`: a file's holes are the loops it draws.
+    #[error(
+        "holes go with an inline outline; a file's holes are the loops drawn inside its outline"
+    )]
+    HolesWithFile,
     /// A negative or non-finite `quantity`.
     #[error("quantity {0} must be a non-negative number")]
     Quantity(f64),

@@ -53,7 +53,7 @@ pub use manifest::{load_catalog, load_catalog_with, Catalog, CatalogPart, LoadOp
 pub use part::{
     parse_part, read_dxf, read_dxf_parts, read_json, read_parts, read_raw, read_svg,
     read_svg_parts, validate_part, write_dxf, write_json, write_svg, ArcMode, DxfError, Format,
-    InvalidPolygon, JsonError, LayerFilter, LimitExceeded, Limits, OpenCause, ParseError,
+    HoleMode, InvalidPolygon, JsonError, LayerFilter, LimitExceeded, Limits, OpenCause, ParseError,
     PolygonProblem, PolygonRole, RawPart, ReadError, ReadOptions, SvgError,
 };
 pub use units::LengthUnit;

@@ -4,8 +4,8 @@
 
 use crate::error::{part_name, CatalogError, EntryProblem, PartError, PartErrorKind};
 use crate::part::{
-    flatten_vertices, read_parts, validate_part, ArcMode, Format, LayerFilter, Limits, RawPart,
-    ReadError, ReadOptions,
+    flatten_vertices, keep_holes, read_parts, validate_part, ArcMode, Format, HoleMode,
+    LayerFilter, Limits, RawPart, ReadError, ReadOptions,
 };
 use crate::units::{self, LengthUnit};
 use fixplan_core::{Part, Units, Vertex};
@@ -104,6 +104,9 @@ pub struct LoadOptions {
     /// Every file is a sheet: each outer loop a part of its own (`id#1`,
     /// `id#2`, ...). Overrides the manifest's `sheet` and its entries'.
     pub sheet: Option<bool>,
+    /// Holes kept (SPEC 9) or dropped with a warning, for comparison.
+    /// Overrides the manifest's `holes`; default kept.
+    pub holes: Option<HoleMode>,
 }
 
 /// The manifest's file name, looked for when a directory is given.
@@ -154,6 +157,7 @@ fn read_options(units: Units, opts: &LoadOptions, manifest: &Header) -> ReadOpti
     }
     r.arcs = opts.arcs.or(manifest.arcs).unwrap_or_default();
     r.sheet = opts.sheet.or(manifest.sheet).unwrap_or(false);
+    r.holes = opts.holes.or(manifest.holes).unwrap_or_default();
     r.layers = manifest.layers.clone();
     r.limits = manifest.limits;
     r
@@ -300,7 +304,7 @@ fn read_file_parts(path: &Path, ropts: &ReadOptions, extra_access: &[Vec<[f64; 2
 fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErrorKind> {
     let read = Part {
         outline: raw.outline.clone(),
-        holes: Vec::new(),
+        holes: raw.holes.clone(),
         access: raw.access.clone(),
     };
     validate_part(raw, units).map_err(|problem| PartErrorKind::Invalid {
@@ -309,29 +313,41 @@ fn validated(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), PartErro
     })
 }
 
-/// Validates an entry's inline outline (`[x, y]` or `[x, y, bulge]`
-/// vertices, arcs flattened with [`ArcMode::Flatten`]) and access
-/// polygons, given in the entry's units (`ropts.fallback`), else the
-/// catalogue's.
+/// Validates an entry's inline outline and holes (`[x, y]` or
+/// `[x, y, bulge]` vertices, arcs flattened with [`ArcMode::Flatten`],
+/// holes dropped with [`HoleMode::Ignore`]) and access polygons, given in
+/// the entry's units (`ropts.fallback`), else the catalogue's.
 fn inline_part(
     outline: &[Vertex],
+    holes: &[Vec<Vertex>],
     access: &[Vec<[f64; 2]>],
     ropts: &ReadOptions,
 ) -> Result<(Part, Vec<String>), PartErrorKind> {
     let k = ropts.fallback.factor_to(ropts.units);
     let sc = |p: &[[f64; 2]]| p.iter().map(|q| [q[0] * k, q[1] * k]).collect();
-    let mut outline: Vec<Vertex> = outline
+    let scaled = |l: &[Vertex]| {
+        let l: Vec<Vertex> = l
+            .iter()
+            .map(|v| Vertex::new(v.x * k, v.y * k, v.bulge))
+            .collect();
+        if ropts.arcs.flatten() {
+            flatten_vertices(&l, true, ropts.chord_tolerance)
+        } else {
+            l
+        }
+    };
+    let mut warnings = Vec::new();
+    let named = holes
         .iter()
-        .map(|v| Vertex::new(v.x * k, v.y * k, v.bulge))
+        .enumerate()
+        .map(|(k, h)| (scaled(h), format!("hole {k}")))
         .collect();
-    if ropts.arcs.flatten() {
-        outline = flatten_vertices(&outline, true, ropts.chord_tolerance);
-    }
+    let holes = keep_holes(ropts.holes, named, &mut warnings, ropts.units);
     let raw = RawPart {
-        outline,
+        outline: scaled(outline),
         access: access.iter().map(|a| sc(a)).collect(),
-        warnings: Vec::new(),
-        inner: Vec::new(),
+        warnings,
+        holes,
     };
     validated(raw, ropts.units)
 }
@@ -344,6 +360,8 @@ struct ManifestEntry {
     file: Option<PathBuf>,
     #[serde(default)]
     outline: Option<Vec<Vertex>>,
+    #[serde(default)]
+    holes: Vec<Vec<Vertex>>,
     #[serde(default)]
     access: Vec<Vec<[f64; 2]>>,
     #[serde(default)]
@@ -364,10 +382,11 @@ struct ManifestEntry {
     ignore_layers: Option<Vec<String>>,
 }
 
-/// Where an entry's polygons come from.
+/// Where an entry's polygons come from: a file, or an inline outline and
+/// its holes.
 enum Geometry<'a> {
     File(&'a Path),
-    Outline(&'a [Vertex]),
+    Outline(&'a [Vertex], &'a [Vec<Vertex>]),
 }
 
 /// The manifest's top-level fields.
@@ -379,6 +398,7 @@ struct Header {
     join_tolerance: Option<f64>,
     arcs: Option<ArcMode>,
     sheet: Option<bool>,
+    holes: Option<HoleMode>,
     layers: LayerFilter,
     limits: Limits,
     entries: Vec<toml::Value>,
@@ -473,6 +493,7 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
         Some(toml::Value::Boolean(b)) => Some(b),
         Some(v) => return Err(invalid(path, format!("sheet {v} must be true or false"))),
     };
+    let holes = read_holes(table.remove("holes"), path)?;
     let layers = LayerFilter {
         read: string_list(table.remove("layers"), "layers").map_err(|m| invalid(path, m))?,
         ignore: string_list(table.remove("ignore_layers"), "ignore_layers")
@@ -496,7 +517,7 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
     if let Some(k) = table.keys().next() {
         return Err(invalid(
             path,
-            format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, join_tolerance, arcs, sheet, layers, ignore_layers, limits, part)"),
+            format!("unknown manifest field \"{k}\" (expected name, units, chord_tolerance, join_tolerance, arcs, sheet, holes, layers, ignore_layers, limits, part)"),
         ));
     }
     Ok(Header {
@@ -506,9 +527,21 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
         join_tolerance,
         arcs,
         sheet,
+        holes,
         layers,
         limits,
         entries,
+    })
+}
+
+/// The manifest's `holes`: `"keep"` or `"ignore"`.
+fn read_holes(v: Option<toml::Value>, path: &Path) -> Result<Option<HoleMode>, CatalogError> {
+    let Some(v) = v else { return Ok(None) };
+    v.as_str().and_then(HoleMode::parse).map(Some).ok_or_else(|| {
+        invalid(
+            path,
+            format!("holes = {v}: expected \"keep\" (loops inside a part are its holes, the default) or \"ignore\" (dropped with a warning, as before holes)"),
+        )
     })
 }
 
@@ -639,7 +672,9 @@ fn read_entry(
 ) -> FileParts {
     match geometry {
         Geometry::File(f) => read_file_parts(&ctx.base.join(f), &ropts, &entry.access),
-        Geometry::Outline(outline) => Ok(vec![inline_part(outline, &entry.access, &ropts)]),
+        Geometry::Outline(outline, holes) => {
+            Ok(vec![inline_part(outline, holes, &entry.access, &ropts)])
+        }
     }
 }
 
@@ -663,8 +698,9 @@ fn check_entry<'e>(
     let geometry = match (&e.file, &e.outline) {
         (Some(_), Some(_)) => return Err(EntryProblem::FileAndOutline),
         (None, None) => return Err(EntryProblem::NoFileNorOutline),
+        (Some(_), None) if !e.holes.is_empty() => return Err(EntryProblem::HolesWithFile),
         (Some(f), None) => Geometry::File(f),
-        (None, Some(o)) => Geometry::Outline(o),
+        (None, Some(o)) => Geometry::Outline(o, &e.holes),
     };
     if let Some(q) = e.quantity.filter(|q| !(q.is_finite() && *q >= 0.0)) {
         return Err(EntryProblem::Quantity(q));

@@ -9,7 +9,8 @@
 mod common;
 use common::*;
 use fixplan_catalog::{
-    load_catalog, load_catalog_with, parse_part, Catalog, Format, LoadOptions, ReadOptions,
+    load_catalog, load_catalog_with, parse_part, Catalog, Format, HoleMode, LoadOptions,
+    ReadOptions,
 };
 use fixplan_core::parts::mass_properties;
 use fixplan_core::Units;
@@ -284,11 +285,9 @@ fn holes_centred_on_round_ends_are_inside_either_way_round() {
         let (p, w) = read(&drawing(false, "", &body)).unwrap_or_else(|e| panic!("{vertical}: {e}"));
         let want = 800.0 + std::f64::consts::PI * 100.0;
         assert!(close(area_of(&p), want, 1e-9));
-        assert_eq!(
-            w.iter().filter(|m| m.contains("a loop inside")).count(),
-            2,
-            "{w:?}"
-        );
+        // The two bores are the part's holes (SPEC 9), with no warning.
+        assert_eq!(p.holes.len(), 2, "{w:?}");
+        assert!(!w.iter().any(|m| m.contains("a loop inside")), "{w:?}");
     }
 }
 
@@ -327,6 +326,18 @@ fn inserts_place_their_blocks_in_r12_and_r2000_files() {
         // The hole's first point (7, 5) is 2 right of the base: doubled
         // and turned, 4 above the insertion point. Block entities on layer
         // 0 take the INSERT's layer.
+        assert_eq!(p.holes.len(), 1, "r12 {r12}: {w:?}");
+        let first = p.holes[0][0];
+        assert!(
+            close(first.x, 100.0, 1e-9) && close(first.y, 54.0, 1e-9),
+            "{first:?}"
+        );
+        let ignoring = ReadOptions {
+            holes: HoleMode::Ignore,
+            ..opts_mm()
+        };
+        let text = drawing(r12, &sq_block(r12), &body);
+        let (_, w) = parse_part(text.as_bytes(), Format::Dxf, &ignoring).unwrap();
         let hole = w.iter().find(|m| m.contains("a loop inside")).unwrap();
         assert!(hole.contains("near (100, 54) mm"), "{hole}");
         assert!(
@@ -443,14 +454,7 @@ fn a_sheet_gives_every_outer_loop_as_a_part_in_position_order() {
     assert_eq!(xs, [95.0, 125.0, 155.0]);
     assert!(cat.parts.iter().all(|p| p.quantity == 7.0));
     // Each array square keeps its own hole.
-    assert_eq!(
-        cat.parts[2]
-            .warnings
-            .iter()
-            .filter(|w| w.contains("a loop inside"))
-            .count(),
-        1
-    );
+    assert_eq!(cat.parts[2].part.as_ref().unwrap().holes.len(), 1);
     // Without `sheet`, the caller's option does the same; a directory too.
     write(
         &d,

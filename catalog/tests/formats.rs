@@ -46,11 +46,12 @@ fn dxf_r2000_inches_crlf_paper_space_hole_and_keepout() {
     assert!(close(b[2] - b[0], 76.2, 1e-9), "{b:?}");
     assert_eq!(part.access.len(), 1, "layer KeepOut, any case");
     assert!(close(bbox(&part.access[0])[0], 12.7, 1e-9));
+    // The CIRCLE inside the outline is the part's hole (SPEC 9).
+    assert_eq!(part.holes.len(), 1, "{warnings:?}");
     assert!(
-        warnings
-            .iter()
-            .any(|w| w.contains("CIRCLE") && w.contains("hole")),
-        "{warnings:?}"
+        part.holes[0].iter().all(|v| v.bulge == 1.0),
+        "{:?}",
+        part.holes
     );
     // Read into an inch catalogue, the same file is in inches.
     let (p_in, _) = parse_part(&bytes, Format::Dxf, &ReadOptions::new(Units::In)).unwrap();
@@ -161,7 +162,8 @@ fn svg_inkscape_style_file() {
     assert!(close(b[3], -5.0, 1e-9) && close(b[1], -55.0, 1e-9), "{b:?}");
     assert_eq!(part.access.len(), 1, "id keepout-1");
     assert!(close(bbox(&part.access[0])[3], 0.0, 1e-9));
-    assert!(warnings.iter().any(|w| w.contains("bore")), "{warnings:?}");
+    // The circle with id "bore" is the part's hole (SPEC 9).
+    assert_eq!(part.holes.len(), 1, "{warnings:?}");
     // The rounded corner (a cubic) is flattened, not dropped.
     assert!(part.outline.len() > 5);
 }

@@ -27,16 +27,18 @@ fn real_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/real")
 }
 
-/// Area, perimeter and box of an outline, arcs exact: the box takes an
-/// arc's axis extremes, not only its ends.
+/// Area, perimeter and box of an outline, arcs exact (the box takes an
+/// arc's axis extremes, not only its ends), and the part's holes (SPEC 9:
+/// the loops directly inside the outline).
 #[derive(Debug, Clone, Copy)]
 struct Figures {
     area: f64,
     perimeter: f64,
     bbox: [f64; 4],
+    holes: usize,
 }
 
-fn figures(outline: &[Vertex]) -> Figures {
+fn figures(outline: &[Vertex], holes: usize) -> Figures {
     let edges = edges_of(outline);
     let mut bbox = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
     for e in &edges {
@@ -52,6 +54,7 @@ fn figures(outline: &[Vertex]) -> Figures {
         area: mass_properties(outline).area.abs(),
         perimeter: edges.iter().map(|e| e.length()).sum(),
         bbox,
+        holes,
     }
 }
 
@@ -67,6 +70,7 @@ fn expected_figures(v: &Value) -> Figures {
         area: f("area_mm2"),
         perimeter: f("perimeter_mm"),
         bbox: [b[0], b[1], b[2], b[3]],
+        holes: v["holes"].as_u64().unwrap() as usize,
     }
 }
 
@@ -92,6 +96,9 @@ fn disagreement(got: Figures, want: Figures) -> Option<String> {
             "box {:.3?} mm, expected {:.3?}",
             got.bbox, want.bbox
         ));
+    }
+    if got.holes != want.holes {
+        out.push(format!("{} holes, expected {}", got.holes, want.holes));
     }
     (!out.is_empty()).then(|| out.join("; "))
 }
@@ -127,12 +134,13 @@ fn check(entry: &Value) -> Result<String, String> {
         .iter()
         .map(expected_figures)
         .collect();
-    let mut warnings = 0;
+    let (mut warnings, mut holes) = (0, 0);
     let mut got = Vec::new();
     for p in &catalog.parts {
         let part = p.part.as_ref().map_err(|e| e.to_string())?;
-        got.push(figures(&part.outline));
+        got.push(figures(&part.outline, part.holes.len()));
         warnings += p.warnings.len();
+        holes += part.holes.len();
     }
     if got.len() != want.len() {
         return Err(format!(
@@ -165,8 +173,7 @@ fn check(entry: &Value) -> Result<String, String> {
         }
         want.remove(i);
     }
-    // Inner loops give one warning each; the count is enough here.
-    Ok(format!("agrees ({warnings} warnings)"))
+    Ok(format!("agrees ({holes} holes, {warnings} warnings)"))
 }
 
 #[test]

@@ -7,9 +7,9 @@
 mod cluster_support;
 
 use cluster_support::*;
-use fixplan_coordinator::run_catalog;
-use fixplan_coordinator::TransportChoice;
-use fixplan_tests::fixtures_channel;
+use fixplan_coordinator::{run_catalog, PartMsg, ResultsFile, TransportChoice, TOPIC_PART};
+use fixplan_core::{Part, Vertex};
+use fixplan_tests::{channels, fixtures_channel, part};
 
 fn two_workers(transport: TransportChoice, flag: &str) {
     let _g = serial();
@@ -38,6 +38,62 @@ fn two_workers_over_zenoh_equal_embedded() {
 #[test]
 fn two_workers_over_iceoryx2_equal_embedded() {
     two_workers(TransportChoice::Iceoryx2, "iceoryx2");
+}
+
+/// The holes of every part message of a complete results file.
+fn part_holes(path: &std::path::Path) -> Vec<Vec<Vec<Vertex>>> {
+    let f = ResultsFile::open(path).unwrap();
+    let mut v = Vec::new();
+    f.for_each_part(|_, m| {
+        let msg: PartMsg = serde_json::from_slice(m.get(TOPIC_PART).unwrap()).unwrap();
+        v.push(msg.holes());
+        true
+    })
+    .unwrap();
+    v
+}
+
+/// A part with holes (SPEC 9) crosses the wire whole: one worker with
+/// small shards, two with others, and the embedded run give the same
+/// fixtures and scene bytes, and the part message (made on the worker that
+/// finishes the part) keeps the holes in order.
+#[test]
+fn a_part_with_holes_is_the_same_whatever_the_workers() {
+    let _g = serial();
+    let dir = tempfile::tempdir().unwrap();
+    let (mut cat, spec) = catalog();
+    let holes = vec![
+        vec![Vertex::new(15.0, 25.0, 1.0), Vertex::new(25.0, 25.0, 1.0)],
+        [[45.0, 15.0], [65.0, 15.0], [65.0, 35.0], [45.0, 35.0]]
+            .map(Vertex::from)
+            .to_vec(),
+    ];
+    let mut holed = part("holed", vec![]);
+    holed.part = Ok(Part {
+        outline: [[0.0, 0.0], [80.0, 0.0], [80.0, 50.0], [0.0, 50.0]]
+            .map(Vertex::from)
+            .to_vec(),
+        holes: holes.clone(),
+        access: Vec::new(),
+    });
+    cat.parts = vec![holed, cat.parts[1].clone()];
+    let emb = dir.path().join("emb.mcap");
+    run_catalog(&cat, &spec, &run_opts(&emb, 5, None)).unwrap();
+    assert_eq!(part_holes(&emb), [holes.clone(), Vec::new()]);
+    for (workers, shard) in [(1, 2), (2, 7)] {
+        let dist = dir.path().join(format!("dist{workers}.mcap"));
+        let net = Net::new(&format!("holes{workers}"));
+        let mut opts = net.options(TransportChoice::Zenoh);
+        opts.min_workers = workers;
+        opts.shard_size = Some(shard);
+        let _w: Vec<_> = (0..workers)
+            .map(|_| net.worker(&["--transport", "zenoh"]))
+            .collect();
+        run_catalog(&cat, &spec, &run_opts(&dist, 5, Some(opts))).unwrap();
+        assert_eq!(channels(&emb), channels(&dist), "{workers} workers");
+        assert_eq!(part_holes(&dist), [holes.clone(), Vec::new()]);
+    }
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
 }
 
 #[test]

@@ -1,4 +1,4 @@
-//! What a worker needs to prepare a part itself: outline, access regions,
+//! What a worker needs to prepare a part itself: outline, holes, access regions,
 //! kit, parameters and unit, in a binary wire form that crosses processes
 //! bit for bit. `prepare` is deterministic, so a worker that prepares the
 //! same input holds the same [`PreparedPart`] as the coordinator.
@@ -16,7 +16,7 @@ use thiserror::Error;
 /// One part of a distributed run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartInput {
-    /// The outline and access regions, as the catalogue gave them.
+    /// The outline, holes and access regions, as the catalogue gave them.
     pub part: Part,
     /// The kit, in the catalogue's unit: the worker builds its own lattice.
     pub kit: Kit,
@@ -82,11 +82,23 @@ struct WireKit<'a> {
 
 /// The part with every vertex as `(x, y, bulge)`: a vertex's file form
 /// (`[x, y]` or `[x, y, b]`) has a varying length, which postcard's
-/// tuples cannot carry.
+/// tuples cannot carry. Holes in the catalogue's order, which numbers
+/// their edges and segments (SPEC 9.2).
 #[derive(Serialize, Deserialize)]
 struct WirePart<'a> {
     outline: Vec<(f64, f64, f64)>,
+    holes: Vec<Vec<(f64, f64, f64)>>,
     access: Cow<'a, [Vec<[f64; 2]>]>,
+}
+
+/// A loop's vertices in their wire form.
+fn wire_loop(l: &[Vertex]) -> Vec<(f64, f64, f64)> {
+    l.iter().map(|v| (v.x, v.y, v.bulge)).collect()
+}
+
+/// A loop's vertices from their wire form.
+fn loop_of_wire(l: &[(f64, f64, f64)]) -> Vec<Vertex> {
+    l.iter().map(|&(x, y, b)| Vertex::new(x, y, b)).collect()
 }
 
 #[derive(Serialize, Deserialize)]
@@ -103,12 +115,8 @@ impl PartInput {
         let k = &self.kit;
         let w = WireInput {
             part: WirePart {
-                outline: self
-                    .part
-                    .outline
-                    .iter()
-                    .map(|v| (v.x, v.y, v.bulge))
-                    .collect(),
+                outline: wire_loop(&self.part.outline),
+                holes: self.part.holes.iter().map(|h| wire_loop(h)).collect(),
                 access: Cow::Borrowed(&self.part.access),
             },
             kit: WireKit {
@@ -136,7 +144,8 @@ impl PartInput {
         // Borrowing the input and sizing the buffer up front: clones and a
         // buffer grown from empty were most of the encoding's cost (the
         // coordinator encodes every part of a catalogue).
-        let size = 256 + 32 * (self.part.outline.len() + self.kit.clamp.body.len());
+        let hole_vertices: usize = self.part.holes.iter().map(Vec::len).sum();
+        let size = 256 + 32 * (self.part.outline.len() + hole_vertices + self.kit.clamp.body.len());
         postcard::to_extend(&w, Vec::with_capacity(size)).map_err(InputError::Encode)
     }
 
@@ -146,13 +155,8 @@ impl PartInput {
         let c = w.kit.clamp;
         Ok(PartInput {
             part: Part {
-                outline: w
-                    .part
-                    .outline
-                    .iter()
-                    .map(|&(x, y, b)| Vertex::new(x, y, b))
-                    .collect(),
-                holes: Vec::new(),
+                outline: loop_of_wire(&w.part.outline),
+                holes: w.part.holes.iter().map(|h| loop_of_wire(h)).collect(),
                 access: w.part.access.into_owned(),
             },
             kit: Kit {
@@ -261,6 +265,14 @@ mod tests {
         let mut part = case.part();
         // An arc (SPEC 8.1): a vertex with a bulge crosses the wire too.
         part.outline[1].bulge = -0.375;
+        // Holes (SPEC 9), in order, a round one and a square one.
+        part.holes = vec![
+            vec![Vertex::new(20.0, 20.0, 1.0), Vertex::new(30.0, 20.0, 1.0)],
+            vec![[5.0, 5.0], [5.0, 9.0], [9.0, 9.0], [9.0, 5.0]]
+                .into_iter()
+                .map(Vertex::from)
+                .collect(),
+        ];
         let input = PartInput {
             part,
             kit: case.kit.clone(),

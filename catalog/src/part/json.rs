@@ -1,14 +1,14 @@
-//! JSON parts: the `part` / `access` fields of SPEC Appendix A.
+//! JSON parts: the `part` / `holes` / `access` fields of SPEC Appendix A.
 //!
 //! A whole case file is accepted (its kit and parameters are ignored here:
 //! the catalogue's kit applies), and so is core's own `Part` serialisation
 //! (`outline` instead of `part`), so a part exported by fixplan reads back.
 //! An optional `units` field says what the numbers are in. Outline
-//! vertices are `[x, y]` or `[x, y, bulge]` (SPEC 8.1); with
+//! and hole vertices are `[x, y]` or `[x, y, bulge]` (SPEC 8.1, 9.1); with
 //! [`ArcMode::Flatten`](super::raw::ArcMode) the arcs are flattened within
 //! the chord tolerance. Access constraints are polygons.
 
-use super::outline::flatten_vertices;
+use super::outline::{flatten_vertices, keep_holes};
 use super::raw::{PolygonRole, RawPart, ReadOptions};
 use crate::units::LengthUnit;
 use fixplan_core::{Part, Units, Vertex};
@@ -45,9 +45,11 @@ pub enum JsonError {
         /// What was there instead.
         value: Value,
     },
-    /// An outline vertex that is not `[x, y]` or `[x, y, bulge]`.
-    #[error("outline: vertex {vertex} is not an [x, y] or [x, y, bulge] list: {value}")]
+    /// An outline or hole vertex that is not `[x, y]` or `[x, y, bulge]`.
+    #[error("{polygon}: vertex {vertex} is not an [x, y] or [x, y, bulge] list: {value}")]
     NotAVertex {
+        /// The outline or the hole.
+        polygon: PolygonRole,
         /// Its index, from 0.
         vertex: usize,
         /// What was there instead.
@@ -66,6 +68,9 @@ pub enum JsonError {
     /// An `access` field that is not a list.
     #[error("\"access\" is not a list of polygons")]
     AccessNotAList,
+    /// A `holes` field that is not a list.
+    #[error("\"holes\" is not a list of loops")]
+    HolesNotAList,
 }
 
 fn point(v: &Value, polygon: PolygonRole, vertex: usize) -> Result<[f64; 2], JsonError> {
@@ -86,22 +91,46 @@ fn point(v: &Value, polygon: PolygonRole, vertex: usize) -> Result<[f64; 2], Jso
     }
 }
 
-/// An outline vertex: a point, or a point and the bulge of its edge.
-fn vertex(v: &Value, i: usize) -> Result<Vertex, JsonError> {
+/// An outline or hole vertex: a point, or a point and the bulge of its
+/// edge.
+fn vertex(v: &Value, polygon: PolygonRole, i: usize) -> Result<Vertex, JsonError> {
     match v.as_array().map(|a| a.as_slice()) {
-        Some([_, _]) => point(v, PolygonRole::Outline, i).map(Vertex::from),
+        Some([_, _]) => point(v, polygon, i).map(Vertex::from),
         Some([x, y, b]) => match (x.as_f64(), y.as_f64(), b.as_f64()) {
             (Some(x), Some(y), Some(b)) => Ok(Vertex::new(x, y, b)),
             _ => Err(JsonError::NotNumbers {
-                polygon: PolygonRole::Outline,
+                polygon,
                 vertex: i,
                 value: v.clone(),
             }),
         },
         _ => Err(JsonError::NotAVertex {
+            polygon,
             vertex: i,
             value: v.clone(),
         }),
+    }
+}
+
+/// A loop of outline or hole vertices.
+fn vertex_loop(value: &Value, role: PolygonRole) -> Result<Vec<Vertex>, JsonError> {
+    let arr = value.as_array().ok_or(JsonError::NotAList(role))?;
+    arr.iter()
+        .enumerate()
+        .map(|(i, v)| vertex(v, role, i))
+        .collect()
+}
+
+/// The `holes` field: absent, `null` or a list of loops.
+fn holes(obj: &serde_json::Map<String, Value>) -> Result<Vec<Vec<Vertex>>, JsonError> {
+    match obj.get("holes") {
+        None | Some(Value::Null) => Ok(Vec::new()),
+        Some(Value::Array(list)) => list
+            .iter()
+            .enumerate()
+            .map(|(k, h)| vertex_loop(h, PolygonRole::Hole(k)))
+            .collect(),
+        Some(_) => Err(JsonError::HolesNotAList),
     }
 }
 
@@ -139,14 +168,8 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
         .get("part")
         .or_else(|| obj.get("outline"))
         .ok_or(JsonError::NoOutline)?;
-    let list = outline
-        .as_array()
-        .ok_or(JsonError::NotAList(PolygonRole::Outline))?;
-    let mut outline = list
-        .iter()
-        .enumerate()
-        .map(|(i, v)| vertex(v, i))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut outline = vertex_loop(outline, PolygonRole::Outline)?;
+    let mut holes = holes(obj)?;
     let mut access = Vec::new();
     match obj.get("access") {
         None | Some(Value::Null) => {}
@@ -159,7 +182,7 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
     }
     let f = src.factor_to(opts.units);
     if f != 1.0 {
-        for v in outline.iter_mut() {
+        for v in outline.iter_mut().chain(holes.iter_mut().flatten()) {
             v.x *= f;
             v.y *= f;
         }
@@ -170,23 +193,37 @@ pub fn read_json(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, JsonError>
     }
     if opts.arcs.flatten() {
         outline = flatten_vertices(&outline, true, opts.chord_tolerance);
+        for h in holes.iter_mut() {
+            *h = flatten_vertices(h, true, opts.chord_tolerance);
+        }
     }
+    let mut warnings = Vec::new();
+    let named = holes
+        .into_iter()
+        .enumerate()
+        .map(|(k, h)| (h, format!("hole {k}")))
+        .collect();
+    let holes = keep_holes(opts.holes, named, &mut warnings, opts.units);
     Ok(RawPart {
         outline,
         access,
-        warnings: Vec::new(),
-        inner: Vec::new(),
+        warnings,
+        holes,
     })
 }
 
 /// Writes a part in the Appendix A field names, with its units (arc
-/// vertices as `[x, y, bulge]`).
+/// vertices as `[x, y, bulge]`); `holes` only when it has some, so a part
+/// without holes is written as before.
 pub fn write_json(part: &Part, units: Units) -> String {
-    let v = serde_json::json!({
+    let mut v = serde_json::json!({
         "units": units,
         "part": part.outline,
         "access": part.access,
     });
+    if !part.holes.is_empty() {
+        v["holes"] = serde_json::json!(part.holes);
+    }
     // Serialising plain numbers and strings cannot fail; if a future
     // serde_json disagreed, an empty object is still valid JSON.
     serde_json::to_string_pretty(&v).unwrap_or_else(|_| "{}".into())

@@ -11,11 +11,11 @@ mod validate;
 
 pub use dxf::{read_dxf, read_dxf_parts, write_dxf, DxfError, OpenCause};
 pub use json::{read_json, write_json, JsonError};
-pub(crate) use outline::flatten_vertices;
 pub use outline::OutlinePickError;
+pub(crate) use outline::{flatten_vertices, keep_holes};
 pub use raw::{
-    ArcMode, Format, LayerFilter, LimitExceeded, Limits, PolygonRole, RawPart, ReadOptions,
-    DEFAULT_CHORD_TOLERANCE_MM, DEFAULT_JOIN_TOLERANCE_MM,
+    ArcMode, Format, HoleMode, LayerFilter, LimitExceeded, Limits, PolygonRole, RawPart,
+    ReadOptions, DEFAULT_CHORD_TOLERANCE_MM, DEFAULT_JOIN_TOLERANCE_MM,
 };
 pub use svg::{
     read_svg, read_svg_parts, write_svg, ElementProblem, PathError, SvgError, TransformError,

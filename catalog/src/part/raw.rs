@@ -38,6 +38,9 @@ pub struct ReadOptions {
     pub layers: LayerFilter,
     /// How much work and memory one file may cost.
     pub limits: Limits,
+    /// Whether loops inside the outline are the part's holes (SPEC 9) or
+    /// dropped with a warning, as before holes were supported.
+    pub holes: HoleMode,
 }
 
 /// Layers of a DXF drawing to read, for drawings whose borders,
@@ -222,6 +225,56 @@ impl std::str::FromStr for ArcMode {
     }
 }
 
+/// What the readers make of loops inside a part's outline: its holes
+/// (SPEC 9: bores and windows a locator may stand in, material a clamp
+/// need not clear), or nothing, as fixplan read parts before holes (for
+/// comparison: the part then is its solid outline).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum HoleMode {
+    /// Loops directly inside the outline are the part's holes.
+    #[default]
+    Keep,
+    /// Every loop inside the outline is dropped with a warning.
+    Ignore,
+}
+
+impl HoleMode {
+    /// The values a manifest's `holes` and the `--holes` flag take.
+    pub const NAMES: [&'static str; 2] = ["keep", "ignore"];
+
+    /// `"keep"` or `"ignore"` (any case); `None` for anything else.
+    pub fn parse(s: &str) -> Option<HoleMode> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "keep" => Some(HoleMode::Keep),
+            "ignore" => Some(HoleMode::Ignore),
+            _ => None,
+        }
+    }
+
+    /// The name [`HoleMode::parse`] reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            HoleMode::Keep => "keep",
+            HoleMode::Ignore => "ignore",
+        }
+    }
+}
+
+impl fmt::Display for HoleMode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for HoleMode {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<HoleMode, String> {
+        HoleMode::parse(s)
+            .ok_or_else(|| format!("unknown holes mode \"{s}\" (expected \"keep\" or \"ignore\")"))
+    }
+}
+
 impl ReadOptions {
     /// Defaults for a catalogue in `units`, files assumed in the same units.
     pub fn new(units: Units) -> Self {
@@ -234,6 +287,7 @@ impl ReadOptions {
             sheet: false,
             layers: LayerFilter::default(),
             limits: Limits::default(),
+            holes: HoleMode::Keep,
         }
     }
 }
@@ -250,10 +304,9 @@ pub struct RawPart {
     pub access: Vec<Vec<[f64; 2]>>,
     /// What the reader ignored or assumed, for the user to check.
     pub warnings: Vec<String>,
-    /// Loops directly inside the outline (holes, pockets), as read: not
-    /// used by the planar method today (a warning says so each), kept for
-    /// the holes of SPEC 9.
-    pub inner: Vec<Vec<Vertex>>,
+    /// The part's holes (SPEC 9): loops directly inside the outline, in
+    /// file order, unless [`HoleMode::Ignore`] dropped them.
+    pub holes: Vec<Vec<Vertex>>,
 }
 
 /// A part file format, known by its extension.
@@ -289,6 +342,8 @@ pub enum PolygonRole {
     Outline,
     /// Access constraint number `.0` (from 0, in file order).
     Access(usize),
+    /// Hole number `.0` (from 0, in file order, as SPEC 9 numbers them).
+    Hole(usize),
 }
 
 impl fmt::Display for PolygonRole {
@@ -296,6 +351,7 @@ impl fmt::Display for PolygonRole {
         match self {
             PolygonRole::Outline => f.write_str("outline"),
             PolygonRole::Access(i) => write!(f, "access constraint {i}"),
+            PolygonRole::Hole(i) => write!(f, "hole {i}"),
         }
     }
 }

@@ -6,12 +6,15 @@
 //! shape: a dropped duplicate vertex leaves its bulge to the edge that
 //! survives, and a vertex is merged away only between two straight edges.
 //! Anything else that SPEC 1 and 8.1 forbid is left for
-//! [`fixplan_core::parts::validate_outline`] (the outline, arcs
-//! included) and [`fixplan_core::parts::validate_polygon`] (access
+//! [`fixplan_core::parts::validate_outline`] (the outline and each hole,
+//! arcs included) and [`fixplan_core::parts::validate_polygon`] (access
 //! constraints, which stay polygons) to report, so the catalogue and the
-//! solver never disagree about what a valid outline is.
+//! solver never disagree about what a valid loop is. Where each hole lies
+//! is checked here too (SPEC 9.1: inside the outline, not inside another
+//! hole), so a JSON part with a hole in the wrong place is refused with a
+//! message naming the hole before any solving.
 
-use super::outline::{dist, fmt_pt, scale_of, P};
+use super::outline::{dist, fmt_pt, loop_inside, scale_of, test_point, P};
 use super::raw::{PolygonRole, RawPart};
 use fixplan_core::parts::{validate_outline, validate_polygon, OutlineError, PolygonError};
 use fixplan_core::{Part, Units, Vertex};
@@ -56,14 +59,35 @@ pub enum PolygonProblem {
     /// number); problems polygons share are [`PolygonProblem::Core`].
     #[error("{0}")]
     Arc(OutlineError),
+    /// A hole not inside the outline (SPEC 9.1).
+    #[error("lies outside the outline (near {} {}); a hole must lie inside the part", fmt_pt(*.near), .units.label())]
+    HoleOutside {
+        /// A point of the hole outside the outline.
+        near: [f64; 2],
+        /// The catalogue's units.
+        units: Units,
+    },
+    /// A hole inside another hole (SPEC 9.1): no material around it.
+    #[error("lies inside hole {0}")]
+    HoleInHole(usize),
 }
 
-/// Repairs and validates the outline and every access constraint: the part
-/// and the warnings of the repairs (the reader's first), or the first
-/// problem found.
+/// Repairs and validates the outline, every hole and every access
+/// constraint: the part and the warnings of the repairs (the reader's
+/// first), or the first problem found.
 pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), InvalidPolygon> {
     let mut warnings = raw.warnings;
     let outline = clean_and_validate(&raw.outline, PolygonRole::Outline, units, &mut warnings)?;
+    let mut holes = Vec::with_capacity(raw.holes.len());
+    for (k, h) in raw.holes.iter().enumerate() {
+        holes.push(clean_and_validate(
+            h,
+            PolygonRole::Hole(k),
+            units,
+            &mut warnings,
+        )?);
+    }
+    place_holes(&outline, &holes, units)?;
     let mut access = Vec::with_capacity(raw.access.len());
     for (i, a) in raw.access.iter().enumerate() {
         let a: Vec<Vertex> = a.iter().map(|&p| Vertex::from(p)).collect();
@@ -73,11 +97,35 @@ pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), 
     Ok((
         Part {
             outline,
-            holes: Vec::new(),
+            holes,
             access,
         },
         warnings,
     ))
+}
+
+/// Every hole inside the outline and outside the other holes (a point of
+/// each decides, as for the loops of a drawing; loops that cross are
+/// core's to report).
+fn place_holes(
+    outline: &[Vertex],
+    holes: &[Vec<Vertex>],
+    units: Units,
+) -> Result<(), InvalidPolygon> {
+    for (k, h) in holes.iter().enumerate() {
+        let invalid = |problem| InvalidPolygon {
+            polygon: PolygonRole::Hole(k),
+            problem,
+        };
+        if !loop_inside(h, outline) {
+            let near = test_point(h, outline).map_or([h[0].x, h[0].y], |q| [q.x, q.y]);
+            return Err(invalid(PolygonProblem::HoleOutside { near, units }));
+        }
+        if let Some(j) = (0..holes.len()).find(|&j| j != k && loop_inside(h, &holes[j])) {
+            return Err(invalid(PolygonProblem::HoleInHole(j)));
+        }
+    }
+    Ok(())
 }
 
 /// Relative size under which two consecutive vertices are the same point.
@@ -133,10 +181,12 @@ fn clean_and_validate(
         .collect();
     let core = |error: PolygonError| invalid(PolygonProblem::Core { error, units });
     let checked = match what {
-        PolygonRole::Outline => validate_outline(&cleaned).map(drop).map_err(|e| match e {
-            OutlineError::Polygon(error) => core(error),
-            other => invalid(PolygonProblem::Arc(other)),
-        }),
+        PolygonRole::Outline | PolygonRole::Hole(_) => {
+            validate_outline(&cleaned).map(drop).map_err(|e| match e {
+                OutlineError::Polygon(error) => core(error),
+                other => invalid(PolygonProblem::Arc(other)),
+            })
+        }
         PolygonRole::Access(_) => {
             let p: Vec<P> = cleaned.iter().map(|v| [v.x, v.y]).collect();
             validate_polygon(&p).map(drop).map_err(core)

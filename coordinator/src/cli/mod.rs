@@ -13,7 +13,7 @@ use crate::run::backend::Backend;
 use crate::run::{default_catalog, load_and_run, RunOptions};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use fixplan_catalog::{ArcMode, LoadOptions};
+use fixplan_catalog::{ArcMode, HoleMode, LoadOptions};
 use std::path::PathBuf;
 
 /// Design modular fixtures for planar parts: every fixture of three round
@@ -118,6 +118,14 @@ enum Cmd {
         /// docs/cad-files.md.
         #[arg(long)]
         sheet: bool,
+        /// Loops drawn inside a part's outline: `keep` (its holes, SPEC 9:
+        /// a locator may stand in a bore and push on its wall, a clamp may
+        /// pass over a window, the metric weighs the material) or `ignore`
+        /// (dropped with a warning each: the solid outline, as before
+        /// holes, for comparison). Default: the manifest's `holes`, else
+        /// keep.
+        #[arg(long, value_name = "keep|ignore")]
+        holes: Option<HoleMode>,
         #[command(flatten)]
         cluster: cluster::RunClusterArgs,
         #[command(flatten)]
@@ -316,10 +324,28 @@ fn quiet_logs(cmd: &Cmd) -> bool {
     }
 }
 
+/// Where `fixplan run` solves: on its workers with `--workers` and the
+/// like, else embedded.
+fn run_backend(
+    cluster: &cluster::RunClusterArgs,
+    threads: Option<usize>,
+    shard_size: Option<u64>,
+) -> Backend {
+    match cluster.options(threads) {
+        Some(mut c) => {
+            c.shard_size = shard_size;
+            Backend::Cluster(c)
+        }
+        None => Backend::Embedded { threads },
+    }
+}
+
 /// How `fixplan run` reads the catalogue: `--sheet` over the manifest.
-fn sheet_load(sheet: bool) -> LoadOptions {
+/// How `fixplan run` reads the catalogue: `--sheet` and `--holes`.
+fn run_load(sheet: bool, holes: Option<HoleMode>) -> LoadOptions {
     LoadOptions {
         sheet: sheet.then_some(true),
+        holes,
         ..LoadOptions::default()
     }
 }
@@ -346,16 +372,11 @@ fn real_main() -> Result<()> {
             shard_size,
             quiet,
             sheet,
+            holes,
             cluster,
             search,
         } => {
-            let backend = match cluster.options(threads) {
-                Some(mut c) => {
-                    c.shard_size = shard_size;
-                    Backend::Cluster(c)
-                }
-                None => Backend::Embedded { threads },
-            };
+            let backend = run_backend(&cluster, threads, shard_size);
             load_and_run(
                 &RunOptions {
                     catalog: catalog.unwrap_or_else(default_catalog),
@@ -370,7 +391,7 @@ fn real_main() -> Result<()> {
                     backend,
                     arcs,
                 },
-                &sheet_load(sheet),
+                &run_load(sheet, holes),
             )?;
         }
         Cmd::Study(a) => {

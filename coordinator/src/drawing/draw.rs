@@ -45,6 +45,8 @@ pub struct FixtureDrawing {
     /// The part's outline in its pose: vertices moved, bulges unchanged
     /// (the pose and the plate's turn are rotations, never reflections).
     pub part: Vec<Vertex>,
+    /// The part's holes (SPEC 9) in its pose, in order, as the outline.
+    pub holes: Vec<Vec<Vertex>>,
     /// The access regions in the part's pose (nothing may cover them).
     pub access: Vec<Vec<Point>>,
     /// Locators 1-3, in the order the report lists them.
@@ -101,9 +103,11 @@ pub fn plate_outline(kit: &Kit) -> Vec<Point> {
 
 /// Places a reported fixture on the plate: the canonical frame is rotated
 /// by the placement rotation and moved so that locator 1 sits in its hole.
+/// `holes` are the part's (SPEC 9), drawn with its outline.
 pub fn fixture_drawing(
     kit: &Kit,
     outline: &[Vertex],
+    holes: &[Vec<Vertex>],
     access: &[Vec<Point>],
     f: &FixtureReport,
 ) -> FixtureDrawing {
@@ -136,6 +140,7 @@ pub fn fixture_drawing(
         .collect();
     FixtureDrawing {
         part: moved(outline, pose),
+        holes: holes.iter().map(|h| moved(h, pose)).collect(),
         access: access
             .iter()
             .map(|a| a.iter().map(pose).collect())

@@ -106,6 +106,7 @@ fn scene_message(p: &PartContent) -> serde_json::Result<Vec<u8>> {
         units: p.units,
         kit: p.kit,
         outline: p.outline,
+        holes: p.holes,
         access: p.access,
         best: p.result.fixtures.first().ok_or(caption.as_str()),
     })
@@ -157,7 +158,7 @@ mod tests {
             ),
             (
                 "fixplan.Part",
-                "99d5fb5d1c4c282d99b44457fb5f723799bbd737a42dfe8f8295811418ce40f4",
+                "f7be8e80a29a5db15121620815bf80f8aa3738ff54838816e510545c34d0ceae",
             ),
             (
                 "fixplan.Fixtures",

@@ -217,6 +217,30 @@ impl From<&Vec<Point>> for PolygonField {
     }
 }
 
+/// A hole cut through a part (SPEC 9): a closed loop of outline vertices,
+/// in an object because the viewers' schema parser reads no list of
+/// lists.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HoleLoopField {
+    /// Its vertices, in order, as given.
+    pub vertices: Vec<VertexField>,
+}
+
+impl From<&Vec<Vertex>> for HoleLoopField {
+    fn from(l: &Vec<Vertex>) -> HoleLoopField {
+        HoleLoopField {
+            vertices: l.iter().map(VertexField::from).collect(),
+        }
+    }
+}
+
+impl From<&HoleLoopField> for Vec<Vertex> {
+    fn from(l: &HoleLoopField) -> Vec<Vertex> {
+        l.vertices.iter().map(Vertex::from).collect()
+    }
+}
+
 /// A plate hole or lattice offset `{i, j}` (column, row).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

@@ -11,8 +11,8 @@
 //! is one the viewers' JSON-schema parser reads.
 
 use super::fields::{
-    CountsField, KitField, ParamsField, PolygonField, SegmentKindName, StatusName, UnitsName,
-    VertexField, WrenchField,
+    CountsField, HoleLoopField, KitField, ParamsField, PolygonField, SegmentKindName, StatusName,
+    UnitsName, VertexField, WrenchField,
 };
 use super::fixture_fields::FixtureField;
 pub use crate::job::SolveTiming;
@@ -81,6 +81,8 @@ pub struct PartContent<'a> {
     pub kit: &'a Kit,
     /// The outline (as read, for an invalid part; empty if nothing was).
     pub outline: &'a [Vertex],
+    /// Its holes (SPEC 9), as the outline.
+    pub holes: &'a [Vec<Vertex>],
     /// Access regions.
     pub access: &'a [Vec<Point>],
     /// The part's result.
@@ -151,10 +153,13 @@ impl CatalogInfo {
 /// Each entry is hashed as one JSON line of the file's own field types
 /// (so a rename in core leaves it alone), written into a reused buffer.
 pub fn catalog_digest(c: &Catalog) -> String {
-    /// A part's geometry as hashed.
+    /// A part's geometry as hashed; `holes` absent when there are none,
+    /// so a file of parts without holes written before holes resumes.
     #[derive(Serialize)]
     struct Shape {
         outline: Vec<VertexField>,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        holes: Vec<HoleLoopField>,
         access: Vec<PolygonField>,
     }
     /// One catalogue entry as hashed.
@@ -175,6 +180,7 @@ pub fn catalog_digest(c: &Catalog) -> String {
             part: match &p.part {
                 Ok(part) => Ok(Shape {
                     outline: part.outline.iter().map(VertexField::from).collect(),
+                    holes: part.holes.iter().map(HoleLoopField::from).collect(),
                     access: part.access.iter().map(PolygonField::from).collect(),
                 }),
                 Err(e) => Err(e.to_string()),
@@ -325,6 +331,10 @@ pub struct PartMsg {
     pub quantity: f64,
     /// Part frame, catalogue units, as given (empty if it could not be read).
     pub outline: Vec<VertexField>,
+    /// Holes cut through the part (SPEC 9), as given, in order (hole `k`
+    /// is the `k`-th); absent for a part without holes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub holes: Vec<HoleLoopField>,
     /// Access regions (part frame, catalogue units).
     #[serde(default)]
     pub access: Vec<PolygonField>,
@@ -372,6 +382,7 @@ impl PartMessage for PartMsg {
             units: p.units.into(),
             quantity: p.entry.quantity,
             outline: p.outline.iter().map(VertexField::from).collect(),
+            holes: p.holes.iter().map(HoleLoopField::from).collect(),
             access: p.access.iter().map(PolygonField::from).collect(),
             counts: result.counts.as_ref().map(CountsField::from),
             fixtures: result.fixtures.len(),
@@ -388,6 +399,11 @@ impl PartMsg {
     /// The outline, as core takes it.
     pub fn outline(&self) -> Vec<Vertex> {
         self.outline.iter().map(Vertex::from).collect()
+    }
+
+    /// The holes, as core takes them.
+    pub fn holes(&self) -> Vec<Vec<Vertex>> {
+        self.holes.iter().map(Vec::from).collect()
     }
 
     /// The access regions, as core takes them.
@@ -710,12 +726,14 @@ mod tests {
             stopped_at: Some(7),
             shards: 2,
         };
-        let part = PartMsg::of(&PartContent {
+        let kit = kit();
+        let content = PartContent {
             index: 3,
             entry: &entry,
             units: Units::Mm,
-            kit: &kit(),
+            kit: &kit,
             outline: &outline,
+            holes: &[],
             access: &access,
             result: &result,
             timing: SolveTiming {
@@ -724,14 +742,37 @@ mod tests {
                 shards: 2,
             },
             search: &search,
-        });
+        };
+        let part = PartMsg::of(&content);
         assert_eq!(
             json(&part),
             r#"{"index":3,"id":"p","file":"p.dxf","status":"ok","warnings":["w"],"units":"mm","quantity":2.5,"outline":[{"x":0.0,"y":0.0},{"x":10.0,"y":0.0,"bulge":0.5},{"x":0.0,"y":5.0}],"access":[{"points":[{"x":1.0,"y":1.0},{"x":2.0,"y":1.0},{"x":1.0,"y":2.0}]}],"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"exact":false},"fixtures":1,"best_score":0.25,"timing":{"prepare_ms":0.5,"enumerate_ms":1.0,"shards":2},"refine":[{"grid_step":2,"counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1,"exact":true},"fixtures":1,"best_score":0.25,"added":1,"enumerate_ms":1.0}],"stopped":"good_enough","stopped_at":7}"#
         );
-        assert_eq!((part.outline(), part.access()), (outline, access));
+        assert_eq!(
+            (part.outline(), part.access()),
+            (outline.clone(), access.clone())
+        );
         let read: PartMsg = serde_json::from_str(&json(&part)).unwrap();
         assert_eq!(read, part);
+        // With holes (SPEC 9): after the outline, in order, arcs kept.
+        let holes = vec![
+            vec![Vertex::new(2.0, 1.0, 1.0), Vertex::new(3.0, 1.0, 1.0)],
+            vec![
+                Vertex::new(5.0, 1.0, 0.0),
+                Vertex::new(6.0, 1.0, 0.0),
+                Vertex::new(5.0, 2.0, 0.0),
+            ],
+        ];
+        let holed = PartMsg::of(&PartContent {
+            holes: &holes,
+            ..content
+        });
+        let text = json(&holed);
+        let want = r#""outline":[{"x":0.0,"y":0.0},{"x":10.0,"y":0.0,"bulge":0.5},{"x":0.0,"y":5.0}],"holes":[{"vertices":[{"x":2.0,"y":1.0,"bulge":1.0},{"x":3.0,"y":1.0,"bulge":1.0}]},{"vertices":[{"x":5.0,"y":1.0},{"x":6.0,"y":1.0},{"x":5.0,"y":2.0}]}],"access""#;
+        assert!(text.contains(want), "{text}");
+        assert_eq!(holed.holes(), holes);
+        let read: PartMsg = serde_json::from_str(&text).unwrap();
+        assert_eq!(read, holed);
     }
 
     /// The fixtures message, and the line `fixplan export --json` makes of

@@ -270,6 +270,7 @@ impl Scene {
         kit: &Kit,
         caption: &str,
         outline: &[Vertex],
+        holes: &[Vec<Vertex>],
         access: &[Vec<Point>],
     ) -> Vec<Entity<'static>> {
         let plate = plate_outline(kit);
@@ -280,11 +281,13 @@ impl Scene {
         let from = middle(bounds(&extent_points(outline))).unwrap_or(to);
         let shift = |p: &Point| [p[0] - from[0] + to[0], p[1] - from[1] + to[1]];
         let outline = moved(outline, shift);
+        let holes: Vec<Vec<Vertex>> = holes.iter().map(|h| moved(h, shift)).collect();
         let access: Vec<Vec<Point>> = access
             .iter()
             .map(|a| a.iter().map(shift).collect())
             .collect();
         let lines = std::iter::once(self.outline_line(&outline, 3.0, PART))
+            .chain(holes.iter().map(|h| self.outline_line(h, 2.0, PART)))
             .chain(access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)))
             .collect();
         let extent = bounds(&extent_points(&outline)).unwrap_or([to, to]);
@@ -344,7 +347,7 @@ impl Scene {
         )
     }
 
-    /// The part in its pose, access regions, and its rank and score at
+    /// The part in its pose (outline and holes), access regions, and its rank and score at
     /// `hi`, the fixture's top right corner.
     fn posed_part(
         &self,
@@ -354,6 +357,7 @@ impl Scene {
         f: &FixtureReport,
     ) -> Entity<'static> {
         let mut part_lines = vec![self.outline_line(&d.part, 3.0, PART)];
+        part_lines.extend(d.holes.iter().map(|h| self.outline_line(h, 2.0, PART)));
         part_lines.extend(d.access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)));
         let label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
         self.entity(
@@ -427,6 +431,8 @@ pub struct PartScene<'a> {
     pub kit: &'a Kit,
     /// The outline (as read, for an invalid part).
     pub outline: &'a [Vertex],
+    /// Its holes (SPEC 9), drawn as thinner loops of the part's colour.
+    pub holes: &'a [Vec<Vertex>],
     /// Access regions.
     pub access: &'a [Vec<Point>],
     /// The best fixture, or no fixture and why.
@@ -442,9 +448,9 @@ pub struct PartScene<'a> {
 pub fn scene_update(p: PartScene) -> SceneUpdate<'static> {
     let s = Scene::of(p.index, p.units, p.outline);
     let entities = match p.best {
-        Err(caption) => s.unplaced(p.kit, caption, p.outline, p.access),
+        Err(caption) => s.unplaced(p.kit, caption, p.outline, p.holes, p.access),
         Ok(f) => {
-            let d = fixture_drawing(p.kit, p.outline, p.access, f);
+            let d = fixture_drawing(p.kit, p.outline, p.holes, p.access, f);
             let extent = d.bounds();
             vec![
                 s.plate(p.kit, extent),
@@ -518,7 +524,7 @@ pub fn scene_json(p: PartScene) -> serde_json::Result<Vec<u8>> {
     };
     let (id, kit) = (p.id, p.kit);
     let s = Scene::of(p.index, p.units, p.outline);
-    let d = fixture_drawing(kit, p.outline, p.access, f);
+    let d = fixture_drawing(kit, p.outline, p.holes, p.access, f);
     let extent = d.bounds();
     let holeless = serde_json::to_vec(&SceneUpdate {
         deletions: [],

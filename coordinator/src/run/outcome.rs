@@ -81,6 +81,7 @@ pub fn part_outcome_packed(
         units,
         kit,
         outline: read.map_or(&[], |p| &p.outline),
+        holes: read.map_or(&[], |p| &p.holes),
         access: read.map_or(&[], |p| &p.access),
         result: &result,
         timing,

@@ -74,6 +74,22 @@ impl View {
         let _ = writeln!(out, r#"<path d="{}" {style}/>"#, self.path(outline));
     }
 
+    /// A part's region: its outline alone as [`View::outline`] draws it
+    /// (so pictures of parts without holes stay byte for byte), else one
+    /// `path` of the outline and every hole with `fill-rule="evenodd"`,
+    /// so the holes show the plate through the part.
+    fn region(&self, out: &mut String, outline: &[Vertex], holes: &[Vec<Vertex>], style: &str) {
+        if holes.is_empty() {
+            return self.outline(out, outline, style);
+        }
+        let mut d = self.path(outline);
+        for h in holes.iter().filter(|h| h.len() >= 2) {
+            d.push(' ');
+            d.push_str(&self.path(h));
+        }
+        let _ = writeln!(out, r#"<path d="{d}" fill-rule="evenodd" {style}/>"#);
+    }
+
     /// The path data of a closed outline of lines and arcs. y points down
     /// in SVG, so an arc turning counter-clockwise in the plate frame
     /// (`bulge > 0`) turns clockwise on screen: sweep flag 0; the large-arc
@@ -146,8 +162,8 @@ fn caption(out: &mut String, v: &View, lines: &[String]) {
 /// numbers a machinist sets the fixture up by.
 pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
     let kit = &run.kit();
-    let (outline, access) = (rec.part.outline(), rec.part.access());
-    let d: FixtureDrawing = fixture_drawing(kit, &outline, &access, f);
+    let (outline, holes, access) = (rec.part.outline(), rec.part.holes(), rec.part.access());
+    let d: FixtureDrawing = fixture_drawing(kit, &outline, &holes, &access, f);
     let l = kit.spacing;
     let [lo, hi] = d.bounds();
     let b = [
@@ -187,11 +203,12 @@ fn draw_plate(s: &mut String, v: &View, kit: &Kit, b: [Point; 2], hole_r: f64) {
     }
 }
 
-/// Part in its pose and its access regions, hatched.
+/// Part in its pose (with its holes) and its access regions, hatched.
 fn draw_part(s: &mut String, v: &View, d: &FixtureDrawing) {
-    v.outline(
+    v.region(
         s,
         &d.part,
+        &d.holes,
         r##"fill="#cfe3f7" fill-opacity="0.9" stroke="#1f5fa8" stroke-width="2""##,
     );
     for a in &d.access {
@@ -303,10 +320,10 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
     ]
 }
 
-/// The SVG of a part without a fixture: its outline and the reason.
+/// The SVG of a part without a fixture: its outline, holes and the reason.
 pub fn part_svg(rec: &PartRecord) -> String {
     let p = &rec.part;
-    let (outline, access) = (p.outline(), p.access());
+    let (outline, holes, access) = (p.outline(), p.holes(), p.access());
     let mut pts = extent_points(&outline);
     for a in &access {
         pts.extend(a.iter().copied());
@@ -327,9 +344,10 @@ pub fn part_svg(rec: &PartRecord) -> String {
     };
     let mut s = header(&v);
     if outline.len() >= 2 {
-        v.outline(
+        v.region(
             &mut s,
             &outline,
+            &holes,
             r##"fill="#cfe3f7" stroke="#1f5fa8" stroke-width="2""##,
         );
     }

@@ -80,6 +80,9 @@ pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> R
     if let Some(line) = arcs.summary(&p.outline(), result.segment_kinds.len()) {
         writeln!(out, "   {line}")?;
     }
+    if let Some(line) = holes_summary(&p.holes()) {
+        writeln!(out, "   {line}")?;
+    }
     let fx = &result.fixtures;
     if fx.is_empty() {
         return Ok(());
@@ -126,6 +129,21 @@ pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> R
         writeln!(out, "  ... {} more kept (--top 0 shows all)", fx.len() - n)?;
     }
     Ok(())
+}
+
+/// How many holes the part has (SPEC 9) and the edges of each, in the
+/// order that numbers them; `None` for a part without holes, whose text
+/// stays as it was.
+fn holes_summary(holes: &[Vec<Vertex>]) -> Option<String> {
+    if holes.is_empty() {
+        return None;
+    }
+    let edges: Vec<String> = holes.iter().map(|h| h.len().to_string()).collect();
+    Some(format!(
+        "holes: {} (edges of hole 0, 1, ...: {})",
+        holes.len(),
+        edges.join(", ")
+    ))
 }
 
 /// Which segments of a part lie on arcs (SPEC 8.6's `segment_kinds`), for

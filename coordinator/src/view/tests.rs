@@ -7,7 +7,7 @@ use super::picture::{fixture_svg, part_svg};
 use super::show::print_part;
 use crate::drawing::draw::{bounds, fixture_drawing, plate_outline};
 use crate::drawing::outline::extent_points;
-use crate::output::fields::{CountsField, UnitsName, VertexField};
+use crate::output::fields::{CountsField, HoleLoopField, UnitsName, VertexField};
 use crate::output::messages::{
     CatalogInfo, FixturesMsg, PartMsg, RunMsg, SolveTiming, TimingField,
 };
@@ -52,9 +52,19 @@ fn run_msg() -> RunMsg {
 
 /// The record a run writes for `outline`, solved with the run's kit.
 fn record(run: &RunMsg, id: &str, outline: Vec<Vertex>) -> PartRecord {
+    holed_record(run, id, outline, Vec::new())
+}
+
+/// [`record`] of a part with holes (SPEC 9).
+fn holed_record(
+    run: &RunMsg,
+    id: &str,
+    outline: Vec<Vertex>,
+    holes: Vec<Vec<Vertex>>,
+) -> PartRecord {
     let part = Part {
         outline,
-        holes: Vec::new(),
+        holes,
         access: Vec::new(),
     };
     let result: SolveResult = solve(&part, &run.kit(), &run.params(), Units::Mm);
@@ -69,6 +79,7 @@ fn record(run: &RunMsg, id: &str, outline: Vec<Vertex>) -> PartRecord {
             units: UnitsName::Mm,
             quantity: 1.0,
             outline: part.outline.iter().map(VertexField::from).collect(),
+            holes: part.holes.iter().map(HoleLoopField::from).collect(),
             access: Vec::new(),
             counts: result.counts.as_ref().map(CountsField::from),
             fixtures: result.fixtures.len(),
@@ -179,7 +190,7 @@ fn contacts_on_the_arc_touch_it_along_its_normal() {
     let r = &rec.fixtures.result();
     let mut on_arc = 0;
     for f in &r.fixtures {
-        let d = fixture_drawing(&run.kit(), &rec.part.outline(), &[], f);
+        let d = fixture_drawing(&run.kit(), &rec.part.outline(), &[], &[], f);
         assert_eq!(d.part[1].bulge, 1.0);
         // Half circle: the posed centre is the midpoint of its ends.
         let (a, b) = (d.part[1], d.part[2]);
@@ -198,15 +209,19 @@ fn contacts_on_the_arc_touch_it_along_its_normal() {
     assert!(on_arc > 0);
 }
 
-/// The points of the part entity's outline line, in mm.
-fn scene_outline(scene: &Value) -> Vec<Point> {
-    let part = scene["entities"]
+/// The scene's part entity.
+fn scene_part(scene: &Value) -> &Value {
+    scene["entities"]
         .as_array()
         .unwrap()
         .iter()
         .find(|e| e["id"] == "part")
-        .unwrap();
-    part["lines"][0]["points"]
+        .unwrap()
+}
+
+/// The points of the part entity's outline line, in mm.
+fn scene_outline(scene: &Value) -> Vec<Point> {
+    scene_part(scene)["lines"][0]["points"]
         .as_array()
         .unwrap()
         .iter()
@@ -233,6 +248,7 @@ fn the_scene_draws_arcs_as_fine_line_strips_on_the_circle() {
         units: Units::Mm,
         kit: &kit,
         outline,
+        holes: &[],
         access: &[],
         best,
     };
@@ -248,7 +264,7 @@ fn the_scene_draws_arcs_as_fine_line_strips_on_the_circle() {
             p[1] + plate_middle[1] - part_middle[1],
         ]
     };
-    let d = fixture_drawing(&kit, outline, &[], f);
+    let d = fixture_drawing(&kit, outline, &[], &[], f);
     let posed_centre = [
         (d.part[1].x + d.part[2].x) / 2.0,
         (d.part[1].y + d.part[2].y) / 2.0,
@@ -378,6 +394,7 @@ fn the_scene_json_is_the_serialised_scene_update() {
                     units,
                     kit,
                     outline,
+                    holes: &[],
                     access: &[],
                     best,
                 };
@@ -406,6 +423,7 @@ fn a_scene_without_a_fixture_shows_the_plate() {
         units: Units::Mm,
         kit: &kit,
         outline: &outline,
+        holes: &[],
         access: &[],
         best: Err("half-round: no fixture"),
     });
@@ -440,4 +458,63 @@ fn a_scene_without_a_fixture_shows_the_plate() {
     }
     assert_eq!(entities[1]["texts"][0]["text"], "half-round: no fixture");
     assert_eq!(entities[2]["lines"].as_array().unwrap().len(), 0);
+}
+
+/// A 60 x 40 plate with a round bore and a square window (SPEC 9).
+fn holed_plate(run: &RunMsg) -> PartRecord {
+    let square = [[0.0, 0.0], [60.0, 0.0], [60.0, 40.0], [0.0, 40.0]].map(Vertex::from);
+    let holes = vec![
+        vec![Vertex::new(10.0, 20.0, 1.0), Vertex::new(20.0, 20.0, 1.0)],
+        [[35.0, 10.0], [50.0, 10.0], [50.0, 30.0], [35.0, 30.0]]
+            .map(Vertex::from)
+            .to_vec(),
+    ];
+    holed_record(run, "holed", square.to_vec(), holes)
+}
+
+#[test]
+fn pictures_show_and_the_scene_draw_the_holes() {
+    let run = run_msg();
+    let rec = holed_plate(&run);
+    let result = rec.fixtures.result();
+    let f = &result.fixtures[0];
+    for svg in [part_svg(&rec), fixture_svg(&run, &rec, f)] {
+        // One region: the outline then each hole, even-odd filled, the
+        // bore as two arcs.
+        let region: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.contains("fill-rule=\"evenodd\""))
+            .collect();
+        assert_eq!(region.len(), 1, "{svg}");
+        assert_eq!(region[0].matches('M').count(), 3, "{}", region[0]);
+        assert_eq!(region[0].matches(" A").count(), 2, "{}", region[0]);
+    }
+    let solid = record(&run, "solid", holed_plate(&run).part.outline());
+    assert!(!part_svg(&solid).contains("evenodd"));
+    let mut out = Vec::new();
+    print_part(&rec, 0, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(
+        text.contains("holes: 2 (edges of hole 0, 1, ...: 2, 4)"),
+        "{text}"
+    );
+    let kit = run.kit();
+    let (outline, holes) = (rec.part.outline(), rec.part.holes());
+    for best in [Ok(f), Err("none")] {
+        let scene = serde_json::to_value(scene_update(PartScene {
+            index: 0,
+            id: "holed",
+            units: Units::Mm,
+            kit: &kit,
+            outline: &outline,
+            holes: &holes,
+            access: &[],
+            best,
+        }))
+        .unwrap();
+        let lines = scene_part(&scene)["lines"].as_array().unwrap();
+        assert_eq!(lines.len(), 3, "outline and two holes");
+        // The window is a line loop of its four corners.
+        assert_eq!(lines[2]["points"].as_array().unwrap().len(), 4);
+    }
 }

@@ -16,9 +16,11 @@
 //! being polygons), and arcs in a block inserted with unequal x and y
 //! scales (they are elliptic there). The loop with the largest area is the
 //! part; loops on a layer named `ACCESS` or `KEEPOUT` (any case) are access
-//! constraints; other loops inside the part (holes, pockets) are ignored
-//! with a warning, because the method of Brost & Goldberg holds a part by
-//! its outer silhouette only. Paper-space entities (title blocks) and
+//! constraints; the loops directly inside the part are its holes (SPEC 9:
+//! bores, windows, slots), in the order of the drawing, and loops inside a
+//! hole (a counterbore's drawn step, text) are ignored with a warning
+//! (`holes = "ignore"` drops every hole with a warning, as fixplan did
+//! before holes). Paper-space entities (title blocks) and
 //! annotations are skipped. `docs/cad-files.md` lists entity by entity
 //! what is read.
 
@@ -204,7 +206,9 @@ fn read_loops(bytes: &[u8], opts: &ReadOptions) -> Result<Loops, DxfError> {
 /// (see [`read_dxf_parts`] for sheets).
 pub fn read_dxf(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, DxfError> {
     let (loops, access, warnings) = read_loops(bytes, opts)?;
-    Ok(pick_outline(loops, access, warnings, opts.units)?)
+    Ok(pick_outline(
+        loops, access, warnings, opts.units, opts.holes,
+    )?)
 }
 
 /// Reads a DXF sheet: every outer loop a part, in sheet order (by the
@@ -212,5 +216,7 @@ pub fn read_dxf(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, DxfError> {
 /// loops inside it and the access loops that start inside it.
 pub fn read_dxf_parts(bytes: &[u8], opts: &ReadOptions) -> Result<Vec<RawPart>, DxfError> {
     let (loops, access, warnings) = read_loops(bytes, opts)?;
-    Ok(pick_outlines(loops, access, warnings, opts.units)?)
+    Ok(pick_outlines(
+        loops, access, warnings, opts.units, opts.holes,
+    )?)
 }

@@ -4,8 +4,10 @@ use super::super::outline::straight;
 use fixplan_core::{Part, Units, Vertex};
 
 /// Writes a part as an AutoCAD 2000 (AC1015) DXF: one closed LWPOLYLINE on
-/// layer `PART` for the outline (arcs as bulges, group code 42) and one on
-/// layer `ACCESS` per access constraint, `$INSUNITS` set from `units`.
+/// layer `PART` for the outline (arcs as bulges, group code 42), one on
+/// layer `HOLES` per hole, in order (the reader takes loops inside the
+/// outline as holes, in file order), and one on layer `ACCESS` per access
+/// constraint, `$INSUNITS` set from `units`.
 /// Numbers are written in Rust's shortest round-trip form, so reading the
 /// file back gives the same part.
 pub fn write_dxf(part: &Part, units: Units) -> String {
@@ -27,8 +29,9 @@ pub fn write_dxf(part: &Part, units: Units) -> String {
     pair(0, "SECTION");
     pair(2, "ENTITIES");
     let access: Vec<Vec<Vertex>> = part.access.iter().map(|a| straight(a.clone())).collect();
-    let polys =
-        std::iter::once(("PART", &part.outline)).chain(access.iter().map(|a| ("ACCESS", a)));
+    let polys = std::iter::once(("PART", &part.outline))
+        .chain(part.holes.iter().map(|h| ("HOLES", h)))
+        .chain(access.iter().map(|a| ("ACCESS", a)));
     for (handle, (layer, pts)) in (0x100..).zip(polys) {
         pair(0, "LWPOLYLINE");
         pair(5, &format!("{handle:X}"));

@@ -1,13 +1,15 @@
 //! Choosing the part among the loops of a drawing: one outline with the
-//! loops inside it (holes, pockets), or, for a sheet, every outer loop as a
+//! loops inside it (its holes), or, for a sheet, every outer loop as a
 //! part of its own. Loops of a drawing do not cross, so they nest: a loop's
 //! parent is the smallest loop around it, and a loop at even depth is an
-//! outline, one at odd depth a hole of its parent.
+//! outline, one at odd depth a hole of its parent. A loop inside a hole of
+//! a single part is no material (a counterbore's drawn step, text, a
+//! centre mark): it is dropped with a warning.
 
 use super::curves::{fmt_pt, P};
 use super::join::pt;
 use super::region::{aabb_within, contains, loop_aabb, loop_area, loop_inside};
-use crate::part::raw::RawPart;
+use crate::part::raw::{HoleMode, RawPart};
 use fixplan_core::parts::{v2, Aabb};
 use fixplan_core::{Units, Vertex};
 
@@ -64,6 +66,24 @@ fn nest(loops: &[(Vec<Vertex>, String)], areas: &[f64], boxes: &[Aabb]) -> Nesti
     Nesting { parent, depth }
 }
 
+/// The holes a part keeps of `loops` (each with the name messages give
+/// it): all of them with [`HoleMode::Keep`]; none with
+/// [`HoleMode::Ignore`], each with the warning fixplan gave before holes.
+pub(crate) fn keep_holes(
+    mode: HoleMode,
+    loops: Vec<(Vec<Vertex>, String)>,
+    warnings: &mut Vec<String>,
+    units: Units,
+) -> Vec<Vec<Vertex>> {
+    match mode {
+        HoleMode::Keep => loops.into_iter().map(|(l, _)| l).collect(),
+        HoleMode::Ignore => {
+            warnings.extend(loops.iter().map(|(l, label)| hole_warning(label, l, units)));
+            Vec::new()
+        }
+    }
+}
+
 fn hole_warning(label: &str, l: &[Vertex], units: Units) -> String {
     format!(
         "{label} near {} {} is a loop inside the outline (a hole or pocket); ignored: fixtures hold the outer outline only",
@@ -72,14 +92,26 @@ fn hole_warning(label: &str, l: &[Vertex], units: Units) -> String {
     )
 }
 
-/// The largest loop is the part; smaller loops inside it are features the
-/// planar method does not use (kept in [`RawPart::inner`]); loops outside
-/// it mean the file holds more than one part, which is ambiguous.
+/// A loop inside hole `hole` of the part: no material, so not the part's.
+fn in_hole_warning(label: &str, l: &[Vertex], hole: usize, units: Units) -> String {
+    format!(
+        "{label} near {} {} lies inside hole {hole} (a drawn counterbore, text or mark); ignored",
+        fmt_pt(l.first().map(|v| pt(*v)).unwrap_or_default()),
+        units.label()
+    )
+}
+
+/// The largest loop is the part and the loops directly inside it its
+/// holes, in file order (with [`HoleMode::Ignore`]: none, a warning for
+/// every loop inside it, as before holes); loops inside a hole are dropped
+/// with a warning; loops outside it mean the file holds more than one
+/// part, which is ambiguous.
 pub(crate) fn pick_outline(
     mut loops: Vec<(Vec<Vertex>, String)>,
     access: Vec<Vec<P>>,
     mut warnings: Vec<String>,
     units: Units,
+    mode: HoleMode,
 ) -> Result<RawPart, OutlinePickError> {
     if loops.is_empty() {
         return Err(OutlinePickError::NoClosedLoop {
@@ -93,38 +125,73 @@ pub(crate) fn pick_outline(
         .unwrap_or(0);
     let nesting = nest(&loops, &areas, &boxes);
     let outer = &loops[outer_i].0;
+    let mut inside = Vec::new();
     for (i, (l, label)) in loops.iter().enumerate() {
         if i == outer_i || l.is_empty() {
             continue;
         }
-        if aabb_within(&boxes[i], &boxes[outer_i]) && loop_inside(l, outer) {
-            warnings.push(hole_warning(label, l, units));
-        } else {
+        if !(aabb_within(&boxes[i], &boxes[outer_i]) && loop_inside(l, outer)) {
             return Err(OutlinePickError::MoreThanOne {
                 label: label.clone(),
                 near: pt(l[0]),
                 units,
             });
         }
+        inside.push(i);
     }
-    let inner_i: Vec<usize> = (0..loops.len())
+    let hole_i: Vec<usize> = inside
+        .iter()
+        .copied()
         .filter(|&i| nesting.parent[i] == Some(outer_i))
         .collect();
-    let mut inner = Vec::with_capacity(inner_i.len());
-    for &i in &inner_i {
-        inner.push(std::mem::take(&mut loops[i].0));
-    }
+    let holes = if mode == HoleMode::Ignore {
+        let all = inside.iter().map(|&i| loops[i].clone()).collect();
+        keep_holes(mode, all, &mut warnings, units)
+    } else {
+        warn_in_holes(&loops, &nesting, &inside, &hole_i, &mut warnings, units);
+        hole_i
+            .iter()
+            .map(|&i| std::mem::take(&mut loops[i].0))
+            .collect()
+    };
     let outer = std::mem::take(&mut loops[outer_i].0);
     Ok(RawPart {
         outline: outer,
         access,
         warnings,
-        inner,
+        holes,
     })
 }
 
+/// A warning for each loop of `inside` that is no hole (not in `hole_i`),
+/// naming the hole it lies in (numbered as in `hole_i`).
+fn warn_in_holes(
+    loops: &[(Vec<Vertex>, String)],
+    nesting: &Nesting,
+    inside: &[usize],
+    hole_i: &[usize],
+    warnings: &mut Vec<String>,
+    units: Units,
+) {
+    for &i in inside {
+        if hole_i.contains(&i) {
+            continue;
+        }
+        let mut up = i;
+        while let Some(p) = nesting.parent[up] {
+            if let Some(k) = hole_i.iter().position(|&h| h == p) {
+                let (l, label) = &loops[i];
+                warnings.push(in_hole_warning(label, l, k, units));
+                break;
+            }
+            up = p;
+        }
+    }
+}
+
 /// Every outer loop of a sheet as a part of its own, each with the loops
-/// directly inside it ([`RawPart::inner`], a warning each) and the access
+/// directly inside it as its holes (with [`HoleMode::Ignore`]: none, a
+/// warning each) and the access
 /// loops that start inside it (else the part whose box is nearest), in
 /// sheet order: by the bottom edge of each part's bounding box, then its
 /// left edge (rows of a nested sheet from the bottom, each from the left),
@@ -136,6 +203,7 @@ pub(crate) fn pick_outlines(
     access: Vec<Vec<P>>,
     warnings: Vec<String>,
     units: Units,
+    mode: HoleMode,
 ) -> Result<Vec<RawPart>, OutlinePickError> {
     if loops.is_empty() {
         return Err(OutlinePickError::NoClosedLoop {
@@ -161,18 +229,16 @@ pub(crate) fn pick_outlines(
         .iter()
         .map(|&o| {
             let mut w = warnings.clone();
-            let mut inner = Vec::new();
-            for (i, (l, label)) in loops.iter().enumerate() {
-                if nesting.parent[i] == Some(o) {
-                    w.push(hole_warning(label, l, units));
-                    inner.push(l.clone());
-                }
-            }
+            let inside = (0..loops.len())
+                .filter(|&i| nesting.parent[i] == Some(o))
+                .map(|i| loops[i].clone())
+                .collect();
+            let holes = keep_holes(mode, inside, &mut w, units);
             RawPart {
                 outline: loops[o].0.clone(),
                 access: Vec::new(),
                 warnings: w,
-                inner,
+                holes,
             }
         })
         .collect();

@@ -48,7 +48,9 @@
 //! whose `class` contains `access` or `keepout`, or whose `id` starts with
 //! one of those words (any case), are access constraints, and so is all
 //! inside a group marked that way. The largest closed shape is the part;
-//! smaller ones inside it are ignored with a warning. `<defs>`, `<use>`,
+//! the closed shapes directly inside it are its holes (SPEC 9), in
+//! document order, and shapes inside a hole are ignored with a warning
+//! (`holes = "ignore"` drops every hole with a warning). `<defs>`, `<use>`,
 //! text and styles are not geometry here.
 
 mod error;
@@ -459,7 +461,7 @@ fn take_written_bulges(pts: &mut [Vertex], written: &[f64]) {
 /// them the same way for every format.
 pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
     let d = read_loops(bytes, opts)?;
-    let picked = pick_outline(d.loops, d.access, d.warnings, opts.units);
+    let picked = pick_outline(d.loops, d.access, d.warnings, opts.units, opts.holes);
     join::settle_open(picked, d.open, d.k, d.join_tol)
 }
 
@@ -467,7 +469,7 @@ pub fn read_svg(bytes: &[u8], opts: &ReadOptions) -> Result<RawPart, SvgError> {
 /// `outline::pick_outlines` documents (as for a DXF sheet).
 pub fn read_svg_parts(bytes: &[u8], opts: &ReadOptions) -> Result<Vec<RawPart>, SvgError> {
     let d = read_loops(bytes, opts)?;
-    let picked = pick_outlines(d.loops, d.access, d.warnings, opts.units);
+    let picked = pick_outlines(d.loops, d.access, d.warnings, opts.units, opts.holes);
     join::settle_open_parts(picked, d.open, d.k, d.join_tol)
 }
 
@@ -569,7 +571,9 @@ fn read_loops(bytes: &[u8], opts: &ReadOptions) -> Result<Drawn, SvgError> {
 /// tool shows it at scale and [`read_svg`] reads back the same numbers:
 /// the outline is `<path id="outline">` (arcs as `A` commands, their
 /// bulges also in `data-fixplan-bulges` so they read back bit for bit),
-/// access constraints are paths of class `access`, and part y is written
+/// each hole a path of class `hole` after it, in order (read back as the
+/// holes, in document order), access constraints are paths of class
+/// `access`, and part y is written
 /// as SVG `-y`.
 pub fn write_svg(part: &Part, units: Units) -> String {
     let outline = positions(&part.outline);
@@ -591,20 +595,10 @@ pub fn write_svg(part: &Part, units: Units) -> String {
     let mut s = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:?}{u}\" height=\"{h:?}{u}\" viewBox=\"{x0:?} {y0:?} {w:?} {h:?}\">\n"
     );
-    let bulges = if part.outline.iter().any(Vertex::is_arc) {
-        let list: Vec<String> = part
-            .outline
-            .iter()
-            .map(|v| format!("{:?}", v.bulge))
-            .collect();
-        format!(" data-fixplan-bulges=\"{}\"", list.join(" "))
-    } else {
-        String::new()
-    };
-    s.push_str(&format!(
-        "  <path id=\"outline\" fill=\"#ddd\" stroke=\"black\"{bulges} d=\"{}\"/>\n",
-        path_data(&part.outline)
-    ));
+    s.push_str(&loop_path("id=\"outline\" fill=\"#ddd\"", &part.outline));
+    for h in &part.holes {
+        s.push_str(&loop_path("class=\"hole\" fill=\"white\"", h));
+    }
     for a in &part.access {
         let a: Vec<Vertex> = a.iter().map(|&p| Vertex::from(p)).collect();
         s.push_str(&format!(
@@ -614,6 +608,21 @@ pub fn write_svg(part: &Part, units: Units) -> String {
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// A `<path>` element of a closed loop of the part, `attrs` first, with
+/// `data-fixplan-bulges` when it has arcs (so it reads back bit for bit).
+fn loop_path(attrs: &str, l: &[Vertex]) -> String {
+    let bulges = if l.iter().any(Vertex::is_arc) {
+        let list: Vec<String> = l.iter().map(|v| format!("{:?}", v.bulge)).collect();
+        format!(" data-fixplan-bulges=\"{}\"", list.join(" "))
+    } else {
+        String::new()
+    };
+    format!(
+        "  <path {attrs} stroke=\"black\"{bulges} d=\"{}\"/>\n",
+        path_data(l)
+    )
 }
 
 /// A closed outline as path data in SVG coordinates (y negated): `L` for
