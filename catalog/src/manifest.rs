@@ -179,7 +179,10 @@ fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogErro
     })?;
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.is_file() && Format::from_path(p).is_some())
+        // Every name of a part format is a part: anything but a
+        // directory is read, so a FIFO or a device is refused with its
+        // name (reading refuses it before opening) instead of skipped.
+        .filter(|p| !p.is_dir() && Format::from_path(p).is_some())
         .collect();
     files.sort();
     let parts = files

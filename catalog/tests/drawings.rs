@@ -591,3 +591,32 @@ fn a_fifo_or_a_directory_is_refused_without_being_opened() {
     let e = cat.parts[1].part.clone().unwrap_err().to_string();
     assert!(e.contains("a directory"), "{e}");
 }
+
+/// In a directory catalogue too, a FIFO named like a part file is a part
+/// error naming the file, not skipped in silence (nor opened: that would
+/// block); the good part beside it is read.
+#[cfg(unix)]
+#[test]
+fn a_fifo_in_a_directory_catalogue_is_a_part_error() {
+    let d = temp_dir("fifo-dir");
+    write(
+        &d,
+        "good.json",
+        "{\"part\": [[0, 0], [90, 0], [90, 40], [0, 40]]}",
+    );
+    let fifo = d.join("pipe.json");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        eprintln!("no mkfifo here: nothing to test");
+        return;
+    }
+    let cat = load_catalog(&d).unwrap();
+    let ids: Vec<&str> = cat.parts.iter().map(|p| p.id.as_str()).collect();
+    assert_eq!(ids, ["good", "pipe"]);
+    assert!(cat.parts[0].part.is_ok());
+    let e = cat.parts[1].part.clone().unwrap_err().to_string();
+    assert!(
+        e.contains("pipe.json") && e.contains("a FIFO") && e.contains("not a regular file"),
+        "{e}"
+    );
+}

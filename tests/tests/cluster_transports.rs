@@ -199,3 +199,37 @@ fn plain_listening_off_loopback_needs_insecure() {
     assert!(err.contains(&warning), "{err}");
     assert!(out.exists());
 }
+
+/// A part over `--part-budget` before preparing is `over_budget` through
+/// the cluster too, with the embedded run's bytes, and the others are
+/// enumerated by the workers as ever. The budget, 300, is above every
+/// small part's prepared cost (`ell`: 50 combinations x 6 segments) and
+/// below the 20-gon's edge tests (400).
+#[test]
+fn the_cost_budget_applies_through_the_cluster() {
+    let _g = serial();
+    let dir = tempfile::tempdir().unwrap();
+    let (mut cat, spec) = catalog();
+    let gon: Vec<[f64; 2]> = (0..20)
+        .map(|i| {
+            let a = f64::from(i) * std::f64::consts::TAU / 20.0;
+            [40.0 + 40.0 * a.cos(), 40.0 + 40.0 * a.sin()]
+        })
+        .collect();
+    cat.parts.push(fixplan_tests::part("gon", gon));
+    let with = |out: &std::path::Path, cluster| {
+        let mut o = run_opts(out, 5, cluster);
+        o.search.part_budget = Some(300);
+        o
+    };
+    let emb = dir.path().join("emb.mcap");
+    let dist = dir.path().join("dist.mcap");
+    let totals = run_catalog(&cat, &spec, &with(&emb, None)).unwrap();
+    assert_eq!(totals.over_budget, 1, "{totals:?}");
+    let net = Net::new("budget");
+    let opts = net.options(TransportChoice::Zenoh);
+    let _w = net.worker(&["--transport", "zenoh"]);
+    run_catalog(&cat, &spec, &with(&dist, Some(opts))).unwrap();
+    assert_eq!(fixtures_channel(&emb), fixtures_channel(&dist));
+    assert!(shm_left().is_empty(), "{:?}", shm_left());
+}

@@ -188,6 +188,35 @@ fn damaged_results_files_never_read_as_sound() {
     );
 }
 
+/// Which parts are `over_budget` depends on the budgets: a file written
+/// with other budgets is another run, which `--resume` refuses rather
+/// than keep its parts; with the same budgets it resumes.
+#[test]
+fn resume_with_other_budgets_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cat, spec) = catalog();
+    let out = dir.path().join("r.mcap");
+    let with = |setups| {
+        let mut o = opts(&out, Some(2_000_000));
+        o.search.part_setups = Some(setups);
+        o.resume = true;
+        o
+    };
+    run_catalog(&cat, &spec, &with(1_000)).unwrap();
+    let sound = std::fs::read(&out).unwrap();
+    for (setups, same) in [(1_000, true), (2_000, false)] {
+        std::fs::write(partial_path(&out), &sound).unwrap();
+        let resumed = run_catalog(&cat, &spec, &with(setups));
+        match resumed {
+            Ok(_) => assert!(same, "budget {setups}: resumed another run"),
+            Err(e) => {
+                assert!(!same, "budget {setups}: {e:#}");
+                assert!(format!("{e:#}").contains("different run"), "{e:#}");
+            }
+        }
+    }
+}
+
 #[test]
 fn resume_keeps_no_damaged_part() {
     let dir = tempfile::tempdir().unwrap();
@@ -225,9 +254,16 @@ fn manifest(dir: &Path, name: &str, entry: &str) -> PathBuf {
 
 /// Runs a manifest with the kit and a budget; the good parts' fixtures.
 fn run_manifest(path: &Path, out: &Path) -> Vec<(String, Status, Vec<u8>)> {
+    run_manifest_with(path, &opts(out, Some(2_000_000)))
+}
+
+/// [`run_manifest`] with these options: every part's id, status and
+/// fixtures channel.
+fn run_manifest_with(path: &Path, o: &RunOptions) -> Vec<(String, Status, Vec<u8>)> {
+    let out = &o.output;
     let cat = load_catalog_with(path, &LoadOptions::default()).unwrap();
     let spec = load_kit("metric-25", cat.units).unwrap();
-    run_catalog(&cat, &spec, &opts(out, Some(2_000_000))).unwrap();
+    run_catalog(&cat, &spec, o).unwrap();
     let mut v = Vec::new();
     ResultsFile::open(out)
         .unwrap()
@@ -241,9 +277,51 @@ fn run_manifest(path: &Path, out: &Path) -> Vec<(String, Status, Vec<u8>)> {
     v
 }
 
+/// A part many plates across (a catalogue entry in inches read as mm)
+/// has millions of setups in a few combinations: the setup budget stops
+/// it inside the enumeration, with the same verdict at any thread count
+/// and shard size, and the good parts beside it are the clean run's.
+#[test]
+fn a_part_bigger_than_the_plate_stops_at_its_setup_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let clean = manifest(
+        dir.path(),
+        "clean",
+        "outline = [[0, 0], [60, 0], [60, 30], [0, 30]]",
+    );
+    let big = manifest(
+        dir.path(),
+        "big",
+        "outline = [[0, 0], [1500, 0], [1500, 300], [0, 300]]",
+    );
+    let with = |out: &str, threads, shard_size, setups| {
+        let mut o = opts(&dir.path().join(out), None);
+        o.backend = Backend::Embedded {
+            threads: Some(threads),
+        };
+        o.shard_size = shard_size;
+        o.search.part_setups = Some(setups);
+        o
+    };
+    let want = run_manifest_with(&clean, &with("clean.mcap", 2, None, 1_000_000));
+    let good = |v: &[(String, Status, Vec<u8>)]| {
+        v.iter()
+            .filter(|p| p.0.starts_with("good"))
+            .cloned()
+            .collect::<Vec<_>>()
+    };
+    for (threads, shard_size) in [(1, None), (2, None), (2, Some(1))] {
+        let out = format!("big-{threads}-{shard_size:?}.mcap");
+        let got = run_manifest_with(&big, &with(&out, threads, shard_size, 20_000));
+        assert_eq!(good(&got), good(&want), "{threads} threads: good parts");
+        let bad = got.iter().find(|p| p.0 == "bad").unwrap();
+        assert_eq!(bad.1, Status::OverBudget, "{threads} threads");
+    }
+}
+
 /// Numbers that broke parts and kits. No mid-size one (1e4): a part a
-/// hundred plates across is slow to enumerate rather than hostile, and
-/// `--part-budget` does not bound that work yet.
+/// hundred plates across takes seconds to reach its setup budget
+/// ([`a_part_bigger_than_the_plate_stops_at_its_setup_budget`] has one).
 const HOSTILE_NUMBERS: [&str; 8] = [
     "1e9",
     "-1e9",

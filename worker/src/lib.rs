@@ -42,6 +42,22 @@ pub fn run_shard(prep: &PreparedPart, range: Range<u64>) -> PartialResult {
     prep.enumerate_range(range)
 }
 
+/// [`run_shard`] within a part's work budget (shared by its shards): the
+/// shard's result, and the budget that stopped it if one did (its result
+/// is then incomplete; the part is `over_budget`).
+pub fn run_shard_within(
+    prep: &PreparedPart,
+    range: Range<u64>,
+    budget: &fixplan_core::WorkBudget,
+) -> (PartialResult, Option<fixplan_core::BudgetHalt>) {
+    let options = fixplan_core::EnumerateOptions {
+        budget: Some(budget),
+        ..Default::default()
+    };
+    let done = prep.enumerate(range, options);
+    (done.result, done.halted)
+}
+
 /// Enumerates a shard, or with `good_enough` the shortest prefix of it that
 /// admits a fixture scoring that or better (the hit index with it): the
 /// prefixes of a part's shards merge into the embedded run's

@@ -134,12 +134,32 @@ pub struct SearchArgs {
     #[arg(long, value_name = "SCORE")]
     pub good_enough: Option<f64>,
     /// Give up on a part whose estimated work, segment combinations x
-    /// segments (known once it is prepared, the same on every machine),
-    /// is beyond COST: its status is `over_budget` with the estimate, and
-    /// the run goes on. Default: no budget.
-    #[arg(long, value_name = "COST")]
-    pub part_budget: Option<u64>,
+    /// segments (the same on every machine), is beyond COST: its status is
+    /// `over_budget` with the estimate, and the run goes on. Checked
+    /// before preparing too, on the edge tests preparing does (outline
+    /// edges x all edges, a sound lower bound). The default, 10^11,
+    /// passes parts of about 700 segments.
+    #[arg(long, value_name = "COST", default_value_t = DEFAULT_PART_BUDGET)]
+    pub part_budget: u64,
+    /// Stop a part (each grid step of it) once it has more than N setups
+    /// (SPEC's `setups` count): its status is `over_budget`, and the run
+    /// goes on. Deterministic: the same parts stop whatever the threads or
+    /// workers. The default, 10^7, is seconds to minutes of a core and 17
+    /// times the largest example part (`housing-57-x3`); raise it for
+    /// huge parts.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_PART_SETUPS)]
+    pub part_setups: u64,
+    /// Stop a part still enumerating after S seconds of wall clock: its
+    /// status is `over_budget`. NOT deterministic (it depends on the
+    /// machine and its load); default: no time limit.
+    #[arg(long, value_name = "S")]
+    pub part_seconds: Option<f64>,
 }
+
+/// `--part-budget`'s default, in segment combinations x segments.
+pub const DEFAULT_PART_BUDGET: u64 = 100_000_000_000;
+/// `--part-setups`'s default.
+pub const DEFAULT_PART_SETUPS: u64 = 10_000_000;
 
 impl SearchArgs {
     /// The search of every part of the run.
@@ -147,7 +167,9 @@ impl SearchArgs {
         SearchOptions {
             grid_steps: self.grid_steps.as_ref().map(|g| g.0.clone()),
             good_enough: self.good_enough,
-            part_budget: self.part_budget,
+            part_budget: Some(self.part_budget),
+            part_setups: Some(self.part_setups),
+            part_seconds: self.part_seconds,
         }
     }
 }

@@ -1,17 +1,20 @@
-//! `--part-budget`: a part whose estimated work is beyond the run's
-//! budget gets `over_budget` before any enumeration, with the estimate,
-//! and the run goes on.
+//! `--part-budget`: a part whose work is beyond the run's budget gets
+//! `over_budget` before any enumeration, and the run goes on.
 //!
 //! The budget is in the shard planner's cost unit ([`super::shards::cost`]:
 //! segment combinations x segments), so the verdict is the same on every
 //! machine and at every thread count. It is checked twice: before
-//! preparing, on the planner's estimate from the outline (every edge one
-//! segment), so that an outline of 20,000 vertices is not prepared at all
-//! (preparing allocates a table of segments squared); then on the
-//! prepared part's real segments.
+//! preparing, on the work preparing itself does (each outline edge is
+//! tested against every outline and access edge), so that an outline of
+//! a million vertices is not prepared at all; then on the prepared part's
+//! real segments. The first is a sound lower bound of the part's work:
+//! no part is refused before preparing whose preparation is within the
+//! budget, whatever its segments turn out to be (an outline's edge count
+//! bounds its segments from neither side: trimming drops edges, access
+//! regions split them). The setup budget and the deadline are checked
+//! inside the enumeration ([`fixplan_core::WorkBudget`]).
 
-use fixplan_core::combination_count;
-use fixplan_core::{Part, PreparedPart, SolveResult, Status};
+use fixplan_core::{BudgetHalt, Part, PreparedPart, SolveResult, Status};
 
 /// The estimated work of a prepared part, in [`super::shards::cost`]
 /// units, with the counts it is made of.
@@ -28,35 +31,96 @@ pub fn estimated_cost(prep: &PreparedPart) -> (u64, u64, usize) {
 /// The part's [`Status::OverBudget`] result when its estimated work is
 /// beyond `budget`; `None` when it is within (or there is no budget).
 pub fn over_budget(prep: &PreparedPart, id: &str, budget: Option<u64>) -> Option<SolveResult> {
-    verdict(id, estimated_cost(prep), budget?, "")
+    verdict(id, estimated_cost(prep), budget?)
 }
 
-/// [`over_budget`] before preparing: the estimate of the outline and
-/// access regions' edges, each taken for one segment.
+/// [`over_budget`] before preparing: the edge-against-edge tests that
+/// preparing does, `outline edges x (outline edges + access edges)`, a
+/// sound lower bound of the part's work (counted in the same unit).
 pub fn over_budget_unprepared(part: &Part, id: &str, budget: Option<u64>) -> Option<SolveResult> {
-    let edges = part.outline.len() + part.access.iter().map(Vec::len).sum::<usize>();
-    let combinations = combination_count(edges);
-    let cost = super::shards::cost(combinations, edges);
-    verdict(
-        id,
-        (cost, combinations, edges),
-        budget?,
-        " (estimated from its edges, before preparing)",
-    )
+    let budget = budget?;
+    let outline = part.outline.len() as u64;
+    let access = part.access.iter().map(Vec::len).sum::<usize>() as u64;
+    let tests = outline.saturating_mul(outline.saturating_add(access));
+    (tests > budget).then(|| {
+        SolveResult::gave_up(
+            Status::OverBudget,
+            format!(
+                "{id}: {outline} outline edges x {} outline and access edges = {tests} edge tests to prepare it, beyond --part-budget {budget}; not prepared",
+                outline + access
+            ),
+        )
+    })
 }
 
 fn verdict(
     id: &str,
     (cost, combinations, segments): (u64, u64, usize),
     budget: u64,
-    how: &str,
 ) -> Option<SolveResult> {
     (cost > budget).then(|| {
         SolveResult::gave_up(
             Status::OverBudget,
             format!(
-                "{id}: {combinations} segment combinations x {segments} segments = {cost}{how}, beyond --part-budget {budget}; not enumerated"
+                "{id}: {combinations} segment combinations x {segments} segments = {cost}, beyond --part-budget {budget}; not enumerated"
             ),
         )
     })
+}
+
+/// The part's [`Status::OverBudget`] result when a budget stopped its
+/// enumeration (`--part-setups`, `--part-seconds`): what it exceeded.
+pub fn halted(id: &str, halt: BudgetHalt, seconds: Option<f64>) -> SolveResult {
+    let why = match halt {
+        BudgetHalt::Setups(budget) => {
+            format!("more than {budget} setups, beyond --part-setups {budget}")
+        }
+        BudgetHalt::Deadline => format!(
+            "still enumerating after {} s, beyond --part-seconds (wall clock)",
+            seconds.unwrap_or_default()
+        ),
+    };
+    SolveResult::gave_up(
+        Status::OverBudget,
+        format!("{id}: {why}; enumeration stopped"),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(outline: usize, access: &[usize]) -> Part {
+        let ring = |n: usize| -> Vec<[f64; 2]> {
+            (0..n)
+                .map(|i| {
+                    let a = i as f64 * std::f64::consts::TAU / n as f64;
+                    [50.0 * a.cos(), 50.0 * a.sin()]
+                })
+                .collect()
+        };
+        Part {
+            outline: ring(outline).into_iter().map(Into::into).collect(),
+            holes: Vec::new(),
+            access: access.iter().map(|&n| ring(n)).collect(),
+        }
+    }
+
+    /// Access edges are never segments: a part with few outline edges
+    /// and a big access region is not refused before preparing for the
+    /// combinations its access edges would make as segments (4 outline
+    /// edges and 60 access edges: 41,664 combinations x 64 would be
+    /// 2,666,496), only for the edge tests preparing does.
+    #[test]
+    fn the_check_before_preparing_counts_what_preparing_does() {
+        let p = part(4, &[60]);
+        assert!(over_budget_unprepared(&p, "p", Some(4 * 64)).is_none());
+        let over = over_budget_unprepared(&p, "p", Some(4 * 64 - 1)).unwrap();
+        assert_eq!(over.status, Status::OverBudget);
+        let e = over.error.unwrap();
+        assert!(e.contains("256 edge tests") && e.contains("255"), "{e}");
+        let ring = part(20_000, &[]);
+        assert!(over_budget_unprepared(&ring, "r", Some(1_000_000)).is_some());
+        assert!(over_budget_unprepared(&ring, "r", None).is_none());
+    }
 }

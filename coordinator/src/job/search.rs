@@ -13,7 +13,8 @@
 
 use super::enumerate::solve_prepared;
 use fixplan_core::{
-    report, Counts, EnumerateOptions, FixtureReport, PartialResult, PreparedPart, SolveResult,
+    report, BudgetHalt, Counts, EnumerateOptions, FixtureReport, PartialResult, PreparedPart,
+    SolveResult, WorkBudget,
 };
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -30,6 +31,12 @@ pub struct SearchOptions {
     /// `--part-budget`: a part whose estimated work (segment combinations
     /// x segments) is beyond it gets `over_budget` without enumerating.
     pub part_budget: Option<u64>,
+    /// `--part-setups`: a part (each grid step of it) with more setups
+    /// than this is stopped and gets `over_budget`; deterministic.
+    pub part_setups: Option<u64>,
+    /// `--part-seconds`: a part still enumerating after this many seconds
+    /// is stopped and gets `over_budget`; wall clock, not deterministic.
+    pub part_seconds: Option<f64>,
 }
 
 /// Why `--grid-steps` or `--good-enough` cannot be used.
@@ -52,6 +59,9 @@ pub enum SearchError {
     /// A threshold no score can be compared with.
     #[error("--good-enough {0} must be a finite number")]
     BadScore(f64),
+    /// A time budget that is no duration.
+    #[error("--part-seconds {0} must be a positive number of seconds, at most a year")]
+    BadSeconds(f64),
 }
 
 /// Parses `4,2,1`.
@@ -74,6 +84,15 @@ pub fn parse_grid_steps(text: &str) -> Result<Vec<u32>, SearchError> {
 }
 
 impl SearchOptions {
+    /// A part's budget: the setups of one enumeration and the instant
+    /// `--part-seconds` from `start`.
+    pub fn work_budget(&self, start: std::time::Instant) -> WorkBudget {
+        let deadline = self
+            .part_seconds
+            .map(|s| start + std::time::Duration::from_secs_f64(s));
+        WorkBudget::new(self.part_setups, deadline)
+    }
+
     /// One full enumeration: neither option given.
     pub fn is_plain(&self) -> bool {
         self.grid_steps.is_none() && self.good_enough.is_none()
@@ -98,6 +117,11 @@ impl SearchOptions {
         if let Some(g) = self.good_enough {
             if !g.is_finite() {
                 return Err(SearchError::BadScore(g));
+            }
+        }
+        if let Some(s) = self.part_seconds {
+            if !(s > 0.0 && s <= 366.0 * 86400.0) {
+                return Err(SearchError::BadSeconds(s));
             }
         }
         Ok(())
@@ -179,12 +203,15 @@ pub fn step_summary(
 }
 
 /// Solves a prepared part with the search options: the result of the last
-/// step run, and what each step found.
+/// step run, what each step found, and the budget that stopped a step
+/// (each step has the setup budget; the deadline is the part's, from
+/// `start`).
 pub fn solve_search(
     prep: &PreparedPart,
     opts: &SearchOptions,
     shard_size: Option<u64>,
-) -> (SolveResult, SearchInfo) {
+    start: std::time::Instant,
+) -> (SolveResult, SearchInfo, Option<BudgetHalt>) {
     let steps: Vec<u32> = opts
         .grid_steps
         .clone()
@@ -201,19 +228,28 @@ pub fn solve_search(
             }
         };
         let t0 = std::time::Instant::now();
-        let (res, hit) = match opts.good_enough {
+        let budget = opts.work_budget(start);
+        let (res, hit, halt) = match opts.good_enough {
             Some(g) => {
-                let done = p.enumerate(0..p.combination_count(), EnumerateOptions::good_enough(g));
+                let options = EnumerateOptions {
+                    budget: Some(&budget),
+                    ..EnumerateOptions::good_enough(g)
+                };
+                let done = p.enumerate(0..p.combination_count(), options);
                 let (partial, hit): (PartialResult, Option<u64>) = (done.result, done.stopped_at);
                 info.shards += 1;
-                (report(&p, &partial), hit)
+                let halt = budget.verdict(done.halted, partial.counts.setups);
+                (report(&p, &partial), hit, halt)
             }
             None => {
-                let (res, n) = solve_prepared(&p, shard_size);
+                let (res, n, halt) = solve_prepared(&p, shard_size, &budget);
                 info.shards += n;
-                (res, None)
+                (res, None, halt)
             }
         };
+        if halt.is_some() {
+            return (res, info, halt);
+        }
         let ms = t0.elapsed().as_secs_f64() * 1e3;
         summaries.push(step_summary(step, &res, summaries.last(), hit, ms));
         last = res;
@@ -225,7 +261,7 @@ pub fn solve_search(
     if opts.grid_steps.is_some() {
         info.steps = Some(summaries);
     }
-    (last, info)
+    (last, info, None)
 }
 
 #[cfg(test)]

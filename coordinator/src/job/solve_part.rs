@@ -91,6 +91,7 @@ impl Preparation<'_> {
 
 /// Solves one catalogue part on the current rayon pool.
 pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) -> Solved {
+    let start = Instant::now();
     let mut timing = SolveTiming::default();
     let part = match &cp.part {
         Err(e) => {
@@ -134,21 +135,27 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
     let t1 = Instant::now();
     let solved = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if ctx.search.is_plain() {
-            let (res, n) = solve_prepared(&prep, ctx.shard_size);
+            let budget = ctx.search.work_budget(start);
+            let (res, n, halt) = solve_prepared(&prep, ctx.shard_size, &budget);
             let info = SearchInfo {
                 shards: n,
                 ..SearchInfo::default()
             };
-            (res, info)
+            (res, info, halt)
         } else {
-            solve_search(&prep, ctx.search, ctx.shard_size)
+            solve_search(&prep, ctx.search, ctx.shard_size, start)
         }
     }));
     timing.enumerate_ms = t1.elapsed().as_secs_f64() * 1e3;
     let (result, search) = match solved {
-        Ok((res, info)) => {
+        Ok((res, info, None)) => {
             timing.shards = info.shards;
             (res, info)
+        }
+        Ok((_, info, Some(halt))) => {
+            timing.shards = info.shards;
+            let result = super::budget::halted(&cp.id, halt, ctx.search.part_seconds);
+            (result, SearchInfo::default())
         }
         Err(p) => (
             SolveResult::gave_up(

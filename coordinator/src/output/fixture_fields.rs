@@ -58,13 +58,21 @@ pub struct PlacementField {
     pub clamp_holes: Vec<HoleField>,
 }
 
+/// A score, `null` read as infinity (what serde_json writes for it).
+fn score_or_infinity<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+}
+
 /// One ranked fixture.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FixtureField {
     /// 1 for the best.
     pub rank: usize,
-    /// The metric's value, lower is better.
+    /// The metric's value, lower is better. JSON has no infinity: a
+    /// score that overflowed (the only non-finite one the metric gives,
+    /// which ignores NaN) is written `null` and read back as infinity.
+    #[serde(deserialize_with = "score_or_infinity")]
     pub score: f64,
     /// Segments touched by locators 1-3.
     pub segments: [usize; 3],

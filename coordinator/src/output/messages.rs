@@ -117,6 +117,38 @@ pub struct RunMsg {
     /// `--good-enough` threshold.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub good_enough: Option<f64>,
+    /// The per-part budgets: which parts are `over_budget` depends on
+    /// them, so a run resumed with other budgets is another run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub budgets: Option<BudgetsField>,
+}
+
+/// The budgets of a run (`/fixplan/run` field `budgets`); absent ones
+/// are not limited.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BudgetsField {
+    /// `--part-budget`: segment combinations x segments.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cost: Option<u64>,
+    /// `--part-setups`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub setups: Option<u64>,
+    /// `--part-seconds` (wall clock).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seconds: Option<f64>,
+}
+
+impl BudgetsField {
+    /// The budgets of a search, `None` when there is none.
+    pub fn of(search: &crate::job::SearchOptions) -> Option<BudgetsField> {
+        let b = BudgetsField {
+            cost: search.part_budget,
+            setups: search.part_setups,
+            seconds: search.part_seconds,
+        };
+        (b.cost.is_some() || b.setups.is_some() || b.seconds.is_some()).then_some(b)
+    }
 }
 
 /// The catalogue a run or study read: enough to tell two runs apart.
@@ -607,6 +639,27 @@ mod tests {
         }
     }
 
+    /// A score that overflowed is written `null` (JSON has no infinity)
+    /// and read back as the infinity it was, as `--full-counts --top-k 0`
+    /// keeps such fixtures (the sample catalogue's part #25 has some).
+    #[test]
+    fn an_infinite_score_is_read_back() {
+        let mut f = fixture();
+        f.score = f64::INFINITY;
+        let result = SolveResult {
+            status: Status::Ok,
+            error: None,
+            counts: Some(exact_counts()),
+            segment_kinds: vec![SegmentKind::Line],
+            fixtures: vec![fixture(), f],
+        };
+        let written = FixturesMsg::of_result("p", &result);
+        let text = json(&written);
+        assert!(text.contains("\"score\":null"), "{text}");
+        let read = FixturesMsg::from_json_exact(text.as_bytes()).unwrap();
+        assert_eq!(read.result(), result);
+    }
+
     /// Numbers of 17 significant digits, which serde_json's default parse
     /// may miss by an ulp, come back as the f64s written: export gives
     /// back core's bytes.
@@ -667,6 +720,7 @@ mod tests {
             params: (&params).into(),
             grid_steps: Some(vec![4, 2]),
             good_enough: None,
+            budgets: None,
         };
         assert_eq!(
             json(&run),

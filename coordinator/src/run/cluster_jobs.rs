@@ -1,6 +1,7 @@
 //! Jobs through the cluster: each readable part goes to the workers once
 //! per grid step, its steps come back merged and become the same result as
-//! the embedded search's; unreadable parts never leave this process.
+//! the embedded search's; unreadable parts, and parts over `--part-budget`
+//! before preparing, never leave this process.
 
 use super::backend::{PartJob, RemoteFinish};
 use crate::cluster::distributed::map_batch;
@@ -71,6 +72,13 @@ pub fn start<T>(
             direct.push(i);
             continue;
         };
+        // Over the cost budget before preparing: answered here at once,
+        // as the embedded run does, never sent to a worker.
+        let budget = job.ctx.search.part_budget;
+        if crate::job::budget::over_budget_unprepared(part, &job.part.id, budget).is_some() {
+            direct.push(i);
+            continue;
+        }
         let steps = steps_of(job);
         let plain = steps.len() == 1 && job.ctx.search.good_enough.is_none();
         for (k, step) in steps.into_iter().enumerate() {

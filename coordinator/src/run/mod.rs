@@ -117,6 +117,7 @@ fn run_message(catalog: &Catalog, spec: &KitSpec, opts: &RunOptions, params: &Pa
         params: params.into(),
         grid_steps: opts.search.grid_steps.clone(),
         good_enough: opts.search.good_enough,
+        budgets: crate::output::messages::BudgetsField::of(&opts.search),
     }
 }
 

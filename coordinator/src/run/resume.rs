@@ -196,7 +196,7 @@ fn resume_from(
         Ok(Copied::OtherRun) => {
             let _ = std::fs::remove_file(&new_path);
             bail!(
-                "{} was written by a different run (catalogue content, kit, parameters or fixplan version differ); \
+                "{} was written by a different run (catalogue content, kit, parameters, budgets or fixplan version differ); \
                  delete it or run without --resume",
                 partial.display()
             );

@@ -47,6 +47,7 @@ fn run_msg() -> RunMsg {
         params: (&Params::default()).into(),
         grid_steps: None,
         good_enough: None,
+        budgets: None,
     }
 }
 

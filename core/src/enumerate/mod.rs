@@ -2,6 +2,7 @@
 //! segment [`combinations`], run any range of them through the stages
 //! ([`shards`]) and give the result in the reported form ([`whole_part`]).
 
+pub(crate) mod budget;
 pub(crate) mod combinations;
 pub(crate) mod prepare;
 pub(crate) mod shards;

@@ -408,7 +408,7 @@ impl PreparedPart {
     /// the part) as `options` say: on the rayon pool or this thread, to
     /// the end or to the first good-enough fixture, timed or not. Any
     /// split of a range merges ([`crate::merge`]) to the same result.
-    pub fn enumerate(&self, range: Range<u64>, options: EnumerateOptions) -> Enumeration {
+    pub fn enumerate(&self, range: Range<u64>, options: EnumerateOptions<'_>) -> Enumeration {
         self.stages().enumerate(range, options)
     }
 

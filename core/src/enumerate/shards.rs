@@ -5,6 +5,7 @@
 
 use crate::checks::admissibility::{Scratch, Timing};
 use crate::clamp::{Accumulator, ClampSearch, Work};
+use crate::enumerate::budget::{BudgetHalt, WorkBudget};
 use crate::enumerate::combinations::{combination_count, combinations_in};
 use crate::results::ranking::{merge_ranked, Fixture};
 use crate::results::report::Counts;
@@ -114,12 +115,15 @@ impl Stages<'_> {
     /// better; `timed` adds clock reads to the inner loop. Returns the
     /// result of the combinations done, where the work went and the
     /// index of the combination that stopped it.
-    pub(crate) fn enumerate_serial(
-        &self,
-        range: Range<u64>,
-        timed: bool,
-        good_enough: Option<f64>,
-    ) -> (PartialResult, Profile, Option<u64>) {
+    pub(crate) fn enumerate_serial(&self, range: Range<u64>, options: &EnumerateOptions) -> Piece {
+        let (timed, good_enough) = (options.timed, options.good_enough);
+        let unlimited = WorkBudget::default();
+        let budget = options.budget.unwrap_or(&unlimited);
+        // With good_enough, pieces after the first hit are dropped, so a
+        // piece counts only its own setups: the setups of dropped pieces
+        // must not stop a kept one.
+        let shared = good_enough.is_none();
+        let mut halted = None;
         let clock = std::time::Instant::now();
         let mut acc = self.accumulator();
         let mut scratch = Scratch::default();
@@ -130,14 +134,43 @@ impl Stages<'_> {
         let end = range.end.min(self.combination_count());
         let mut hit = None;
         let mut done_to = end;
+        let mut own = 0u64;
         for (index, combo) in combinations_in(n, range.start..end) {
+            let base = if shared { budget.seen() } else { own };
+            halted = budget.halt(base, true);
+            if halted.is_some() {
+                done_to = index;
+                break;
+            }
             acc.counts.combinations += 1;
+            let mut seen = 0u64;
             let s = self
                 .setups
                 .setups_of_combination(combo, &mut setup_scratch, |s| {
+                    // The setup search cannot be left half-way: past the
+                    // budget it runs on, but without the clamp search
+                    // that costs most of a setup's time.
+                    if halted.is_some() {
+                        return;
+                    }
+                    seen += 1;
+                    if budget.is_limited() {
+                        halted = budget.halt(base + seen, false);
+                        if halted.is_some() {
+                            return;
+                        }
+                    }
                     self.clamp.process_setup(s, &mut acc, &mut scratch)
                 });
+            own += seen;
+            if shared && budget.is_limited() {
+                budget.add(seen);
+            }
             search.add(&s);
+            if halted.is_some() {
+                done_to = index + 1;
+                break;
+            }
             if good_enough.is_some_and(|g| acc.best_score <= g) {
                 hit = Some(index);
                 done_to = index + 1;
@@ -152,7 +185,7 @@ impl Stages<'_> {
             total_ns: clock.elapsed().as_nanos() as u64,
         };
         let res = PartialResult {
-            range: if hit.is_some() {
+            range: if hit.is_some() || halted.is_some() {
                 range.start..done_to
             } else {
                 range
@@ -160,7 +193,12 @@ impl Stages<'_> {
             counts: acc.counts,
             fixtures: acc.top.into_sorted(),
         };
-        (res, profile, hit)
+        Piece {
+            result: res,
+            profile,
+            hit,
+            halted,
+        }
     }
 
     /// Enumerates `range` as `options` say: on the rayon pool (same result
@@ -173,38 +211,40 @@ impl Stages<'_> {
     /// and later chunks are dropped.
     pub(crate) fn enumerate(&self, range: Range<u64>, options: EnumerateOptions) -> Enumeration {
         if options.this_thread {
-            let (result, profile, stopped_at) =
-                self.enumerate_serial(range, options.timed, options.good_enough);
+            let piece = self.enumerate_serial(range, &options);
             return Enumeration {
-                result,
-                stopped_at,
-                profile,
+                result: piece.result,
+                stopped_at: piece.hit,
+                profile: piece.profile,
+                halted: piece.halted,
             };
         }
         use std::sync::atomic::{AtomicU64, Ordering};
         let first_hit = AtomicU64::new(u64::MAX);
         let chunks = self.chunks(&range);
-        let parts: Vec<(PartialResult, Profile, Option<u64>)> = chunks
+        let parts: Vec<Piece> = chunks
             .into_par_iter()
             .filter_map(|r| {
                 // A chunk wholly after a known hit cannot matter.
                 if r.start > first_hit.load(Ordering::Relaxed) {
                     return None;
                 }
-                let piece = self.enumerate_serial(r, options.timed, options.good_enough);
-                if let Some(h) = piece.2 {
+                let piece = self.enumerate_serial(r, &options);
+                if let Some(h) = piece.hit {
                     first_hit.fetch_min(h, Ordering::Relaxed);
                 }
                 Some(piece)
             })
             .collect();
-        let stop = parts.iter().filter_map(|p| p.2).min();
+        let stop = parts.iter().filter_map(|p| p.hit).min();
         let mut profile = Profile::default();
         let mut kept = Vec::with_capacity(parts.len());
-        for (piece, piece_profile, _) in parts {
-            if stop.is_none_or(|s| piece.range.start <= s) {
-                profile.add(&piece_profile);
-                kept.push(piece);
+        let mut halted = None;
+        for piece in parts {
+            if stop.is_none_or(|s| piece.result.range.start <= s) {
+                profile.add(&piece.profile);
+                halted = halted.or(piece.halted);
+                kept.push(piece.result);
             }
         }
         let mut result = merge(self.clamp.setting.top_k, kept);
@@ -215,14 +255,28 @@ impl Stages<'_> {
             result,
             stopped_at: stop,
             profile,
+            halted,
         }
     }
 }
 
+/// What one piece of enumeration on one thread gives.
+pub(crate) struct Piece {
+    /// Counts and best fixtures of the combinations it did.
+    pub(crate) result: PartialResult,
+    /// Where its work went.
+    pub(crate) profile: Profile,
+    /// With `good_enough`: the combination that admitted a good-enough
+    /// fixture, its last.
+    pub(crate) hit: Option<u64>,
+    /// The budget that stopped it, if one did.
+    pub(crate) halted: Option<BudgetHalt>,
+}
+
 /// How [`crate::PreparedPart::enumerate`] runs a range of combinations.
 /// The default: on the rayon pool, every combination, untimed.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct EnumerateOptions {
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EnumerateOptions<'a> {
     /// On the calling thread only (a worker's thread, a bench), rather
     /// than on the rayon pool; the result is the same.
     pub this_thread: bool,
@@ -231,11 +285,15 @@ pub struct EnumerateOptions {
     pub good_enough: Option<f64>,
     /// Time each stage for the profile: clock reads in the inner loop.
     pub timed: bool,
+    /// Stop once the part's setups exceed this budget or its deadline
+    /// passes ([`Enumeration::halted`] says which); shared by every
+    /// range of the part enumerated in this process.
+    pub budget: Option<&'a WorkBudget>,
 }
 
-impl EnumerateOptions {
+impl EnumerateOptions<'_> {
     /// Every combination, on the calling thread.
-    pub fn this_thread() -> EnumerateOptions {
+    pub fn this_thread() -> EnumerateOptions<'static> {
         EnumerateOptions {
             this_thread: true,
             ..EnumerateOptions::default()
@@ -244,7 +302,7 @@ impl EnumerateOptions {
 
     /// On the rayon pool, up to the first fixture scoring `good_enough` or
     /// better.
-    pub fn good_enough(good_enough: f64) -> EnumerateOptions {
+    pub fn good_enough(good_enough: f64) -> EnumerateOptions<'static> {
         EnumerateOptions {
             good_enough: Some(good_enough),
             ..EnumerateOptions::default()
@@ -263,6 +321,10 @@ pub struct Enumeration {
     /// Where the work went, summed over the pieces that ran (a
     /// measurement: never part of a result).
     pub profile: Profile,
+    /// The budget that stopped a piece (the result is then incomplete).
+    /// That no piece stopped does not mean the part is within its setup
+    /// budget: [`WorkBudget::verdict`] says.
+    pub halted: Option<BudgetHalt>,
 }
 
 /// Merges partial results of disjoint ranges of one part.
