@@ -216,7 +216,7 @@ fn the_cost_budget_applies_through_the_cluster() {
             [40.0 + 40.0 * a.cos(), 40.0 + 40.0 * a.sin()]
         })
         .collect();
-    cat.parts.push(fixplan_tests::part("gon", gon));
+    cat.parts.push(part("gon", gon));
     let with = |out: &std::path::Path, cluster| {
         let mut o = run_opts(out, 5, cluster);
         o.search.part_budget = Some(300);

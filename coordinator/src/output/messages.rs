@@ -651,6 +651,7 @@ mod tests {
             error: None,
             counts: Some(exact_counts()),
             segment_kinds: vec![SegmentKind::Line],
+            segment_loops: Vec::new(),
             fixtures: vec![fixture(), f],
         };
         let written = FixturesMsg::of_result("p", &result);
