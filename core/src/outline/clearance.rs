@@ -27,14 +27,7 @@ impl Outline {
     pub fn polygon_clearance(&self, poly: &[V2]) -> Option<f64> {
         let mut best = side_distance(poly, self.outline_edges(), f64::INFINITY)?;
         if !self.holes.is_empty() {
-            let poly_box = Aabb::of(poly);
-            for h in &self.holes {
-                let gap = poly_box.gap(&h.aabb);
-                if gap > 0.0 && gap >= best {
-                    continue;
-                }
-                best = side_distance(poly, &self.edges()[h.edges.clone()], best)?;
-            }
+            best = self.holes_side_distance(poly, best)?;
         }
         let inside_poly = |x: V2| point_in_polygon(x, poly);
         if best > EPS {
@@ -44,6 +37,31 @@ impl Outline {
             }
         } else if self.probes_inside(poly) || polygon_probes_inside_region(poly, self) {
             return None;
+        }
+        Some(best)
+    }
+
+    /// [`side_distance`] over the holes whose boxes come within `best`
+    /// of the polygon's: the others can neither cross it nor be nearer.
+    /// Holes are swept by the left side of their boxes, from the first
+    /// that can reach the polygon's left (no box is wider than the widest)
+    /// to the last that starts before its right; `best` only shrinks on
+    /// the way, so the window stays right.
+    fn holes_side_distance(&self, poly: &[V2], mut best: f64) -> Option<f64> {
+        let poly_box = Aabb::of(poly);
+        let index = &self.by_left;
+        let from = poly_box.min.x - best - index.widest;
+        let first = index.left.partition_point(|&x| x < from);
+        for (&k, &left) in index.order[first..].iter().zip(&index.left[first..]) {
+            if left > poly_box.max.x + best {
+                break;
+            }
+            let h = &self.holes[k];
+            let gap = poly_box.gap(&h.aabb);
+            if gap > 0.0 && gap >= best {
+                continue;
+            }
+            best = side_distance(poly, &self.edges()[h.edges.clone()], best)?;
         }
         Some(best)
     }

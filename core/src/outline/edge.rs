@@ -7,7 +7,7 @@ use crate::geometry::arc::{
     arc_arc_closest, point_arc_closest, point_segment_closest, segment_arc_closest,
     segment_segment_closest, CircArc, Closest, GrownArc,
 };
-use crate::geometry::{cross, Aabb, V2};
+use crate::geometry::{cross, point_in_polygon, Aabb, V2};
 
 /// Two unit tangents closer than this in `|t_in x t_out|` (and pointing the
 /// same way) make a smooth joint (SPEC 8.2).
@@ -191,4 +191,16 @@ pub fn ccw_of_cw_outline(vertices: &[Vertex]) -> Vec<Vertex> {
             Vertex::new(p.x, p.y, if b == 0.0 { 0.0 } else { -b })
         })
         .collect()
+}
+
+/// Even-odd location in one loop: its vertex polygon, toggled by every
+/// arc's circular segment.
+pub(super) fn loop_contains(p: V2, points: &[V2], edges: &[Edge]) -> bool {
+    let mut inside = point_in_polygon(p, points);
+    for e in edges {
+        if let Edge::Arc(arc) = e {
+            inside ^= arc.segment_contains(p);
+        }
+    }
+    inside
 }

@@ -14,11 +14,10 @@
 //! hole on its own first, then hole by hole against the outline and the
 //! holes before it, coordinates written as C's `%g` does.
 
-use super::edge::{ccw_of_cw_outline, edges_of, Edge};
+use super::edge::{ccw_of_cw_outline, edges_of, loop_contains, Edge};
 use super::mass::general;
 use super::validate::{sizes, validate_outline, OutlineError, TOUCH_REL};
 use super::vertex::Vertex;
-use super::Outline;
 use crate::geometry::{cross, V2};
 use thiserror::Error;
 
@@ -113,18 +112,27 @@ pub fn fmt_g(x: f64) -> String {
     }
 }
 
-/// One hole as read and as its own region (CCW), for the checks.
+/// One loop as read, and counter-clockwise, for the checks.
 struct Loop {
     edges: Vec<Edge>,
-    region: Outline,
+    ccw: Vec<Vertex>,
+    ccw_points: Vec<V2>,
+    ccw_edges: Vec<Edge>,
 }
 
 impl Loop {
     fn of(vertices: &[Vertex], ccw: Vec<Vertex>) -> Loop {
         Loop {
             edges: edges_of(vertices),
-            region: Outline::from_ccw(ccw),
+            ccw_points: ccw.iter().map(Vertex::point).collect(),
+            ccw_edges: edges_of(&ccw),
+            ccw,
         }
+    }
+
+    /// Even-odd location in the loop's region.
+    fn contains(&self, p: V2) -> bool {
+        loop_contains(p, &self.ccw_points, &self.ccw_edges)
     }
 }
 
@@ -186,7 +194,7 @@ pub fn validate_holes(
     }
     Ok(loops
         .into_iter()
-        .map(|l| ccw_of_cw_outline(l.region.vertices()))
+        .map(|l| ccw_of_cw_outline(&l.ccw))
         .collect())
 }
 
@@ -214,7 +222,7 @@ fn crosses(a: &[Edge], b: &Loop, tol: f64) -> bool {
             if b.edges.iter().any(|f| f.distance(p) <= tol) {
                 continue;
             }
-            if b.region.contains(p) {
+            if b.contains(p) {
                 inner = true;
             } else {
                 outer = true;
@@ -244,8 +252,8 @@ fn inside(a: &Loop, b: &Loop) -> bool {
     for p in candidates {
         first.get_or_insert(p);
         if !on_chord(p) {
-            return b.region.contains(p);
+            return b.contains(p);
         }
     }
-    first.is_some_and(|p| b.region.contains(p))
+    first.is_some_and(|p| b.contains(p))
 }

@@ -27,6 +27,7 @@ mod vertex;
 #[cfg(test)]
 mod tests;
 
+use edge::loop_contains;
 pub use edge::{ccw_of_cw_outline, edges_of, tangents_smooth, Edge, GrownEdge};
 pub use holes::{validate_holes, HoleError};
 pub use mass::{mass_properties, MassProperties};
@@ -34,7 +35,7 @@ pub use validate::{validate_outline, OutlineError};
 pub use vertex::Vertex;
 
 use crate::geometry::arc::{CircArc, Closest};
-use crate::geometry::{point_in_polygon, Aabb, V2};
+use crate::geometry::{Aabb, V2};
 use std::ops::Range;
 
 /// A validated outline, counter-clockwise, with its edges, and the part's
@@ -52,6 +53,35 @@ pub struct Outline {
     has_arcs: bool,
     /// The holes, clockwise (SPEC 9.2).
     holes: Vec<Hole>,
+    /// The holes by the left side of their boxes, and the widest box:
+    /// a clamp polygon's clearance looks only at the holes whose boxes
+    /// can come near its own.
+    by_left: HoleIndex,
+}
+
+/// Holes ordered by `aabb.min.x`, for a sweep over an x range.
+#[derive(Debug, Clone, PartialEq, Default)]
+struct HoleIndex {
+    /// Hole numbers, by increasing `aabb.min.x`.
+    order: Vec<usize>,
+    /// Their `aabb.min.x`, in that order.
+    left: Vec<f64>,
+    /// The largest box width.
+    widest: f64,
+}
+
+impl HoleIndex {
+    fn of(holes: &[Hole]) -> HoleIndex {
+        let mut order: Vec<usize> = (0..holes.len()).collect();
+        order.sort_by(|&a, &b| holes[a].aabb.min.x.total_cmp(&holes[b].aabb.min.x));
+        HoleIndex {
+            left: order.iter().map(|&k| holes[k].aabb.min.x).collect(),
+            widest: holes
+                .iter()
+                .fold(0.0, |w, h| f64::max(w, h.aabb.max.x - h.aabb.min.x)),
+            order,
+        }
+    }
 }
 
 /// A hole of the part region: its clockwise loop, where its edges sit in
@@ -90,6 +120,7 @@ impl Outline {
                 aabb,
             });
         }
+        self.by_left = HoleIndex::of(&self.holes);
         self
     }
 
@@ -104,6 +135,7 @@ impl Outline {
             points,
             has_arcs,
             holes: Vec::new(),
+            by_left: HoleIndex::default(),
         }
     }
 
@@ -272,18 +304,6 @@ impl Outline {
     pub fn flatten_hole(&self, k: usize, chord_error: f64) -> Vec<V2> {
         flatten_edges(&self.edges[self.holes[k].edges.clone()], chord_error)
     }
-}
-
-/// Even-odd location in one loop: its vertex polygon, toggled by every
-/// arc's circular segment.
-fn loop_contains(p: V2, points: &[V2], edges: &[Edge]) -> bool {
-    let mut inside = point_in_polygon(p, points);
-    for e in edges {
-        if let Edge::Arc(arc) = e {
-            inside ^= arc.segment_contains(p);
-        }
-    }
-    inside
 }
 
 /// Bounding box of a loop's curves.
