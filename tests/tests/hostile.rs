@@ -2,8 +2,8 @@
 //! files are never read as sound ones and `--resume` keeps no damaged
 //! part; mutated part files, kits and manifests end in an error or a
 //! status, never a panic, and the good parts beside them are unharmed.
-//! Work is bounded by `--part-budget` (a deterministic unit), not by a
-//! clock. `FIXPLAN_FUZZ_SCALE=N` runs N times as many cases (default 1:
+//! Work is bounded by `--part-budget` and `--part-setups` (deterministic
+//! units), not by a clock. `FIXPLAN_FUZZ_SCALE=N` runs N times as many cases (default 1:
 //! a few seconds).
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 

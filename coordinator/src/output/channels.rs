@@ -154,7 +154,7 @@ mod tests {
         let want = [
             (
                 "fixplan.Run",
-                "410b366f99bd0d3e4ab9284d10b4e68c760be73938f2216ce321b66b6ec53f3b",
+                "8065762188b1b83911db23af6e5eb5540e26f3c2fe5b7765fcff08bcf45400ff",
             ),
             (
                 "fixplan.Part",

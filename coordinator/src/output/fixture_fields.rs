@@ -69,9 +69,10 @@ fn score_or_infinity<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::E
 pub struct FixtureField {
     /// 1 for the best.
     pub rank: usize,
-    /// The metric's value, lower is better. JSON has no infinity: a
-    /// score that overflowed (the only non-finite one the metric gives,
-    /// which ignores NaN) is written `null` and read back as infinity.
+    /// The metric's value, lower is better.
+    // JSON has no infinity: a score that overflowed (the only non-finite
+    // one the metric gives, which ignores NaN) is written `null` and read
+    // back as infinity. (A plain comment: the doc is the schema's text.)
     #[serde(deserialize_with = "score_or_infinity")]
     pub score: f64,
     /// Segments touched by locators 1-3.
