@@ -17,8 +17,8 @@ pub use crate::geometry::{
 };
 pub use crate::metric::{fibonacci_sphere, MaxForceMetric, Metric, PartContact};
 pub use crate::outline::{
-    ccw_of_cw_outline, edges_of, mass_properties, validate_outline, Edge, MassProperties, Outline,
-    OutlineError,
+    ccw_of_cw_outline, edges_of, mass_properties, validate_holes, validate_outline, Edge,
+    HoleError, MassProperties, Outline, OutlineError,
 };
 pub use crate::poses::contact_pose::{
     scaled_jacobian_det, solve_contact_poses, Circle, Contact, ContactPose, ContactPoses,

@@ -10,7 +10,7 @@ use fixplan_catalog::{
     Catalog, CatalogPart, InvalidPolygon, KitSpec, PartError, PartErrorKind, PolygonProblem,
     PolygonRole,
 };
-use fixplan_coordinator::output::messages::{TOPIC_FIXTURES, TOPIC_SCENE};
+use fixplan_coordinator::{TOPIC_FIXTURES, TOPIC_SCENE};
 use fixplan_core::parts::PolygonError;
 use fixplan_core::{Case, Part, Units};
 use std::path::{Path, PathBuf};
@@ -144,7 +144,7 @@ pub fn fixtures_channel(path: &Path) -> Vec<Vec<u8>> {
 /// The fixtures and scene messages of a complete results file, part by
 /// part: the channels that do not depend on timing.
 pub fn channels(path: &Path) -> Vec<(Vec<u8>, Vec<u8>)> {
-    let f = fixplan_coordinator::output::ResultsFile::open(path).unwrap();
+    let f = fixplan_coordinator::ResultsFile::open(path).unwrap();
     let mut v = Vec::new();
     let c = f.for_each_part(|_, m| {
         v.push((

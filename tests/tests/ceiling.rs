@@ -5,11 +5,11 @@
 //! unix socket and iceoryx2 under a fresh prefix), a few seconds.
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
-use fixplan_coordinator::bench::ceiling::{run_once, CeilingArgs};
-use fixplan_coordinator::bench::replay::Replay;
-use fixplan_coordinator::cluster::{TransportChoice, VerifyPolicy};
-use fixplan_coordinator::run::backend::Backend;
-use fixplan_coordinator::run::{run_catalog, RunOptions};
+use fixplan_coordinator::Backend;
+use fixplan_coordinator::Replay;
+use fixplan_coordinator::{run_catalog, RunOptions};
+use fixplan_coordinator::{run_once, CeilingArgs};
+use fixplan_coordinator::{TransportChoice, VerifyPolicy};
 use fixplan_tests::{catalog, channels};
 use std::path::PathBuf;
 use std::sync::Arc;

@@ -5,9 +5,9 @@
 mod cluster_support;
 
 use cluster_support::*;
-use fixplan_coordinator::cluster::scheduler::Stats;
-use fixplan_coordinator::cluster::{run_distributed, Distributed, TransportChoice};
-use fixplan_coordinator::run::run_catalog;
+use fixplan_coordinator::run_catalog;
+use fixplan_coordinator::Stats;
+use fixplan_coordinator::{run_distributed, Distributed, TransportChoice};
 use fixplan_worker::protocol::{decode, encode, encode_as, Frame, Msg, Next, PROTOCOL_VERSION};
 use fixplan_worker::zenoh_link::{open, request, ZenohOptions};
 use std::time::Duration;

@@ -6,7 +6,7 @@
 mod cluster_support;
 
 use cluster_support::*;
-use fixplan_coordinator::cluster::{run_distributed, TransportChoice};
+use fixplan_coordinator::{run_distributed, TransportChoice};
 use fixplan_worker::zenoh_link::ZenohOptions;
 use std::process::{Command, Stdio};
 

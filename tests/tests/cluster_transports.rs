@@ -7,10 +7,7 @@
 mod cluster_support;
 
 use cluster_support::*;
-use fixplan_coordinator::cluster::TransportChoice;
-use fixplan_coordinator::output::messages::{PartMsg, TOPIC_PART};
-use fixplan_coordinator::output::ResultsFile;
-use fixplan_coordinator::run::run_catalog;
+use fixplan_coordinator::{run_catalog, PartMsg, ResultsFile, TransportChoice, TOPIC_PART};
 use fixplan_core::{Part, Vertex};
 use fixplan_tests::{channels, fixtures_channel, part};
 
@@ -134,7 +131,7 @@ fn workers_beyond_the_shared_memory_limit_use_zenoh() {
     let mut workers: Vec<_> = (0..n)
         .map(|_| net.worker_captured(&["--fault", "slow:300"]))
         .collect();
-    let mut d = fixplan_coordinator::cluster::run_distributed(inputs, opts).unwrap();
+    let mut d = fixplan_coordinator::run_distributed(inputs, opts).unwrap();
     let got = in_order(&mut d);
     d.finish();
     assert_eq!(got, want);

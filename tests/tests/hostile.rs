@@ -8,12 +8,12 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::{load_catalog_with, load_kit, LoadOptions};
-use fixplan_coordinator::job::SearchOptions;
-use fixplan_coordinator::output::{PartMessages, ResultsFile};
-use fixplan_coordinator::run::backend::Backend;
-use fixplan_coordinator::run::resume::partial_path;
-use fixplan_coordinator::run::{run_catalog, RunOptions};
-use fixplan_coordinator::view::show::{export_json, show};
+use fixplan_coordinator::partial_path;
+use fixplan_coordinator::Backend;
+use fixplan_coordinator::SearchOptions;
+use fixplan_coordinator::{export_json, show};
+use fixplan_coordinator::{run_catalog, RunOptions};
+use fixplan_coordinator::{PartMessages, ResultsFile};
 use fixplan_core::{Status, Units};
 use fixplan_tests::{catalog, fixtures_channel};
 use std::path::{Path, PathBuf};
@@ -67,7 +67,7 @@ fn opts(out: &Path, budget: Option<u64>) -> RunOptions {
 fn read(
     bytes: &[u8],
 ) -> (
-    Result<fixplan_coordinator::output::reader::Contents, String>,
+    Result<fixplan_coordinator::Contents, String>,
     Vec<PartMessages>,
 ) {
     let file = ResultsFile::from_bytes("fuzzed.mcap".into(), bytes.to_vec());
@@ -232,8 +232,8 @@ fn run_manifest(path: &Path, out: &Path) -> Vec<(String, Status, Vec<u8>)> {
     ResultsFile::open(out)
         .unwrap()
         .for_each_part(|_, m| {
-            let r = fixplan_coordinator::output::PartRecord::decode(&m).unwrap();
-            let f = m.get(fixplan_coordinator::output::messages::TOPIC_FIXTURES);
+            let r = fixplan_coordinator::PartRecord::decode(&m).unwrap();
+            let f = m.get(fixplan_coordinator::TOPIC_FIXTURES);
             v.push((r.part.id, r.part.status.into(), f.unwrap().to_vec()));
             true
         })

@@ -4,9 +4,11 @@
 //! (Rust reader here, Python's `mcap` package when it is installed).
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
-use fixplan_coordinator::output::fields::{KitField, ParamsField, StatusName};
-use fixplan_coordinator::output::messages::*;
-use fixplan_coordinator::output::ResultsFile;
+use fixplan_coordinator::ResultsFile;
+use fixplan_coordinator::{KitField, ParamsField, StatusName};
+use fixplan_coordinator::{
+    PartMsg, METADATA_RUN, NS_PER_PART, TOPIC_FIXTURES, TOPIC_PART, TOPIC_RUN, TOPIC_SCENE,
+};
 use fixplan_tests::ok;
 use serde_json::Value;
 use std::collections::BTreeMap;

@@ -4,15 +4,15 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::{Catalog, CatalogPart};
-use fixplan_coordinator::output::{PartRecord, ResultsFile};
-use fixplan_coordinator::run::backend::Backend;
-use fixplan_coordinator::run::{run_catalog, RunOptions};
-use fixplan_coordinator::view::{render::render, show::show};
+use fixplan_coordinator::Backend;
+use fixplan_coordinator::{render, show};
+use fixplan_coordinator::{run_catalog, RunOptions};
+use fixplan_coordinator::{PartRecord, ResultsFile};
 use fixplan_core::{Part, Status, Units, Vertex};
 use std::path::{Path, PathBuf};
 
-use fixplan_coordinator::run::run_parts;
-use fixplan_coordinator::run::slice::{merge_files, Slice};
+use fixplan_coordinator::run_parts;
+use fixplan_coordinator::{merge_files, Slice};
 use fixplan_tests::{catalog, channels, fixtures_channel, part};
 
 fn opts(out: &Path, threads: usize, shard: Option<u64>) -> RunOptions {

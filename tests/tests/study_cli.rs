@@ -4,8 +4,8 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::kit::write_kit_toml;
-use fixplan_coordinator::output::messages::StepField;
-use fixplan_coordinator::study::{read_mcap, StudyKitMsg};
+use fixplan_coordinator::StepField;
+use fixplan_coordinator::{read_mcap, StudyKitMsg};
 use fixplan_core::{Counts, FixtureReport, Kit, Params, Units};
 use fixplan_tests::ok;
 use serde_json::Value;

@@ -5,8 +5,8 @@
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
 use fixplan_catalog::load_catalog;
-use fixplan_coordinator::run::default_catalog;
-use fixplan_coordinator::study::{median, nearest_rank, study_kits};
+use fixplan_coordinator::default_catalog;
+use fixplan_coordinator::{median, nearest_rank, study_kits};
 use fixplan_core::prepare;
 
 #[test]

@@ -9,9 +9,7 @@
 mod cluster_support;
 
 use cluster_support::{free_port, serial, unique, Proc, EXE};
-use fixplan_coordinator::cluster::certs::{
-    Authority, Issued, Validity, COORDINATOR_CN, ROUTER_CN, WORKER_CN,
-};
+use fixplan_coordinator::{Authority, Issued, Validity, COORDINATOR_CN, ROUTER_CN, WORKER_CN};
 use fixplan_tests::fixtures_channel;
 use fixplan_worker::zenoh_link::{open, TlsFiles, ZenohOptions};
 use std::path::{Path, PathBuf};

@@ -4,8 +4,8 @@
 //! bench-coordinator` (the coordinator's ceiling, with replayed results).
 //! Uses `job`, `cluster` and `run`.
 
-pub mod ceiling;
-pub mod cluster;
-pub mod parts;
-pub mod replay;
-pub mod replay_workers;
+pub(crate) mod ceiling;
+pub(crate) mod cluster;
+pub(crate) mod parts;
+pub(crate) mod replay;
+pub(crate) mod replay_workers;

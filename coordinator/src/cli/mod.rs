@@ -3,11 +3,11 @@
 //! this crate and the one the workspace integration tests build (`tests/`)
 //! are the same program. Uses every other folder; nothing uses it.
 
-pub mod case_file;
-pub mod cluster;
-pub mod fault;
-pub mod log;
-pub mod study;
+pub(crate) mod case_file;
+pub(crate) mod cluster;
+pub(crate) mod fault;
+pub(crate) mod log;
+pub(crate) mod study;
 
 use crate::run::backend::Backend;
 use crate::run::{default_catalog, load_and_run, RunOptions};

@@ -16,14 +16,14 @@
 //!   (`fixplan certs`).
 
 #[cfg(feature = "tls")]
-pub mod certs;
-pub mod cpu_time;
-pub mod distributed;
-pub mod local;
-pub mod options;
-pub mod runtime;
-pub mod scheduler;
-pub mod verify;
+pub(crate) mod certs;
+pub(crate) mod cpu_time;
+pub(crate) mod distributed;
+pub(crate) mod local;
+pub(crate) mod options;
+pub(crate) mod runtime;
+pub(crate) mod scheduler;
+pub(crate) mod verify;
 
 pub use distributed::{
     run_distributed, run_distributed_finishing, Distributed, MergedPart, Returned,

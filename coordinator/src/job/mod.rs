@@ -3,14 +3,14 @@
 //! Uses the core, catalog and worker crates only; knows nothing of files,
 //! messages or the cluster.
 
-pub mod budget;
-pub mod enumerate;
-pub mod guard;
-pub mod search;
-pub mod shards;
-pub mod solve_part;
-pub mod threads;
+pub(crate) mod budget;
+pub(crate) mod enumerate;
+pub(crate) mod guard;
+pub(crate) mod search;
+pub(crate) mod shards;
+pub(crate) mod solve_part;
+pub(crate) mod threads;
 
 pub use guard::solve_guarded;
-pub use search::{SearchError, SearchInfo, SearchOptions, StepSummary};
-pub use solve_part::{part_params, solve_part, JobContext, SolveTiming, Solved};
+pub use search::{SearchInfo, SearchOptions, StepSummary};
+pub use solve_part::{part_params, JobContext, SolveTiming, Solved};

@@ -6,17 +6,17 @@
 //! types a part's messages carry), `drawing` (what the scene draws) and
 //! the core crate.
 
-pub mod channels;
-pub mod chunk;
-pub mod fields;
-pub mod fixture_fields;
-pub mod mcap_file;
-pub mod messages;
-pub mod reader;
-pub mod records;
-pub mod scene;
-pub mod schemas;
-pub mod writer;
+pub(crate) mod channels;
+pub(crate) mod chunk;
+pub(crate) mod fields;
+pub(crate) mod fixture_fields;
+pub(crate) mod mcap_file;
+pub(crate) mod messages;
+pub(crate) mod reader;
+pub(crate) mod records;
+pub(crate) mod scene;
+pub(crate) mod schemas;
+pub(crate) mod writer;
 
 pub use chunk::PartChunk;
 pub use reader::{PartRecord, ResultsFile, ResultsFileError};

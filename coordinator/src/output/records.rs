@@ -12,7 +12,7 @@ use std::io::Read;
 pub const MAGIC: &[u8] = b"\x89MCAP0\r\n";
 
 /// Opcodes of the records a results file holds.
-pub mod op {
+pub(crate) mod op {
     /// Header (first record).
     pub const HEADER: u8 = 0x01;
     /// Footer (last record).

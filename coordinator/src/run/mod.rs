@@ -10,15 +10,15 @@
 //! catalogue. `--resume` copies that prefix into a fresh file and carries
 //! on.
 
-pub mod backend;
-pub mod cluster_jobs;
-pub mod finish;
-pub mod ordered;
-pub mod outcome;
-pub mod progress;
-pub mod resume;
-pub mod slice;
-pub mod solve_in_order;
+pub(crate) mod backend;
+pub(crate) mod cluster_jobs;
+pub(crate) mod finish;
+pub(crate) mod ordered;
+pub(crate) mod outcome;
+pub(crate) mod progress;
+pub(crate) mod resume;
+pub(crate) mod slice;
+pub(crate) mod solve_in_order;
 
 use crate::job::solve_part::Preparation;
 use crate::job::{solve_guarded, JobContext, SearchOptions};

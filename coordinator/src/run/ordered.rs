@@ -31,7 +31,8 @@ impl<T> Reorder<T> {
         ready
     }
 
-    /// Items received but not yet handed out.
+    /// Items received but not yet handed out (the tests' view).
+    #[cfg(test)]
     pub fn waiting(&self) -> usize {
         self.early.len()
     }

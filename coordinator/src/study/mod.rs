@@ -8,19 +8,19 @@
 //! path), [`stats`] (each kit's message), then out as [`report`] (table,
 //! CSV), [`chart`] (SVG) and [`mod@file`] (MCAP, [`messages`] and schemas).
 
-pub mod chart;
-pub mod engine;
-pub mod file;
-pub mod kits;
-pub mod messages;
-pub mod report;
-pub mod sharing;
-pub mod stats;
-pub mod sweep;
+pub(crate) mod chart;
+pub(crate) mod engine;
+pub(crate) mod file;
+pub(crate) mod kits;
+pub(crate) mod messages;
+pub(crate) mod report;
+pub(crate) mod sharing;
+pub(crate) mod stats;
+pub(crate) mod sweep;
 
 pub use file::read_mcap;
 pub use kits::{study_kits, StudyKit};
-pub use messages::{StudyKitMsg, StudyPartRow, StudyReport, StudySummaryMsg};
+pub use messages::{StudyKitMsg, StudyReport};
 pub use stats::{median, nearest_rank};
 
 use crate::cluster::ClusterOptions;

@@ -7,10 +7,10 @@
 //! [`render`] writes the pictures and the gallery; [`show`] prints tables
 //! and JSON lines.
 
-pub mod picture;
-pub mod render;
-pub mod show;
-pub mod svg;
+pub(crate) mod picture;
+pub(crate) mod render;
+pub(crate) mod show;
+pub(crate) mod svg;
 
 #[cfg(test)]
 mod tests;

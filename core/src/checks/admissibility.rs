@@ -70,7 +70,8 @@ pub struct Scratch {
     access_box: Vec<Aabb>,
     body: Vec<V2>,
     plunger: Vec<V2>,
-    /// A clamp polygon moved into the part frame (parts with arcs).
+    /// A clamp polygon moved into the part frame (parts with arcs or
+    /// holes).
     local: Vec<V2>,
     pts: Vec<[i64; 2]>,
 }
@@ -89,9 +90,9 @@ impl Scratch {
         let pose = setup.pose;
         self.part.clear();
         self.part_box = None;
-        // A part with arcs is checked in its own frame (see
+        // A part with arcs or holes is checked in its own frame (see
         // `curved_part_clearance`): only polygons are posed here.
-        if !obstacles.outline.has_arcs() {
+        if obstacles.outline.is_polygon() {
             let pts = obstacles.outline.points();
             self.part.extend(pts.iter().map(|&p| pose.apply(p)));
             self.part_box = Some(Aabb::of(&self.part));
@@ -128,7 +129,7 @@ impl Scratch {
         let need = obstacles.min_clearance;
         let locs = setup.locators.map(lattice_point);
         let mut margin = f64::INFINITY;
-        let curved = obstacles.outline.has_arcs();
+        let curved = !obstacles.outline.is_polygon();
         for poly in [&self.body, &self.plunger] {
             let bb = Aabb::of(poly);
             if curved {
@@ -185,7 +186,8 @@ impl Scratch {
 }
 
 /// The clearance margin of a clamp polygon (plate frame) against a part
-/// with arcs, or `None` when it is closer than `need` or overlaps. The
+/// with arcs or holes (measured to the material, SPEC 9.4), or `None`
+/// when it is closer than `need` or overlaps. The
 /// polygon is moved into the part frame, where the exact curves are, rather
 /// than the part onto the plate: distances do not change under a rigid
 /// motion, and the few polygon vertices are cheaper to move than the arcs.

@@ -16,7 +16,7 @@ use crate::input::setting::{scale, top_k_mode, Setting};
 use crate::input::validate::{check_grid_step, PrepareError, MAX_EXTENT};
 use crate::input::{Kit, MountHole, Params, Part, Units};
 use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
-use crate::outline::{Edge, Outline, Vertex};
+use crate::outline::{validate_holes, Edge, Outline, Vertex};
 use crate::segments::{usable_segments, PairTable, Segment};
 use crate::setups::{Allowed, SearchStats, Setup, SetupScratch, SetupSearch};
 use crate::sweeps::SweptSegment;
@@ -100,17 +100,23 @@ pub fn prepare(
     })
 }
 
-/// The outline and access regions, validated and CCW in lattice units.
+/// The part region (outline CCW, holes CW) and access regions,
+/// validated, in lattice units.
 fn lattice_polygons(part: &Part, l: f64) -> Result<(Outline, Vec<Vec<V2>>), PrepareError> {
     // Validate in the user's unit so error coordinates are the user's.
     Outline::new(&part.outline).map_err(PrepareError::Outline)?;
-    // A bulge is an angle: scaling leaves it as it is.
-    let scaled: Vec<Vertex> = part
-        .outline
-        .iter()
-        .map(|v| Vertex::new(v.x / l, v.y / l, v.bulge))
-        .collect();
-    let outline = Outline::new(&scaled).map_err(PrepareError::Outline)?;
+    let holes = validate_holes(&part.outline, &part.holes).map_err(PrepareError::Hole)?;
+    // A bulge is an angle: scaling leaves it as it is, and keeps a loop's
+    // orientation.
+    let lattice = |vs: &[Vertex]| -> Vec<Vertex> {
+        vs.iter()
+            .map(|v| Vertex::new(v.x / l, v.y / l, v.bulge))
+            .collect()
+    };
+    let mut outline = Outline::new(&lattice(&part.outline)).map_err(PrepareError::Outline)?;
+    if !holes.is_empty() {
+        outline = outline.with_holes(holes.iter().map(|h| lattice(h)).collect());
+    }
     let mut access = Vec::with_capacity(part.access.len());
     for (index, a) in part.access.iter().enumerate() {
         let at = |source| PrepareError::Access { index, source };
@@ -235,6 +241,18 @@ impl PreparedPart {
     #[inline]
     pub fn segments(&self) -> &[Segment] {
         &self.segments
+    }
+
+    /// The loop of every segment (SPEC 9.6: 0 the outline, `k + 1` hole
+    /// `k`), empty for a part without holes.
+    pub fn segment_loops(&self) -> Vec<usize> {
+        if !self.outline.has_holes() {
+            return Vec::new();
+        }
+        self.segments
+            .iter()
+            .map(|s| self.outline.loop_of_edge(s.edge))
+            .collect()
     }
 
     /// The CCW outline in lattice units, the frame of the segments and of

@@ -44,6 +44,7 @@ pub fn report(prep: &PreparedPart, res: &PartialResult) -> SolveResult {
         error: None,
         counts: Some(res.counts),
         segment_kinds: prep.segments().iter().map(|s| s.kind()).collect(),
+        segment_loops: prep.segment_loops(),
         fixtures,
     }
 }

@@ -4,7 +4,7 @@
 
 use crate::geometry::polygon::{validate_polygon, PolygonError};
 use crate::input::{HoleKind, Kit, Params, Pattern, Units};
-use crate::outline::OutlineError;
+use crate::outline::{HoleError, OutlineError};
 use thiserror::Error;
 
 /// Why a part or kit cannot be enumerated. Messages name the place, so a
@@ -15,6 +15,9 @@ pub enum PrepareError {
     /// self-crossing...).
     #[error("part outline: {0}")]
     Outline(OutlineError),
+    /// A hole breaks SPEC 9.1 (the message names it by its input index).
+    #[error("part: {0}")]
+    Hole(HoleError),
     /// Access constraint `index` breaks SPEC section 1.
     #[error("access constraint {index}: {source}")]
     Access {

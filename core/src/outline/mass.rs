@@ -92,3 +92,25 @@ pub(super) fn general(vertices: &[Vertex]) -> MassProperties {
         polar_moment: (second - area * c.norm_squared()).abs(),
     }
 }
+
+/// The properties of a region bounded by several loops (SPEC 9.5: the
+/// outline counter-clockwise, the holes clockwise, so their signed areas
+/// and moments subtract): areas and first moments add, and each loop's
+/// polar moment moves to the common centroid (parallel axes), with the
+/// sign of its area.
+pub(super) fn combined(loops: &[MassProperties]) -> MassProperties {
+    let area: f64 = loops.iter().map(|m| m.area).sum();
+    let first = loops
+        .iter()
+        .fold(v2(0.0, 0.0), |acc, m| acc + m.centroid * m.area);
+    let centroid = first / area;
+    let polar_moment: f64 = loops
+        .iter()
+        .map(|m| m.area.signum() * m.polar_moment + m.area * (m.centroid - centroid).norm_squared())
+        .sum();
+    MassProperties {
+        area,
+        centroid,
+        polar_moment: polar_moment.abs(),
+    }
+}

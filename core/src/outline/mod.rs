@@ -11,9 +11,15 @@
 //! polygon) or removed (it bulges in). Areas and moments follow from
 //! Green's theorem edge by edge; point location is the polygon's even-odd
 //! test toggled once per circular segment containing the point.
+//!
+//! A part with holes (SPEC 9) is the same type: the outline's loop and
+//! every hole's, clockwise, one after the other in the edge list, so each
+//! stage asks the part region what it asked the outline. Without holes
+//! every answer is computed as before, bit for bit.
 
 mod clearance;
 mod edge;
+mod holes;
 mod mass;
 mod validate;
 mod vertex;
@@ -22,40 +28,83 @@ mod vertex;
 mod tests;
 
 pub use edge::{ccw_of_cw_outline, edges_of, tangents_smooth, Edge, GrownEdge};
+pub use holes::{validate_holes, HoleError};
 pub use mass::{mass_properties, MassProperties};
 pub use validate::{validate_outline, OutlineError};
 pub use vertex::Vertex;
 
 use crate::geometry::arc::{CircArc, Closest};
-use crate::geometry::{point_in_polygon, V2};
+use crate::geometry::{point_in_polygon, Aabb, V2};
+use std::ops::Range;
 
-/// A validated outline, counter-clockwise, with its edges.
+/// A validated outline, counter-clockwise, with its edges, and the part's
+/// holes (SPEC 9), clockwise, whose edges follow the outline's.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outline {
     vertices: Vec<Vertex>,
+    /// Every loop's edges: the outline's, then hole 0's, hole 1's...
+    /// (SPEC 9.2's numbering).
     edges: Vec<Edge>,
     /// The vertex positions, kept because point location runs in the
     /// clearance tests of every candidate fixture.
     points: Vec<V2>,
-    /// Whether an edge is an arc: asked once per clamp placement, where
-    /// polygons take their own faster path.
+    /// Whether an edge of the outline is an arc.
     has_arcs: bool,
+    /// The holes, clockwise (SPEC 9.2).
+    holes: Vec<Hole>,
+}
+
+/// A hole of the part region: its clockwise loop, where its edges sit in
+/// the region's edge list, and its box (most clearance and point location
+/// tests are decided by the box alone when a part has many small holes).
+#[derive(Debug, Clone, PartialEq)]
+struct Hole {
+    vertices: Vec<Vertex>,
+    points: Vec<V2>,
+    edges: Range<usize>,
+    aabb: Aabb,
 }
 
 impl Outline {
     /// Validates `vertices` (SPEC 8.1) and normalises them to
     /// counter-clockwise.
     pub fn new(vertices: &[Vertex]) -> Result<Outline, OutlineError> {
-        let vertices = validate_outline(vertices)?;
+        Ok(Outline::from_ccw(validate_outline(vertices)?))
+    }
+
+    /// The part region of this outline with `holes`, each already
+    /// validated against it ([`validate_holes`]) and clockwise.
+    pub fn with_holes(mut self, holes: Vec<Vec<Vertex>>) -> Outline {
+        self.holes.clear();
+        self.edges.truncate(self.vertices.len());
+        for vertices in holes {
+            let start = self.edges.len();
+            self.edges.extend(edges_of(&vertices));
+            let edges = start..self.edges.len();
+            let aabb = loop_aabb(&self.edges[edges.clone()]);
+            let points = vertices.iter().map(Vertex::point).collect();
+            self.holes.push(Hole {
+                vertices,
+                points,
+                edges,
+                aabb,
+            });
+        }
+        self
+    }
+
+    /// The outline of vertices already validated and counter-clockwise.
+    fn from_ccw(vertices: Vec<Vertex>) -> Outline {
         let edges = edges_of(&vertices);
         let points = vertices.iter().map(Vertex::point).collect();
         let has_arcs = edges.iter().any(Edge::is_arc);
-        Ok(Outline {
+        Outline {
             vertices,
             edges,
             points,
             has_arcs,
-        })
+            holes: Vec::new(),
+        }
     }
 
     /// An outline from polygon points (all edges straight).
@@ -69,9 +118,69 @@ impl Outline {
         &self.vertices
     }
 
-    /// The edges, edge `i` leaving vertex `i`.
+    /// The edges of every loop, numbered as SPEC 9.2 says: the outline's
+    /// (edge `i` leaving vertex `i`), then each hole's in its clockwise
+    /// order.
     pub fn edges(&self) -> &[Edge] {
         &self.edges
+    }
+
+    /// The outline's own edges (the first ones of [`Self::edges`]).
+    pub fn outline_edges(&self) -> &[Edge] {
+        &self.edges[..self.vertices.len()]
+    }
+
+    /// The holes' clockwise vertices, in input order.
+    pub fn holes(&self) -> impl ExactSizeIterator<Item = &[Vertex]> + '_ {
+        self.holes.iter().map(|h| h.vertices.as_slice())
+    }
+
+    /// Whether the part has holes.
+    pub fn has_holes(&self) -> bool {
+        !self.holes.is_empty()
+    }
+
+    /// The loop edge `i` belongs to: 0 for the outline, `k + 1` for hole
+    /// `k` (SPEC 9.6's `segment_loops`).
+    pub fn loop_of_edge(&self, i: usize) -> usize {
+        self.holes
+            .iter()
+            .position(|h| h.edges.contains(&i))
+            .map_or(0, |k| k + 1)
+    }
+
+    /// The edges of the loop that edge `i` belongs to.
+    fn loop_edges_of(&self, i: usize) -> Range<usize> {
+        match self.loop_of_edge(i) {
+            0 => 0..self.vertices.len(),
+            k => self.holes[k - 1].edges.clone(),
+        }
+    }
+
+    /// The edge after edge `i` in its loop: its end is that edge's start.
+    pub fn next_in_loop(&self, i: usize) -> usize {
+        let range = self.loop_edges_of(i);
+        if i + 1 == range.end {
+            range.start
+        } else {
+            i + 1
+        }
+    }
+
+    /// The edge before edge `i` in its loop.
+    fn previous_in_loop(&self, i: usize) -> usize {
+        let range = self.loop_edges_of(i);
+        if i == range.start {
+            range.end - 1
+        } else {
+            i - 1
+        }
+    }
+
+    /// Whether the part is a plain polygon: no arc, no hole. Stages take
+    /// their polygon code, the code fixplan had before arcs, for it.
+    pub fn is_polygon(&self) -> bool {
+        !self.has_arcs && self.holes.is_empty()
     }
 
     /// The vertex positions: the polygon itself when there are no arcs.
@@ -79,27 +188,38 @@ impl Outline {
         &self.points
     }
 
-    /// Whether any edge is an arc.
+    /// Whether any edge of the outline is an arc.
     pub fn has_arcs(&self) -> bool {
         self.has_arcs
     }
 
-    /// Area, centroid and polar moment of the true region (SPEC 6, 8.1).
+    /// Area, centroid and polar moment of the true region (SPEC 6, 8.1),
+    /// holes removed (SPEC 9.5).
     pub fn mass_properties(&self) -> MassProperties {
-        mass_properties(&self.vertices)
+        let outline = mass_properties(&self.vertices);
+        if self.holes.is_empty() {
+            return outline;
+        }
+        let loops: Vec<MassProperties> = std::iter::once(outline)
+            .chain(self.holes.iter().map(|h| mass_properties(&h.vertices)))
+            .collect();
+        mass::combined(&loops)
     }
 
-    /// Even-odd point location in the true region (boundary points may go
-    /// either way; combine with [`Outline::boundary_distance`] where the
-    /// boundary matters).
+    /// Even-odd point location in the true region, outside every hole
+    /// (boundary points may go either way; combine with
+    /// [`Outline::boundary_distance`] where the boundary matters).
     pub fn contains(&self, p: V2) -> bool {
-        let mut inside = point_in_polygon(p, &self.points);
-        for e in &self.edges {
-            if let Edge::Arc(arc) = e {
-                inside ^= arc.segment_contains(p);
-            }
-        }
+        let inside = loop_contains(p, &self.points, self.outline_edges());
         inside
+            && !self.holes.iter().any(|h| {
+                let b = &h.aabb;
+                p.x >= b.min.x
+                    && p.x <= b.max.x
+                    && p.y >= b.min.y
+                    && p.y <= b.max.y
+                    && loop_contains(p, &h.points, &self.edges[h.edges.clone()])
+            })
     }
 
     /// Nearest boundary point to `p` (first `p`, second the boundary point).
@@ -132,29 +252,62 @@ impl Outline {
         }
     }
 
-    /// Whether vertex `i` is a smooth joint (SPEC 8.2): the edges meeting
-    /// there are tangent, pointing on, and at least one is an arc.
+    /// Whether the start of edge `i` is a smooth joint (SPEC 8.2): the
+    /// edges meeting there (the one before in the same loop, SPEC 9.3) are
+    /// tangent, pointing on, and at least one is an arc.
     pub fn smooth_joint(&self, i: usize) -> bool {
-        let n = self.edges.len();
-        let (e_in, e_out) = (&self.edges[(i + n - 1) % n], &self.edges[i % n]);
+        let (e_in, e_out) = (&self.edges[self.previous_in_loop(i)], &self.edges[i]);
         (e_in.is_arc() || e_out.is_arc())
             && tangents_smooth(e_in.tangent_end(), e_out.tangent_start())
     }
 
-    /// A polygon through every vertex whose chords stay within
-    /// `chord_error` of the arcs (at most 2^20 chords per arc), for
+    /// A polygon through every vertex of the outline whose chords stay
+    /// within `chord_error` of the arcs (at most 2^20 chords per arc), for
     /// drawings and for checking the exact functions against polygons.
     pub fn flatten(&self, chord_error: f64) -> Vec<V2> {
-        let mut out = Vec::new();
-        for e in &self.edges {
-            out.push(e.start());
-            if let Edge::Arc(arc) = e {
-                let k = arc_pieces(arc, chord_error);
-                out.extend((1..k).map(|i| arc.point_at(i as f64 / k as f64)));
-            }
-        }
-        out
+        flatten_edges(self.outline_edges(), chord_error)
     }
+
+    /// [`Self::flatten`] of hole `k`'s clockwise loop.
+    pub fn flatten_hole(&self, k: usize, chord_error: f64) -> Vec<V2> {
+        flatten_edges(&self.edges[self.holes[k].edges.clone()], chord_error)
+    }
+}
+
+/// Even-odd location in one loop: its vertex polygon, toggled by every
+/// arc's circular segment.
+fn loop_contains(p: V2, points: &[V2], edges: &[Edge]) -> bool {
+    let mut inside = point_in_polygon(p, points);
+    for e in edges {
+        if let Edge::Arc(arc) = e {
+            inside ^= arc.segment_contains(p);
+        }
+    }
+    inside
+}
+
+/// Bounding box of a loop's curves.
+fn loop_aabb(edges: &[Edge]) -> Aabb {
+    let mut b = Aabb::of(&[]);
+    for e in edges {
+        let eb = e.aabb();
+        b.min = b.min.inf(&eb.min);
+        b.max = b.max.sup(&eb.max);
+    }
+    b
+}
+
+/// The polygon of [`Outline::flatten`] for one loop's edges.
+fn flatten_edges(edges: &[Edge], chord_error: f64) -> Vec<V2> {
+    let mut out = Vec::new();
+    for e in edges {
+        out.push(e.start());
+        if let Edge::Arc(arc) = e {
+            let k = arc_pieces(arc, chord_error);
+            out.extend((1..k).map(|i| arc.point_at(i as f64 / k as f64)));
+        }
+    }
+    out
 }
 
 /// Chords needed so that each deviates from the arc by at most `err`:

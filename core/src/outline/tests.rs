@@ -609,7 +609,7 @@ proptest! {
     fn validation_vs_flattening(v in outline_strategy()) {
         let exact = validate_outline(&v);
         let edges = edges_of(&v);
-        let o = Outline { vertices: v.clone(), edges: edges.clone(), points: v.iter().map(Vertex::point).collect(), has_arcs: edges.iter().any(Edge::is_arc) };
+        let o = Outline { vertices: v.clone(), edges: edges.clone(), points: v.iter().map(Vertex::point).collect(), has_arcs: edges.iter().any(Edge::is_arc), holes: Vec::new() };
         let d = size(&o);
         let mut flat: Vec<[f64; 2]> = Vec::new();
         for e in &edges {

@@ -16,7 +16,7 @@ use crate::geometry::{point_segment_dist2, V2};
 use thiserror::Error;
 
 /// Crossing tolerance relative to the outline's extent.
-const TOUCH_REL: f64 = 1e-9;
+pub(super) const TOUCH_REL: f64 = 1e-9;
 
 /// Why an outline is invalid. Problems that polygons also have (too few
 /// vertices without arcs, non-finite coordinates, repeated vertices,
@@ -123,7 +123,7 @@ fn repeated_vertex(vertices: &[Vertex]) -> Result<(), PolygonError> {
 /// Largest absolute coordinate (the polygon code's zero-area scale) and
 /// the larger side of the vertices' bounding box (for crossings, so that
 /// moving a part does not change its validity).
-fn sizes(vertices: &[Vertex]) -> (f64, f64) {
+pub(super) fn sizes(vertices: &[Vertex]) -> (f64, f64) {
     let scale = vertices
         .iter()
         .fold(0.0f64, |m, v| m.max(v.x.abs()).max(v.y.abs()));

@@ -278,6 +278,11 @@ pub struct SolveResult {
     /// absent for an invalid part.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub segment_kinds: Vec<SegmentKind>,
+    /// The loop of every segment, in segment order (SPEC 9.6): 0 the
+    /// outline, `k + 1` hole `k` of the input. Only parts with holes have
+    /// it, so results of parts without holes keep their bytes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub segment_loops: Vec<usize>,
     /// The top-k, best first.
     #[serde(default)]
     pub fixtures: Vec<FixtureReport>,
@@ -292,6 +297,7 @@ impl SolveResult {
             error: Some(message.into()),
             counts: None,
             segment_kinds: Vec::new(),
+            segment_loops: Vec::new(),
             fixtures: Vec::new(),
         }
     }

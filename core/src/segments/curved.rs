@@ -15,7 +15,7 @@ use crate::geometry::arc::{circle_circle, GrownArc};
 use crate::geometry::{boundary_distance2, cross, point_in_polygon, v2, EPS, V2};
 use crate::outline::{Edge, GrownEdge, Outline};
 
-/// The segments of a CCW outline with arcs, lattice units.
+/// The segments of a part region with arcs or holes, lattice units.
 pub(super) fn outline_segments(
     outline: &Outline,
     access: &[Vec<V2>],
@@ -23,7 +23,6 @@ pub(super) fn outline_segments(
     trim: f64,
 ) -> Vec<Segment> {
     let edges = outline.edges();
-    let n = edges.len();
     let mut out = Vec::new();
     for (i, edge) in edges.iter().enumerate() {
         let Some(feature) = edge.grown(r, EPS).map(feature_of) else {
@@ -32,7 +31,7 @@ pub(super) fn outline_segments(
         let len = feature_length(&feature, edge);
         let mut removed = removed_pieces(&feature, len, i, edges, access, r - EPS);
         let smooth_start = outline.smooth_joint(i);
-        let smooth_end = outline.smooth_joint((i + 1) % n);
+        let smooth_end = outline.smooth_joint(outline.next_in_loop(i));
         for (lo, hi) in complement(&mut removed, 0.0, len) {
             // SPEC 8.2: no trim where the piece runs into a smooth joint.
             let s0 = if lo == 0.0 && smooth_start {

@@ -20,11 +20,13 @@ pub use segment::{arc_inward_normal, Feature, LineFeature, Segment, SegmentKind}
 use crate::geometry::V2;
 use crate::outline::Outline;
 
-/// The segments of a CCW outline with access constraints (SPEC 2 and 8.2),
-/// all in lattice units: grow by `r`, keep the true boundary, keep away
-/// from access regions, trim `trim` at both ends except at smooth joints.
+/// The segments of a part region (CCW outline, CW holes) with access
+/// constraints (SPEC 2, 8.2 and 9.3), all in lattice units: grow by `r`,
+/// keep the true boundary, keep away from access regions, trim `trim` at
+/// both ends except at smooth joints. Numbered by (edge, position), edges
+/// over the loops as SPEC 9.2 numbers them.
 pub fn usable_segments(outline: &Outline, access: &[Vec<V2>], r: f64, trim: f64) -> Vec<Segment> {
-    if outline.has_arcs() {
+    if !outline.is_polygon() {
         curved::outline_segments(outline, access, r, trim)
     } else {
         line::polygon_segments(outline.points(), access, r, trim)

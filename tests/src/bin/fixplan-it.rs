@@ -3,5 +3,5 @@
 //! their own package's binaries). Same code as the `fixplan` binary.
 
 fn main() {
-    fixplan_coordinator::cli::main()
+    fixplan_coordinator::main()
 }

@@ -4,9 +4,9 @@
 #![allow(dead_code)]
 #![allow(clippy::unwrap_used)] // a test stops at the first surprise
 
-use fixplan_coordinator::cluster::{ClusterOptions, Distributed, PartInput, TransportChoice};
-use fixplan_coordinator::run::backend::Backend;
-use fixplan_coordinator::run::RunOptions;
+use fixplan_coordinator::Backend;
+use fixplan_coordinator::RunOptions;
+use fixplan_coordinator::{ClusterOptions, Distributed, PartInput, TransportChoice};
 use fixplan_core::PartialResult;
 use fixplan_worker::zenoh_link::ZenohOptions;
 use std::io::Read;

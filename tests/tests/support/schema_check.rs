@@ -3,7 +3,7 @@
 //! official `foxglove.SceneUpdate` schema), after checking that the
 //! viewers' schema parser refuses no field of each embedded schema.
 
-use fixplan_coordinator::output::schemas::{viewer_refusals, FOXGLOVE_SCENE_UPDATE};
+use fixplan_coordinator::{viewer_refusals, FOXGLOVE_SCENE_UPDATE};
 use jsonschema::{Draft, Validator};
 use serde_json::Value;
 use std::collections::BTreeMap;

@@ -71,11 +71,6 @@ impl Scheduler {
         self.lock().stats.clone()
     }
 
-    /// Whether every part has been delivered.
-    pub fn finished(&self) -> bool {
-        self.lock().open_parts == 0
-    }
-
     /// Whether every worker still known has been told the run is over.
     pub fn all_told(&self) -> bool {
         self.lock().workers.values().all(|w| w.got_done)
