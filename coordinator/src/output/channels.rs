@@ -108,6 +108,7 @@ fn scene_message(p: &PartContent) -> serde_json::Result<Vec<u8>> {
         outline: p.outline,
         holes: p.holes,
         access: p.access,
+        segment_loops: &p.result.segment_loops,
         best: p.result.fixtures.first().ok_or(caption.as_str()),
     })
 }
@@ -162,7 +163,7 @@ mod tests {
             ),
             (
                 "fixplan.Fixtures",
-                "401ebf56173dd247dd17eb776c230cabb9ac53af62ed3aebcb97378109922a40",
+                "6e2830ec2d6c25b57b7d2c9cd0f4506ce503b6dcf5222f160581273ad47adc1e",
             ),
             (
                 SCHEMA_SCENE,

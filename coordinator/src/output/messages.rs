@@ -472,6 +472,11 @@ pub struct FixturesMsg {
     /// invalid part.
     #[serde(default)]
     pub segment_kinds: Vec<SegmentKindName>,
+    /// The loop of every segment, in segment order (SPEC 9.6): 0 the
+    /// outline, `k + 1` hole `k`; absent for a part without holes, whose
+    /// message keeps its bytes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub segment_loops: Vec<usize>,
     /// The top-k, best first.
     #[serde(default)]
     pub fixtures: Vec<FixtureField>,
@@ -517,6 +522,7 @@ impl FixturesMsg {
             error: r.error.clone(),
             counts: r.counts.as_ref().map(CountsField::from),
             segment_kinds: r.segment_kinds.iter().map(|&k| k.into()).collect(),
+            segment_loops: r.segment_loops.clone(),
             fixtures: r.fixtures.iter().map(FixtureField::from).collect(),
         }
     }
@@ -528,7 +534,7 @@ impl FixturesMsg {
             error: self.error.clone(),
             counts: self.counts.as_ref().map(Into::into),
             segment_kinds: self.segment_kinds.iter().map(|&k| k.into()).collect(),
-            segment_loops: Vec::new(),
+            segment_loops: self.segment_loops.clone(),
             fixtures: self.fixtures.iter().map(Into::into).collect(),
         }
     }
@@ -854,6 +860,23 @@ mod tests {
         );
         let read = FixturesMsg::from_json_exact(json(&fixtures).as_bytes()).unwrap();
         assert_eq!(read, fixtures);
+        // A part with holes lists the loop of every segment (SPEC 9.6),
+        // in the message and in the exported result.
+        let holed = SolveResult {
+            segment_loops: vec![0, 1, 0],
+            ..result.clone()
+        };
+        let m = FixturesMsg::of_result("h", &holed);
+        let text = json(&m);
+        assert!(
+            text.contains(
+                r#""segment_kinds":["line","arc","line"],"segment_loops":[0,1,0],"fixtures""#
+            ),
+            "{text}"
+        );
+        assert_eq!(m.result(), holed);
+        let line = String::from_utf8(m.export_line().unwrap()).unwrap();
+        assert!(line.contains(r#""segment_loops":[0,1,0]"#), "{line}");
         let invalid = FixturesMsg::of_result("q", &SolveResult::invalid("q: open outline"));
         assert_eq!(
             json(&invalid),

@@ -11,6 +11,7 @@
 use crate::drawing::draw::{
     bounds, fixture_drawing, plate_holes, plate_outline, DrawnCircle, FixtureDrawing, Hole,
 };
+use crate::drawing::hole_contacts::hole_contact_label;
 use crate::drawing::outline::{extent_points, flattened, moved};
 use crate::output::messages::NS_PER_PART;
 use fixplan_core::{FixtureReport, Kit, Point, Units, Vertex};
@@ -347,7 +348,8 @@ impl Scene {
         )
     }
 
-    /// The part in its pose (outline and holes), access regions, and its rank and score at
+    /// The part in its pose (outline and holes), access regions, and its
+    /// rank, score and contacts in holes at
     /// `hi`, the fixture's top right corner.
     fn posed_part(
         &self,
@@ -355,11 +357,15 @@ impl Scene {
         d: &FixtureDrawing,
         hi: Point,
         f: &FixtureReport,
+        segment_loops: &[usize],
     ) -> Entity<'static> {
         let mut part_lines = vec![self.outline_line(&d.part, 3.0, PART)];
         part_lines.extend(d.holes.iter().map(|h| self.outline_line(h, 2.0, PART)));
         part_lines.extend(d.access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)));
-        let label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
+        let mut label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
+        if let Some(l) = hole_contact_label(segment_loops, f) {
+            label = format!("{label}  {l}");
+        }
         self.entity(
             "part",
             Shapes {
@@ -435,6 +441,9 @@ pub struct PartScene<'a> {
     pub holes: &'a [Vec<Vertex>],
     /// Access regions.
     pub access: &'a [Vec<Point>],
+    /// The loop of every segment (SPEC 9.6; empty without holes), so the
+    /// label names the contacts on a hole's wall.
+    pub segment_loops: &'a [usize],
     /// The best fixture, or no fixture and why.
     pub best: Result<&'a FixtureReport, &'a str>,
 }
@@ -454,7 +463,7 @@ pub fn scene_update(p: PartScene) -> SceneUpdate<'static> {
             let extent = d.bounds();
             vec![
                 s.plate(p.kit, extent),
-                s.posed_part(p.id, &d, extent[1], f),
+                s.posed_part(p.id, &d, extent[1], f, p.segment_loops),
                 s.fixture(p.kit, &d),
             ]
         }
@@ -530,7 +539,7 @@ pub fn scene_json(p: PartScene) -> serde_json::Result<Vec<u8>> {
         deletions: [],
         entities: vec![
             s.plate_with(kit, Vec::new()),
-            s.posed_part(id, &d, extent[1], f),
+            s.posed_part(id, &d, extent[1], f, p.segment_loops),
             s.fixture(kit, &d),
         ],
     })?;

@@ -8,6 +8,7 @@
 
 use super::svg::escape;
 use crate::drawing::draw::{bounds, fixture_drawing, plate_holes, plate_outline, FixtureDrawing};
+use crate::drawing::hole_contacts::hole_contact_label;
 use crate::drawing::outline::{extent_points, has_arcs, vertex_points};
 use crate::output::messages::RunMsg;
 use crate::output::reader::PartRecord;
@@ -282,7 +283,8 @@ fn draw_contacts(s: &mut String, v: &View, d: &FixtureDrawing, l: f64) {
     }
 }
 
-/// Rank and score; pose and clamp setting; the plate holes used.
+/// Rank and score (and the contacts in holes); pose and clamp setting;
+/// the plate holes used.
 fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
     let u = rec.part.units.text();
     let holes = |h: &[[i64; 2]]| {
@@ -295,9 +297,12 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
     let of = (rec.part.counts.as_ref())
         .map_or(Some(0), |c| Counts::from(c).admissible())
         .map_or(String::new(), |a| format!(" of {a}"));
+    // Contacts on a hole's wall (SPEC 9), e.g. "L2 in hole 3".
+    let in_holes = hole_contact_label(&rec.fixtures.segment_loops, f)
+        .map_or(String::new(), |l| format!(" — {l}"));
     [
         format!(
-            "{} — rank {}{of} — score {:.4}{}",
+            "{} — rank {}{of} — score {:.4}{}{in_holes}",
             rec.part.id,
             f.rank,
             f.score,

@@ -1,6 +1,7 @@
 //! `fixplan show` and `fixplan export`: a results file as terminal tables
 //! or as JSON lines.
 
+use crate::drawing::hole_contacts::hole_contact_label;
 use crate::output::fields::StatusName;
 use crate::output::messages::{FixturesMsg, Message};
 use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
@@ -124,6 +125,9 @@ pub(super) fn print_part(rec: &PartRecord, top: usize, out: &mut dyn Write) -> R
             if f.borderline { "  (borderline)" } else { "" }
         )?;
         arcs.print_contacts(f, u, out)?;
+        if let Some(label) = hole_contact_label(&result.segment_loops, f) {
+            writeln!(out, "         {label}")?;
+        }
     }
     if n < fx.len() {
         writeln!(out, "  ... {} more kept (--top 0 shows all)", fx.len() - n)?;

@@ -6,6 +6,7 @@
 use super::picture::{fixture_svg, part_svg};
 use super::show::print_part;
 use crate::drawing::draw::{bounds, fixture_drawing, plate_outline};
+use crate::drawing::hole_contacts::hole_contact_label;
 use crate::drawing::outline::extent_points;
 use crate::output::fields::{CountsField, HoleLoopField, UnitsName, VertexField};
 use crate::output::messages::{
@@ -251,6 +252,7 @@ fn the_scene_draws_arcs_as_fine_line_strips_on_the_circle() {
         outline,
         holes: &[],
         access: &[],
+        segment_loops: &[],
         best,
     };
     let placed = scene_update(shown(Ok(f)));
@@ -397,6 +399,7 @@ fn the_scene_json_is_the_serialised_scene_update() {
                     outline,
                     holes: &[],
                     access: &[],
+                    segment_loops: &[],
                     best,
                 };
                 let want = serde_json::to_vec(&scene_update(p)).unwrap();
@@ -426,6 +429,7 @@ fn a_scene_without_a_fixture_shows_the_plate() {
         outline: &outline,
         holes: &[],
         access: &[],
+        segment_loops: &[],
         best: Err("half-round: no fixture"),
     });
     let scene = serde_json::to_value(&scene).unwrap();
@@ -510,6 +514,7 @@ fn pictures_show_and_the_scene_draw_the_holes() {
             outline: &outline,
             holes: &holes,
             access: &[],
+            segment_loops: &result.segment_loops,
             best,
         }))
         .unwrap();
@@ -518,4 +523,48 @@ fn pictures_show_and_the_scene_draw_the_holes() {
         // The window is a line loop of its four corners.
         assert_eq!(lines[2]["points"].as_array().unwrap().len(), 4);
     }
+}
+
+/// A contact on a hole's wall is named by its hole (SPEC 9.6's
+/// `segment_loops`) in the picture's caption, in `show` and in the scene.
+#[test]
+fn contacts_on_a_hole_wall_are_labelled_with_the_hole() {
+    let run = run_msg();
+    let mut rec = holed_plate(&run);
+    // Core numbers the loops: the bore (radius 5) is too small for a
+    // locator and offers no segment; the window (hole 1) offers some.
+    let loops = rec.fixtures.segment_loops.clone();
+    assert_eq!(loops.len(), rec.fixtures.segment_kinds.len());
+    assert!(loops.contains(&2) && !loops.contains(&1), "{loops:?}");
+    // Put L2 of the best fixture on hole 3's wall, everything else on the
+    // outline, and every view says so.
+    let f = rec.fixtures.result().fixtures[0].clone();
+    let mut moved = vec![0; loops.len()];
+    moved[f.segments[1]] = 4;
+    rec.fixtures.segment_loops = moved.clone();
+    assert!(hole_contact_label(&moved, &f)
+        .unwrap()
+        .starts_with("L2 in hole 3"));
+    assert!(fixture_svg(&run, &rec, &f).contains("L2 in hole 3"));
+    let mut out = Vec::new();
+    print_part(&rec, 1, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.contains("L2 in hole 3"), "{text}");
+    let (kit, outline, holes) = (run.kit(), rec.part.outline(), rec.part.holes());
+    let scene = serde_json::to_value(scene_update(PartScene {
+        index: 0,
+        id: "holed",
+        units: Units::Mm,
+        kit: &kit,
+        outline: &outline,
+        holes: &holes,
+        access: &[],
+        segment_loops: &moved,
+        best: Ok(&f),
+    }))
+    .unwrap();
+    let label = scene_part(&scene)["texts"][0]["text"].as_str().unwrap();
+    assert!(label.contains("L2 in hole 3"), "{label}");
+    // No label for a fixture all on the outline.
+    assert_eq!(hole_contact_label(&vec![0; loops.len()], &f), None);
 }

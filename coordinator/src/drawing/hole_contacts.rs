@@ -1,0 +1,28 @@
+//! Which contacts of a fixture stand on a hole's wall (SPEC 9.6's
+//! `segment_loops`), named as a machinist reads them ("L2 in hole 3"), for
+//! the pictures, `show` and the Foxglove scene alike.
+
+use fixplan_core::FixtureReport;
+
+/// The names of the contacts, in the order of a fixture's segments: the
+/// three locators, then the clamp.
+pub const CONTACT_NAMES: [&str; 4] = ["L1", "L2", "L3", "clamp"];
+
+/// The hole (its index in the input) of each contact of `f`, `None` on
+/// the outline; all `None` for a part without holes (`segment_loops`
+/// empty).
+pub fn contact_holes(segment_loops: &[usize], f: &FixtureReport) -> [Option<usize>; 4] {
+    let on = [f.segments[0], f.segments[1], f.segments[2], f.clamp.segment];
+    on.map(|s| segment_loops.get(s).and_then(|&l| l.checked_sub(1)))
+}
+
+/// `"L2 in hole 3, clamp in hole 0"` for the contacts of `f` on a hole's
+/// wall; `None` when every contact is on the outline.
+pub fn hole_contact_label(segment_loops: &[usize], f: &FixtureReport) -> Option<String> {
+    let named: Vec<String> = CONTACT_NAMES
+        .iter()
+        .zip(contact_holes(segment_loops, f))
+        .filter_map(|(name, hole)| hole.map(|k| format!("{name} in hole {k}")))
+        .collect();
+    (!named.is_empty()).then(|| named.join(", "))
+}
