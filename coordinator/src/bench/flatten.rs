@@ -217,3 +217,48 @@ pub fn bench_main(
     run(&pairs, repeat, top_k);
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Of the bundled cases only `bracket-arcs` has arcs; its flattened
+    /// reading is a polygon with more edges (chords replace each arc).
+    #[test]
+    fn cases_pair_arc_parts_with_their_polygons() {
+        let pairs = pairs_from_cases(&super::super::parts::default_cases()).unwrap();
+        let ids: Vec<&str> = pairs.iter().map(|p| p.exact.id.as_str()).collect();
+        assert_eq!(ids, ["bracket-arcs"]);
+        let exact = pairs[0].exact.prep.as_ref().unwrap();
+        let flat = pairs[0].flat.prep.as_ref().unwrap();
+        assert!(arc_count(exact) > 0);
+        assert_eq!(arc_count(flat), 0);
+        assert!(flat.outline().edges().len() > exact.outline().edges().len());
+    }
+
+    /// examples/real/catalog.toml names every file of the real-files test
+    /// set, and reads every part its expected.json lists.
+    #[test]
+    fn real_set_catalogue_reads_the_whole_set() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let expected: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(root.join("catalog/tests/real/expected.json")).unwrap(),
+        )
+        .unwrap();
+        let want: usize = expected["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["parts"].as_array().unwrap().len())
+            .sum();
+        let cat = crate::run::load_catalog_arcs(
+            &root.join("examples/real/catalog.toml"),
+            Some(ArcMode::Exact),
+        )
+        .unwrap();
+        assert_eq!(cat.parts.len(), want);
+        for p in &cat.parts {
+            assert!(p.part.is_ok(), "{}: {:?}", p.id, p.part.as_ref().err());
+        }
+    }
+}
