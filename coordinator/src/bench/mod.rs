@@ -1,11 +1,61 @@
 //! Measurements, not tests: `fixplan bench` (where one part's enumeration
 //! spends its time, on one thread) and `fixplan bench-cluster` (catalogue
 //! throughput and the coordinator's share with local workers), `fixplan
-//! bench-coordinator` (the coordinator's ceiling, with replayed results).
+//! bench-coordinator` (the coordinator's ceiling, with replayed results);
+//! `fixplan bench --compare-flatten` (exact arcs against flattened ones).
 //! Uses `job`, `cluster` and `run`.
 
 pub(crate) mod ceiling;
 pub(crate) mod cluster;
+pub(crate) mod flatten;
 pub(crate) mod parts;
 pub(crate) mod replay;
 pub(crate) mod replay_workers;
+
+use anyhow::Result;
+use fixplan_catalog::ArcMode;
+use std::path::PathBuf;
+
+/// `fixplan bench`'s arguments.
+#[derive(clap::Args, Debug)]
+pub struct PartsBenchArgs {
+    /// Case files (SPEC Appendix A).
+    pub cases: Vec<PathBuf>,
+    /// Measure a catalogue instead (with --kit).
+    #[arg(long, value_name = "DIR|catalog.toml")]
+    pub catalog: Option<PathBuf>,
+    /// Kit for --catalog.
+    #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
+    pub kit: String,
+    /// Runs per part; the fastest counts.
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
+    /// Circular arcs of a --catalog's parts: `exact` or `flatten`
+    /// (default: the manifest's `arcs`, else exact).
+    #[arg(long, value_name = "exact|flatten")]
+    pub arcs: Option<ArcMode>,
+    /// The top-k mode's k, measured after the full enumeration (and
+    /// checked to find its first k fixtures); 0 measures the full
+    /// enumeration only.
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub top_k: usize,
+    /// Each part with arcs (of the cases, or of --catalog) solved with
+    /// exact arcs and flattened at the default chord tolerance (as
+    /// `run --arcs flatten`), top-k mode only, with the ratios
+    /// exact/flattened of time, time per setup kept, setups and
+    /// candidates. The real-files test set is the catalogue
+    /// examples/real/catalog.toml.
+    #[arg(long)]
+    pub compare_flatten: bool,
+}
+
+/// `fixplan bench`: the time split per part, or with `--compare-flatten`
+/// exact arcs against flattened ones.
+pub fn bench_main(a: &PartsBenchArgs) -> Result<()> {
+    let catalog = a.catalog.as_deref();
+    if a.compare_flatten {
+        flatten::bench_main(&a.cases, catalog, &a.kit, a.repeat, a.top_k)
+    } else {
+        parts::bench_main(&a.cases, catalog, a.arcs, &a.kit, a.repeat, a.top_k)
+    }
+}

@@ -79,6 +79,28 @@ pub fn parts_from_catalog(
         .collect()
 }
 
+/// [`parts_from_catalog`] of the catalogue at `catalog` (read with `arcs`)
+/// against the kit `kit`.
+pub fn parts_from_catalog_file(
+    catalog: &Path,
+    arcs: Option<fixplan_catalog::ArcMode>,
+    kit: &str,
+) -> Result<Vec<BenchPart>> {
+    let cat = crate::run::load_catalog_arcs(catalog, arcs)?;
+    let spec = fixplan_catalog::load_kit(kit, cat.units)?;
+    let parts = cat
+        .parts
+        .into_iter()
+        .map(|p| (p.id, p.part.map_err(|e| e.to_string())))
+        .collect();
+    Ok(parts_from_catalog(
+        parts,
+        &spec.kit,
+        &spec.params,
+        cat.units,
+    ))
+}
+
 /// One mode of one part, measured.
 #[derive(Debug, Clone)]
 pub struct Measured {
@@ -111,10 +133,15 @@ pub fn measure(prep: &PreparedPart, repeat: usize) -> Measured {
             result,
         }
     };
+    fastest(repeat, once, |m| m.wall)
+}
+
+/// The run of `once` with the smallest `wall` of `repeat` (at least one).
+pub fn fastest<T>(repeat: usize, once: impl Fn() -> T, wall: impl Fn(&T) -> u64) -> T {
     let mut best = once();
     for _ in 1..repeat {
         let m = once();
-        if m.wall < best.wall {
+        if wall(&m) < wall(&best) {
             best = m;
         }
     }
@@ -238,16 +265,7 @@ pub fn bench_main(
     top_k: usize,
 ) -> Result<()> {
     let parts = match catalog {
-        Some(c) => {
-            let cat = crate::run::load_catalog_arcs(c, arcs)?;
-            let spec = fixplan_catalog::load_kit(kit, cat.units)?;
-            let parts = cat
-                .parts
-                .into_iter()
-                .map(|p| (p.id, p.part.map_err(|e| e.to_string())))
-                .collect();
-            parts_from_catalog(parts, &spec.kit, &spec.params, cat.units)
-        }
+        Some(c) => parts_from_catalog_file(c, arcs, kit)?,
         None if cases.is_empty() => parts_from_cases(&default_cases())?,
         None => parts_from_cases(cases)?,
     };

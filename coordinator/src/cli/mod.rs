@@ -197,28 +197,7 @@ enum Cmd {
     ///
     /// With no arguments: the bundled bench cases (examples/cases; the big
     /// ones of examples/cases/large take minutes).
-    Bench {
-        /// Case files (SPEC Appendix A).
-        cases: Vec<PathBuf>,
-        /// Measure a catalogue instead (with --kit).
-        #[arg(long, value_name = "DIR|catalog.toml")]
-        catalog: Option<PathBuf>,
-        /// Kit for --catalog.
-        #[arg(long, value_name = "NAME|kit.toml", default_value = "metric-25")]
-        kit: String,
-        /// Runs per part; the fastest counts.
-        #[arg(long, default_value_t = 3)]
-        repeat: usize,
-        /// Circular arcs of a --catalog's parts: `exact` or `flatten`
-        /// (default: the manifest's `arcs`, else exact).
-        #[arg(long, value_name = "exact|flatten")]
-        arcs: Option<ArcMode>,
-        /// The top-k mode's k, measured after the full enumeration (and
-        /// checked to find its first k fixtures); 0 measures the full
-        /// enumeration only.
-        #[arg(long, value_name = "N", default_value_t = 10)]
-        top_k: usize,
-    },
+    Bench(crate::bench::PartsBenchArgs),
     /// Print the ranked fixtures of a results file as tables.
     Show {
         /// A results file written by `fixplan run`.
@@ -316,7 +295,7 @@ fn quiet_logs(cmd: &Cmd) -> bool {
         Cmd::Certs(_) => false,
         Cmd::BenchCluster(_) | Cmd::BenchCoordinator(_) => true,
         Cmd::Solve { .. }
-        | Cmd::Bench { .. }
+        | Cmd::Bench(_)
         | Cmd::Show { .. }
         | Cmd::Export { .. }
         | Cmd::Merge { .. }
@@ -405,16 +384,7 @@ fn real_main() -> Result<()> {
         Cmd::Certs(a) => cluster::certs_main(&a)?,
         Cmd::BenchCluster(a) => crate::bench::cluster::bench_main(&a)?,
         Cmd::BenchCoordinator(a) => crate::bench::ceiling::bench_main(&a)?,
-        Cmd::Bench {
-            cases,
-            catalog,
-            kit,
-            repeat,
-            arcs,
-            top_k,
-        } => {
-            crate::bench::parts::bench_main(&cases, catalog.as_deref(), arcs, &kit, repeat, top_k)?
-        }
+        Cmd::Bench(a) => crate::bench::bench_main(&a)?,
         Cmd::Show { results, part, top } => {
             let stdout = std::io::stdout();
             crate::view::show::show(&results, part.as_deref(), top, &mut stdout.lock())?;
