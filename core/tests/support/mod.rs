@@ -326,3 +326,27 @@ pub fn arc_shapes() -> Vec<(&'static str, Vec<[f64; 3]>)> {
         ),
     ]
 }
+
+/// The pruned enumeration of `p` against [`brute_force`]: same counts,
+/// same fixtures, each passing [`check_fixture_independently`].
+pub fn pruned_equals_brute_force(p: &PreparedPart, what: &str) -> PartialResult {
+    let pruned = p.enumerate_all();
+    let brute = brute_force(p);
+    assert_eq!(pruned.counts, brute.counts, "{what}: counts differ");
+    assert_eq!(pruned.fixtures, brute.fixtures, "{what}: fixtures differ");
+    for f in &pruned.fixtures {
+        check_fixture_independently(p, f);
+    }
+    pruned
+}
+
+/// The canonical key of a fixture without its frame-dependent numbers.
+pub fn frame_free_key(f: &Fixture) -> (Vec<usize>, Vec<[i64; 2]>, usize, u8, [i64; 2]) {
+    (
+        f.segments.to_vec(),
+        f.locators.to_vec(),
+        f.clamp_segment,
+        f.rotation,
+        f.mount,
+    )
+}
