@@ -115,7 +115,11 @@ impl Stages<'_> {
     /// better; `timed` adds clock reads to the inner loop. Returns the
     /// result of the combinations done, where the work went and the
     /// index of the combination that stopped it.
-    pub(crate) fn enumerate_serial(&self, range: Range<u64>, options: &EnumerateOptions) -> Piece {
+    pub(crate) fn enumerate_serial(
+        &self,
+        range: Range<u64>,
+        options: &EnumerateOptions,
+    ) -> RangePiece {
         let (timed, good_enough) = (options.timed, options.good_enough);
         let unlimited = WorkBudget::default();
         let budget = options.budget.unwrap_or(&unlimited);
@@ -193,7 +197,7 @@ impl Stages<'_> {
             counts: acc.counts,
             fixtures: acc.top.into_sorted(),
         };
-        Piece {
+        RangePiece {
             result: res,
             profile,
             hit,
@@ -222,7 +226,7 @@ impl Stages<'_> {
         use std::sync::atomic::{AtomicU64, Ordering};
         let first_hit = AtomicU64::new(u64::MAX);
         let chunks = self.chunks(&range);
-        let parts: Vec<Piece> = chunks
+        let parts: Vec<RangePiece> = chunks
             .into_par_iter()
             .filter_map(|r| {
                 // A chunk wholly after a known hit cannot matter.
@@ -261,7 +265,7 @@ impl Stages<'_> {
 }
 
 /// What one piece of enumeration on one thread gives.
-pub(crate) struct Piece {
+pub(crate) struct RangePiece {
     /// Counts and best fixtures of the combinations it did.
     pub(crate) result: PartialResult,
     /// Where its work went.
