@@ -133,31 +133,31 @@ pub fn builtin_kit(name: &str) -> Option<(Kit, Units)> {
     }
 }
 
-/// Scales every length of a kit and its parameters by `f` (one unit to
+/// Scales every length of a kit and its parameters by `factor` (one unit to
 /// another). Torques in expected wrenches are force x length and scale too.
-pub fn scale_kit(kit: &Kit, params: &Params, f: f64) -> (Kit, Params) {
-    let pts = |v: &[[f64; 2]]| v.iter().map(|p| [p[0] * f, p[1] * f]).collect();
+pub fn scale_kit(kit: &Kit, params: &Params, factor: f64) -> (Kit, Params) {
+    let pts = |v: &[[f64; 2]]| v.iter().map(|p| [p[0] * factor, p[1] * factor]).collect();
     let kit = Kit {
-        spacing: kit.spacing * f,
+        spacing: kit.spacing * factor,
         cols: kit.cols,
         rows: kit.rows,
         pattern: kit.pattern,
-        locator_radius: kit.locator_radius * f,
+        locator_radius: kit.locator_radius * factor,
         clamp: Clamp {
             mount_holes: kit.clamp.mount_holes.clone(),
-            axis_offset: kit.clamp.axis_offset * f,
-            travel: [kit.clamp.travel[0] * f, kit.clamp.travel[1] * f],
+            axis_offset: kit.clamp.axis_offset * factor,
+            travel: [kit.clamp.travel[0] * factor, kit.clamp.travel[1] * factor],
             body: pts(&kit.clamp.body),
             plunger: pts(&kit.clamp.plunger),
         },
     };
     let params = Params {
-        edge_trim: params.edge_trim.map(|x| x * f),
-        min_clearance: params.min_clearance.map(|x| x * f),
+        edge_trim: params.edge_trim.map(|x| x * factor),
+        min_clearance: params.min_clearance.map(|x| x * factor),
         wrenches: params
             .wrenches
             .as_ref()
-            .map(|ws| ws.iter().map(|w| [w[0], w[1], w[2] * f]).collect()),
+            .map(|ws| ws.iter().map(|w| [w[0], w[1], w[2] * factor]).collect()),
         ..params.clone()
     };
     (kit, params)

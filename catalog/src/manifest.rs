@@ -163,11 +163,11 @@ fn read_options(units: Units, opts: &LoadOptions, manifest: &Header) -> ReadOpti
     r
 }
 
-fn dir_name(p: &Path) -> String {
-    p.canonicalize()
+fn dir_name(path: &Path) -> String {
+    path.canonicalize()
         .ok()
         .and_then(|c| c.file_name().map(|s| s.to_string_lossy().into_owned()))
-        .unwrap_or_else(|| p.display().to_string())
+        .unwrap_or_else(|| path.display().to_string())
 }
 
 fn load_directory(dir: &Path, opts: &LoadOptions) -> Result<Catalog, CatalogError> {
@@ -538,19 +538,19 @@ fn read_header(table: &mut toml::Table, path: &Path, base: &Path) -> Result<Head
 }
 
 /// The manifest's `holes`: `"keep"` or `"ignore"`.
-fn read_holes(v: Option<toml::Value>, path: &Path) -> Result<Option<HoleMode>, CatalogError> {
-    let Some(v) = v else { return Ok(None) };
-    v.as_str().and_then(HoleMode::parse).map(Some).ok_or_else(|| {
+fn read_holes(value: Option<toml::Value>, path: &Path) -> Result<Option<HoleMode>, CatalogError> {
+    let Some(value) = value else { return Ok(None) };
+    value.as_str().and_then(HoleMode::parse).map(Some).ok_or_else(|| {
         invalid(
             path,
-            format!("holes = {v}: expected \"keep\" (loops inside a part are its holes, the default) or \"ignore\" (dropped with a warning, as before holes)"),
+            format!("holes = {value}: expected \"keep\" (loops inside a part are its holes, the default) or \"ignore\" (dropped with a warning, as before holes)"),
         )
     })
 }
 
 /// A list of strings (layer names), or why not.
-fn string_list(v: Option<toml::Value>, key: &str) -> Result<Vec<String>, String> {
-    match v {
+fn string_list(value: Option<toml::Value>, key: &str) -> Result<Vec<String>, String> {
+    match value {
         None => Ok(Vec::new()),
         Some(toml::Value::Array(a)) => a
             .into_iter()
@@ -559,15 +559,15 @@ fn string_list(v: Option<toml::Value>, key: &str) -> Result<Vec<String>, String>
                 other => Err(format!("{key}: {other} is not a layer name (a string)")),
             })
             .collect(),
-        Some(v) => Err(format!("{key} {v} must be a list of layer names")),
+        Some(value) => Err(format!("{key} {value} must be a list of layer names")),
     }
 }
 
 /// The `[limits]` table: each key one of [`Limits::KEYS`], a positive
 /// integer.
-fn read_limits(t: toml::Table) -> Result<Limits, String> {
+fn read_limits(table: toml::Table) -> Result<Limits, String> {
     let mut limits = Limits::default();
-    for (k, v) in t {
+    for (k, v) in table {
         let n = v
             .as_integer()
             .and_then(|i| u64::try_from(i).ok())
@@ -584,9 +584,10 @@ fn read_limits(t: toml::Table) -> Result<Limits, String> {
 }
 
 /// A positive finite number, integer or float.
-fn positive(v: &toml::Value) -> Option<f64> {
-    v.as_float()
-        .or(v.as_integer().map(|i| i as f64))
+fn positive(value: &toml::Value) -> Option<f64> {
+    value
+        .as_float()
+        .or(value.as_integer().map(|i| i as f64))
         .filter(|t| t.is_finite() && *t > 0.0)
 }
 
@@ -602,30 +603,30 @@ struct EntryContext<'a> {
     sheet_given: bool,
 }
 
-/// Entry `i` (from 0) of the manifest as catalogue parts (one, or those
+/// Entry `index` (from 0) of the manifest as catalogue parts (one, or those
 /// of a sheet); `seen` holds the ids of the entries before it.
 fn load_entry(
-    i: usize,
-    v: toml::Value,
+    index: usize,
+    value: toml::Value,
     ctx: &EntryContext,
     seen: &mut HashMap<String, usize>,
 ) -> Vec<CatalogPart> {
-    let fallback_id = v
+    let fallback_id = value
         .get("id")
         .and_then(|x| x.as_str())
         .map(str::to_string)
-        .unwrap_or_else(|| format!("part #{}", i + 1));
-    let entry: ManifestEntry = match v.try_into() {
+        .unwrap_or_else(|| format!("part #{}", index + 1));
+    let entry: ManifestEntry = match value.try_into() {
         Ok(e) => e,
         Err(e) => {
             let kind = PartErrorKind::ManifestEntry {
-                entry: i + 1,
+                entry: index + 1,
                 message: e.message().to_string(),
             };
             return vec![CatalogPart::new(fallback_id, None, Err(kind))];
         }
     };
-    let checked = check_entry(&entry, seen, i);
+    let checked = check_entry(&entry, seen, index);
     let quantity = match checked {
         Ok(_) => entry.quantity.unwrap_or(1.0),
         Err(_) => 1.0,
@@ -682,33 +683,33 @@ fn read_entry(
 }
 
 /// The entry's fields on their own and against the ids `seen` before it
-/// (entry `i` from 0); the id is recorded unless it is empty or taken.
+/// (entry `index` from 0); the id is recorded unless it is empty or taken.
 fn check_entry<'e>(
-    e: &'e ManifestEntry,
+    listed: &'e ManifestEntry,
     seen: &mut HashMap<String, usize>,
-    i: usize,
+    index: usize,
 ) -> Result<Geometry<'e>, EntryProblem> {
-    if e.id.trim().is_empty() {
+    if listed.id.trim().is_empty() {
         return Err(EntryProblem::EmptyId);
     }
-    if let Some(first) = seen.get(&e.id) {
+    if let Some(first) = seen.get(&listed.id) {
         return Err(EntryProblem::DuplicateId {
-            entry: i + 1,
+            entry: index + 1,
             first: first + 1,
         });
     }
-    seen.insert(e.id.clone(), i);
-    let geometry = match (&e.file, &e.outline) {
+    seen.insert(listed.id.clone(), index);
+    let geometry = match (&listed.file, &listed.outline) {
         (Some(_), Some(_)) => return Err(EntryProblem::FileAndOutline),
         (None, None) => return Err(EntryProblem::NoFileNorOutline),
-        (Some(_), None) if !e.holes.is_empty() => return Err(EntryProblem::HolesWithFile),
+        (Some(_), None) if !listed.holes.is_empty() => return Err(EntryProblem::HolesWithFile),
         (Some(f), None) => Geometry::File(f),
-        (None, Some(o)) => Geometry::Outline(o, &e.holes),
+        (None, Some(o)) => Geometry::Outline(o, &listed.holes),
     };
-    if let Some(q) = e.quantity.filter(|q| !(q.is_finite() && *q >= 0.0)) {
+    if let Some(q) = listed.quantity.filter(|q| !(q.is_finite() && *q >= 0.0)) {
         return Err(EntryProblem::Quantity(q));
     }
-    if let Some(ws) = &e.wrenches {
+    if let Some(ws) = &listed.wrenches {
         if ws.is_empty() {
             return Err(EntryProblem::EmptyWrenches);
         }
@@ -716,7 +717,10 @@ fn check_entry<'e>(
             return Err(EntryProblem::NonFiniteWrench(k));
         }
     }
-    if let Some(t) = e.chord_tolerance.filter(|t| !(t.is_finite() && *t > 0.0)) {
+    if let Some(t) = listed
+        .chord_tolerance
+        .filter(|t| !(t.is_finite() && *t > 0.0))
+    {
         return Err(EntryProblem::ChordTolerance(t));
     }
     Ok(geometry)

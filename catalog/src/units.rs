@@ -51,8 +51,8 @@ impl LengthUnit {
 
     /// Accepts the usual spellings; anything else is an error the caller
     /// reports as "unknown units".
-    pub fn parse(s: &str) -> Option<LengthUnit> {
-        Some(match s.trim().to_ascii_lowercase().as_str() {
+    pub fn parse(text: &str) -> Option<LengthUnit> {
+        Some(match text.trim().to_ascii_lowercase().as_str() {
             "mm" | "millimeter" | "millimeters" | "millimetre" | "millimetres" => LengthUnit::Mm,
             "cm" | "centimeter" | "centimeters" | "centimetre" | "centimetres" => LengthUnit::Cm,
             "m" | "meter" | "meters" | "metre" | "metres" => LengthUnit::M,
@@ -64,8 +64,8 @@ impl LengthUnit {
 }
 
 impl From<Units> for LengthUnit {
-    fn from(u: Units) -> Self {
-        match u {
+    fn from(units: Units) -> Self {
+        match units {
             Units::Mm => LengthUnit::Mm,
             Units::In => LengthUnit::In,
         }
@@ -80,10 +80,10 @@ pub struct UnknownUnits(pub String);
 
 /// A catalogue or kit unit: only the two SPEC knows, because the solver
 /// works in those.
-pub fn parse_units(s: &str) -> Result<Units, UnknownUnits> {
-    match LengthUnit::parse(s) {
+pub fn parse_units(text: &str) -> Result<Units, UnknownUnits> {
+    match LengthUnit::parse(text) {
         Some(LengthUnit::Mm) => Ok(Units::Mm),
         Some(LengthUnit::In) => Ok(Units::In),
-        _ => Err(UnknownUnits(s.to_string())),
+        _ => Err(UnknownUnits(text.to_string())),
     }
 }

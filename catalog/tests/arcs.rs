@@ -32,13 +32,13 @@ fn read(text: &str, format: Format, opts: &ReadOptions) -> Part {
 }
 
 /// Area of the true region (arcs included), unsigned.
-fn true_area(p: &Part) -> f64 {
-    mass_properties(&p.outline).area.abs()
+fn true_area(part: &Part) -> f64 {
+    mass_properties(&part.outline).area.abs()
 }
 
 /// Bounding box of the true curves (a fine flattening).
-fn true_bbox(p: &Part) -> [f64; 4] {
-    let pts: Vec<[f64; 2]> = Outline::new(&p.outline)
+fn true_bbox(part: &Part) -> [f64; 4] {
+    let pts: Vec<[f64; 2]> = Outline::new(&part.outline)
         .unwrap()
         .flatten(1e-7)
         .iter()
@@ -47,8 +47,8 @@ fn true_bbox(p: &Part) -> [f64; 4] {
     bbox(&pts)
 }
 
-fn arcs(p: &Part) -> usize {
-    p.outline.iter().filter(|v| v.is_arc()).count()
+fn arcs(part: &Part) -> usize {
+    part.outline.iter().filter(|v| v.is_arc()).count()
 }
 
 fn dxf(pairs: &[(i32, &str)]) -> String {

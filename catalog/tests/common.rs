@@ -54,17 +54,17 @@ pub fn line(
 
 /// An ARC entity on layer 0: centre, radius, start and end angles (degrees).
 pub fn arc_entity(
-    c: [&'static str; 2],
-    r: &'static str,
+    centre: [&'static str; 2],
+    radius: &'static str,
     a0: &'static str,
     a1: &'static str,
 ) -> Vec<(i32, &'static str)> {
     vec![
         (0, "ARC"),
         (8, "0"),
-        (10, c[0]),
-        (20, c[1]),
-        (40, r),
+        (10, centre[0]),
+        (20, centre[1]),
+        (40, radius),
         (50, a0),
         (51, a1),
     ]
@@ -132,10 +132,10 @@ pub fn bbox<P: std::ops::Index<usize, Output = f64>>(pts: &[P]) -> [f64; 4] {
     b
 }
 
-pub fn area<P: std::ops::Index<usize, Output = f64>>(p: &[P]) -> f64 {
-    let n = p.len();
+pub fn area<P: std::ops::Index<usize, Output = f64>>(points: &[P]) -> f64 {
+    let n = points.len();
     (0..n)
-        .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])
+        .map(|i| points[i][0] * points[(i + 1) % n][1] - points[(i + 1) % n][0] * points[i][1])
         .sum::<f64>()
         / 2.0
 }

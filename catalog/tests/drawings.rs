@@ -35,37 +35,37 @@ fn line_e(layer: &str, a: [f64; 2], b: [f64; 2]) -> String {
 }
 
 /// A closed LWPOLYLINE of `[x, y, bulge]` vertices (R2000).
-fn lwpoly(layer: &str, v: &[[f64; 3]]) -> String {
+fn lwpoly(layer: &str, vertices: &[[f64; 3]]) -> String {
     let mut s = ent(&[
         (0, &"LWPOLYLINE"),
         (100, &"AcDbEntity"),
         (8, &layer),
         (100, &"AcDbPolyline"),
-        (90, &v.len()),
+        (90, &vertices.len()),
         (70, &1),
     ]);
-    for p in v {
+    for p in vertices {
         s += &ent(&[(10, &p[0]), (20, &p[1]), (42, &p[2])]);
     }
     s
 }
 
 /// A closed R12 POLYLINE of straight edges.
-fn r12_poly(layer: &str, v: &[[f64; 2]]) -> String {
+fn r12_poly(layer: &str, points: &[[f64; 2]]) -> String {
     let mut s = ent(&[(0, &"POLYLINE"), (8, &layer), (66, &1), (70, &1)]);
-    for p in v {
+    for p in points {
         s += &ent(&[(0, &"VERTEX"), (8, &layer), (10, &p[0]), (20, &p[1])]);
     }
     s + &ent(&[(0, &"SEQEND"), (8, &layer)])
 }
 
-fn circle_e(layer: &str, c: [f64; 2], r: f64) -> String {
+fn circle_e(layer: &str, centre: [f64; 2], radius: f64) -> String {
     ent(&[
         (0, &"CIRCLE"),
         (8, &layer),
-        (10, &c[0]),
-        (20, &c[1]),
-        (40, &r),
+        (10, &centre[0]),
+        (20, &centre[1]),
+        (40, &radius),
     ])
 }
 
@@ -132,12 +132,12 @@ fn read(text: &str) -> Result<(fixplan_core::Part, Vec<String>), String> {
     parse_part(text.as_bytes(), Format::Dxf, &opts_mm()).map_err(|e| e.to_string())
 }
 
-fn area_of(p: &fixplan_core::Part) -> f64 {
-    mass_properties(&p.outline).area.abs()
+fn area_of(part: &fixplan_core::Part) -> f64 {
+    mass_properties(&part.outline).area.abs()
 }
 
-fn vertex_box(p: &fixplan_core::Part) -> [f64; 4] {
-    let pts: Vec<[f64; 2]> = p.outline.iter().map(|v| [v.x, v.y]).collect();
+fn vertex_box(part: &fixplan_core::Part) -> [f64; 4] {
+    let pts: Vec<[f64; 2]> = part.outline.iter().map(|v| [v.x, v.y]).collect();
     bbox(&pts)
 }
 

@@ -58,9 +58,9 @@ fn figures(outline: &[Vertex], holes: usize) -> Figures {
     }
 }
 
-fn expected_figures(v: &Value) -> Figures {
-    let f = |k: &str| v[k].as_f64().unwrap();
-    let b: Vec<f64> = v["bbox_mm"]
+fn expected_figures(value: &Value) -> Figures {
+    let f = |k: &str| value[k].as_f64().unwrap();
+    let b: Vec<f64> = value["bbox_mm"]
         .as_array()
         .unwrap()
         .iter()
@@ -70,7 +70,7 @@ fn expected_figures(v: &Value) -> Figures {
         area: f("area_mm2"),
         perimeter: f("perimeter_mm"),
         bbox: [b[0], b[1], b[2], b[3]],
-        holes: v["holes"].as_u64().unwrap() as usize,
+        holes: value["holes"].as_u64().unwrap() as usize,
     }
 }
 
@@ -115,25 +115,41 @@ fn option_lines(options: &Value) -> String {
         .collect()
 }
 
+/// Files whose holes SPEC 9.1 refuses, with the message: the drawing is
+/// read right (the reference finds the same loops), but a hole drawn
+/// tangent to the outline makes the part invalid. Their outline is held
+/// against the reference read with `holes = "ignore"`.
+const REFUSED_HOLES: &[(&str, &str)] = &[(
+    "qcad_m4_hex_head_top_view.dxf",
+    "hole 0 touches the outline at (0, 3.5) mm",
+)];
+
 /// Reads `entry`'s file as a catalogue would and compares every part.
 fn check(entry: &Value) -> Result<String, String> {
     let name = entry["file"].as_str().unwrap();
-    let file = real_dir().join(name);
-    let dir = temp_dir("real");
-    let manifest = format!(
-        "name = \"real\"\nunits = \"mm\"\n\n[[part]]\nid = \"{}\"\nfile = '{}'\n{}",
-        name.replace('.', "_"),
-        file.display(),
-        option_lines(&entry["options"])
-    );
-    let path = write(&dir, "catalog.toml", &manifest);
-    let catalog = load_catalog(&path).map_err(|e| e.to_string())?;
+    let refusal = REFUSED_HOLES.iter().find(|(file, _)| *file == name);
     let mut want: Vec<Figures> = entry["parts"]
         .as_array()
         .unwrap()
         .iter()
         .map(expected_figures)
         .collect();
+    let options = option_lines(&entry["options"]);
+    let mut header = "";
+    if let Some((_, message)) = refusal {
+        let e = match &load(name, "", &options)?.parts[0].part {
+            Ok(_) => return Err(format!("loads, but its holes should be refused: {message}")),
+            Err(e) => e.to_string(),
+        };
+        if !e.contains(message) {
+            return Err(format!("refused with {e:?}, expected {message:?}"));
+        }
+        header = "holes = \"ignore\"\n";
+        for w in &mut want {
+            w.holes = 0;
+        }
+    }
+    let catalog = load(name, header, &options)?;
     let (mut warnings, mut holes) = (0, 0);
     let mut got = Vec::new();
     for p in &catalog.parts {
@@ -173,7 +189,26 @@ fn check(entry: &Value) -> Result<String, String> {
         }
         want.remove(i);
     }
-    Ok(format!("agrees ({holes} holes, {warnings} warnings)"))
+    Ok(match refusal {
+        Some((_, message)) => {
+            format!("refused ({message}); its outline agrees ({warnings} warnings)")
+        }
+        None => format!("agrees ({holes} holes, {warnings} warnings)"),
+    })
+}
+
+/// The catalogue of one entry for file `name`: the manifest's `header`
+/// lines, then the entry with the lines `options`.
+fn load(name: &str, header: &str, options: &str) -> Result<fixplan_catalog::Catalog, String> {
+    let file = real_dir().join(name);
+    let dir = temp_dir("real");
+    let manifest = format!(
+        "name = \"real\"\nunits = \"mm\"\n{header}\n[[part]]\nid = \"{}\"\nfile = '{}'\n{options}",
+        name.replace('.', "_"),
+        file.display(),
+    );
+    let path = write(&dir, "catalog.toml", &manifest);
+    load_catalog(&path).map_err(|e| e.to_string())
 }
 
 #[test]

@@ -13,13 +13,13 @@ use fixplan_core::{Fixture, Part, Pattern, PreparedPart, Vertex};
 use proptest::prelude::*;
 use support::*;
 
-type Loop = Vec<[f64; 3]>;
+type VertexLoop = Vec<[f64; 3]>;
 
 fn vertices(l: &[[f64; 3]]) -> Vec<Vertex> {
     l.iter().map(|&x| x.into()).collect()
 }
 
-fn holed(outline: &[[f64; 3]], holes: &[Loop]) -> Part {
+fn holed(outline: &[[f64; 3]], holes: &[VertexLoop]) -> Part {
     Part {
         outline: vertices(outline),
         holes: holes.iter().map(|h| vertices(h)).collect(),
@@ -27,18 +27,18 @@ fn holed(outline: &[[f64; 3]], holes: &[Loop]) -> Part {
     }
 }
 
-fn circle(cx: f64, cy: f64, r: f64) -> Loop {
+fn circle(cx: f64, cy: f64, r: f64) -> VertexLoop {
     vec![[cx - r, cy, 1.0], [cx + r, cy, 1.0]]
 }
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Loop {
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> VertexLoop {
     vec![[x0, y0, 0.0], [x1, y0, 0.0], [x1, y1, 0.0], [x0, y1, 0.0]]
 }
 
 /// Hand-made parts with holes, lattice units for [`kit`] (locator radius
 /// 1/3, clamp body about 2.1 x 1.1): what SPEC 9 is about, each small
 /// enough for the brute force.
-fn holed_shapes() -> Vec<(&'static str, Loop, Vec<Loop>)> {
+fn holed_shapes() -> Vec<(&'static str, VertexLoop, Vec<VertexLoop>)> {
     vec![
         // Concentric: no pose at all (SPEC 8.4's continuum), no fixture.
         ("washer", circle(0.0, 0.0, 1.9), vec![circle(0.0, 0.0, 0.8)]),
@@ -170,7 +170,7 @@ fn holes_give_the_segments_section_9_says() {
 
 /// Random outlines (straight or with bulges) with one or two holes, round
 /// or polygonal, invalid ones filtered out.
-fn holed_strategy() -> impl Strategy<Value = (Loop, Vec<Loop>, bool)> {
+fn holed_strategy() -> impl Strategy<Value = (VertexLoop, Vec<VertexLoop>, bool)> {
     let hole = (
         -0.9f64..0.9,
         -0.9f64..0.9,
@@ -203,7 +203,7 @@ fn holed_strategy() -> impl Strategy<Value = (Loop, Vec<Loop>, bool)> {
         })
         .prop_map(|(a, r, b, arcs, holes, alt)| {
             let pts = star([0.0, 0.0], &a, &r);
-            let outline: Loop = pts
+            let outline: VertexLoop = pts
                 .iter()
                 .zip(b.iter().cycle())
                 .map(|(p, &b)| [p[0], p[1], if arcs { b } else { 0.0 }])
@@ -234,14 +234,14 @@ proptest! {
     }
 }
 
-fn reversed(l: &Loop) -> Loop {
+fn reversed(l: &VertexLoop) -> VertexLoop {
     ccw_of_cw_outline(&vertices(l))
         .iter()
         .map(|v| [v.x, v.y, v.bulge])
         .collect()
 }
 
-fn moved(l: &Loop, angle: f64, shift: [f64; 2]) -> Loop {
+fn moved(l: &VertexLoop, angle: f64, shift: [f64; 2]) -> VertexLoop {
     let (s, c) = angle.sin_cos();
     l.iter()
         .map(|p| {
@@ -293,17 +293,17 @@ fn rigid_motion_and_clockwise_listing_leave_the_fixtures() {
         compared += base.fixtures.len();
         // Every loop listed the other way: normalised to the same lists,
         // so the result is the same bit for bit.
-        let cw: Vec<Loop> = holes.iter().map(reversed).collect();
+        let cw: Vec<VertexLoop> = holes.iter().map(reversed).collect();
         let flipped = prep(&holed(&reversed(&outline), &cw), &k, &pr).enumerate_all();
         assert_eq!(flipped, base, "{name}: listing the other way");
         // A translation keeps scores to rounding; a rotation turns the
         // part inside SPEC 6's sphere of sampled wrenches, so scores agree
         // to the sampling error only.
         let shift = [13.25, -7.5];
-        let shifted: Vec<Loop> = holes.iter().map(|h| moved(h, 0.0, shift)).collect();
+        let shifted: Vec<VertexLoop> = holes.iter().map(|h| moved(h, 0.0, shift)).collect();
         let t = prep(&holed(&moved(&outline, 0.0, shift), &shifted), &k, &pr).enumerate_all();
         assert_same_fixtures(&base.fixtures, &t.fixtures, 1e-9, name);
-        let turned: Vec<Loop> = holes.iter().map(|h| moved(h, 0.7, shift)).collect();
+        let turned: Vec<VertexLoop> = holes.iter().map(|h| moved(h, 0.7, shift)).collect();
         let m = prep(&holed(&moved(&outline, 0.7, shift), &turned), &k, &pr).enumerate_all();
         assert_same_fixtures(&base.fixtures, &m.fixtures, 0.05, name);
     }
@@ -418,7 +418,7 @@ fn a_clamp_polygon_inside_a_hole_is_clear_and_one_over_its_wall_is_not() {
 #[test]
 fn invalid_holes_are_named_by_index_and_place() {
     let outline = vertices(&rect(0.0, 0.0, 50.0, 30.0));
-    let check = |holes: &[Loop]| {
+    let check = |holes: &[VertexLoop]| {
         let hs: Vec<Vec<Vertex>> = holes.iter().map(|h| vertices(h)).collect();
         validate_holes(&outline, &hs).unwrap_err().to_string()
     };

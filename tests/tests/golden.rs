@@ -38,11 +38,11 @@ impl Lcg {
     }
 }
 
-type Outline = Vec<[f64; 2]>;
+type PolygonPoints = Vec<[f64; 2]>;
 
 /// A star-shaped polygon around the origin: angles increasing, radii
 /// random, so it is always simple.
-fn star(g: &mut Lcg, n: usize, rmin: f64, rmax: f64) -> Outline {
+fn star(g: &mut Lcg, n: usize, rmin: f64, rmax: f64) -> PolygonPoints {
     (0..n)
         .map(|i| {
             let a = std::f64::consts::TAU * (i as f64 + 0.3 * g.next()) / n as f64;
@@ -55,11 +55,11 @@ fn star(g: &mut Lcg, n: usize, rmin: f64, rmax: f64) -> Outline {
         .collect()
 }
 
-fn ell(w: f64, h: f64, t: f64) -> Outline {
+fn ell(w: f64, h: f64, t: f64) -> PolygonPoints {
     vec![[0.0, 0.0], [w, 0.0], [w, t], [t, t], [t, h], [0.0, h]]
 }
 
-fn tee(w: f64, h: f64, t: f64) -> Outline {
+fn tee(w: f64, h: f64, t: f64) -> PolygonPoints {
     let a = (w - t) / 2.0;
     vec![
         [a, 0.0],
@@ -73,7 +73,7 @@ fn tee(w: f64, h: f64, t: f64) -> Outline {
     ]
 }
 
-fn notched(w: f64, h: f64, nw: f64, nd: f64) -> Outline {
+fn notched(w: f64, h: f64, nw: f64, nd: f64) -> PolygonPoints {
     let x0 = (w - nw) / 2.0;
     vec![
         [0.0, 0.0],
@@ -87,14 +87,14 @@ fn notched(w: f64, h: f64, nw: f64, nd: f64) -> Outline {
     ]
 }
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Outline {
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> PolygonPoints {
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
 }
 
 /// 44 parts: rectangles, L, T, notched and star shapes of many sizes, some
 /// listed clockwise, eight with access regions, one self-crossing, one too
 /// small to hold.
-fn parts() -> Vec<(String, Outline, Vec<Outline>)> {
+fn parts() -> Vec<(String, PolygonPoints, Vec<PolygonPoints>)> {
     let mut g = Lcg(0x0601_de11);
     let mut v = Vec::new();
     for i in 0..8 {
@@ -162,7 +162,7 @@ fn parts() -> Vec<(String, Outline, Vec<Outline>)> {
     v
 }
 
-fn toml_points(o: &Outline) -> String {
+fn toml_points(o: &PolygonPoints) -> String {
     let pts: Vec<String> = o.iter().map(|p| format!("[{}, {}]", p[0], p[1])).collect();
     format!("[{}]", pts.join(", "))
 }

@@ -73,41 +73,41 @@ pub enum JsonError {
     HolesNotAList,
 }
 
-fn point(v: &Value, polygon: PolygonRole, vertex: usize) -> Result<[f64; 2], JsonError> {
-    match v.as_array().map(|a| a.as_slice()) {
+fn point(value: &Value, polygon: PolygonRole, vertex: usize) -> Result<[f64; 2], JsonError> {
+    match value.as_array().map(|a| a.as_slice()) {
         Some([x, y]) => match (x.as_f64(), y.as_f64()) {
             (Some(x), Some(y)) => Ok([x, y]),
             _ => Err(JsonError::NotNumbers {
                 polygon,
                 vertex,
-                value: v.clone(),
+                value: value.clone(),
             }),
         },
         _ => Err(JsonError::NotAPair {
             polygon,
             vertex,
-            value: v.clone(),
+            value: value.clone(),
         }),
     }
 }
 
 /// An outline or hole vertex: a point, or a point and the bulge of its
 /// edge.
-fn vertex(v: &Value, polygon: PolygonRole, i: usize) -> Result<Vertex, JsonError> {
-    match v.as_array().map(|a| a.as_slice()) {
-        Some([_, _]) => point(v, polygon, i).map(Vertex::from),
+fn vertex(item: &Value, polygon: PolygonRole, index: usize) -> Result<Vertex, JsonError> {
+    match item.as_array().map(|a| a.as_slice()) {
+        Some([_, _]) => point(item, polygon, index).map(Vertex::from),
         Some([x, y, b]) => match (x.as_f64(), y.as_f64(), b.as_f64()) {
             (Some(x), Some(y), Some(b)) => Ok(Vertex::new(x, y, b)),
             _ => Err(JsonError::NotNumbers {
                 polygon,
-                vertex: i,
-                value: v.clone(),
+                vertex: index,
+                value: item.clone(),
             }),
         },
         _ => Err(JsonError::NotAVertex {
             polygon,
-            vertex: i,
-            value: v.clone(),
+            vertex: index,
+            value: item.clone(),
         }),
     }
 }

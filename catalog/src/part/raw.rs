@@ -188,8 +188,8 @@ impl ArcMode {
     pub const NAMES: [&'static str; 2] = ["exact", "flatten"];
 
     /// `"exact"` or `"flatten"` (any case); `None` for anything else.
-    pub fn parse(s: &str) -> Option<ArcMode> {
-        match s.trim().to_ascii_lowercase().as_str() {
+    pub fn parse(text: &str) -> Option<ArcMode> {
+        match text.trim().to_ascii_lowercase().as_str() {
             "exact" => Some(ArcMode::Exact),
             "flatten" => Some(ArcMode::Flatten),
             _ => None,
@@ -211,17 +211,18 @@ impl ArcMode {
 }
 
 impl fmt::Display for ArcMode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        formatter.write_str(self.name())
     }
 }
 
 impl std::str::FromStr for ArcMode {
     type Err = String;
 
-    fn from_str(s: &str) -> Result<ArcMode, String> {
-        ArcMode::parse(s)
-            .ok_or_else(|| format!("unknown arcs mode \"{s}\" (expected \"exact\" or \"flatten\")"))
+    fn from_str(text: &str) -> Result<ArcMode, String> {
+        ArcMode::parse(text).ok_or_else(|| {
+            format!("unknown arcs mode \"{text}\" (expected \"exact\" or \"flatten\")")
+        })
     }
 }
 
@@ -243,8 +244,8 @@ impl HoleMode {
     pub const NAMES: [&'static str; 2] = ["keep", "ignore"];
 
     /// `"keep"` or `"ignore"` (any case); `None` for anything else.
-    pub fn parse(s: &str) -> Option<HoleMode> {
-        match s.trim().to_ascii_lowercase().as_str() {
+    pub fn parse(text: &str) -> Option<HoleMode> {
+        match text.trim().to_ascii_lowercase().as_str() {
             "keep" => Some(HoleMode::Keep),
             "ignore" => Some(HoleMode::Ignore),
             _ => None,
@@ -261,17 +262,18 @@ impl HoleMode {
 }
 
 impl fmt::Display for HoleMode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        formatter.write_str(self.name())
     }
 }
 
 impl std::str::FromStr for HoleMode {
     type Err = String;
 
-    fn from_str(s: &str) -> Result<HoleMode, String> {
-        HoleMode::parse(s)
-            .ok_or_else(|| format!("unknown holes mode \"{s}\" (expected \"keep\" or \"ignore\")"))
+    fn from_str(text: &str) -> Result<HoleMode, String> {
+        HoleMode::parse(text).ok_or_else(|| {
+            format!("unknown holes mode \"{text}\" (expected \"keep\" or \"ignore\")")
+        })
     }
 }
 
@@ -347,11 +349,11 @@ pub enum PolygonRole {
 }
 
 impl fmt::Display for PolygonRole {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            PolygonRole::Outline => f.write_str("outline"),
-            PolygonRole::Access(i) => write!(f, "access constraint {i}"),
-            PolygonRole::Hole(i) => write!(f, "hole {i}"),
+            PolygonRole::Outline => formatter.write_str("outline"),
+            PolygonRole::Access(i) => write!(formatter, "access constraint {i}"),
+            PolygonRole::Hole(i) => write!(formatter, "hole {i}"),
         }
     }
 }

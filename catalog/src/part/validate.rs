@@ -9,20 +9,25 @@
 //! [`fixplan_core::parts::validate_outline`] (the outline and each hole,
 //! arcs included) and [`fixplan_core::parts::validate_polygon`] (access
 //! constraints, which stay polygons) to report, so the catalogue and the
-//! solver never disagree about what a valid loop is. Where each hole lies
-//! is checked here too (SPEC 9.1: inside the outline, not inside another
-//! hole), so a JSON part with a hole in the wrong place is refused with a
-//! message naming the hole before any solving.
+//! solver never disagree about what a valid loop is. Where the holes lie
+//! (SPEC 9.1: inside the outline, sharing no point with it or with each
+//! other, none inside another) is [`fixplan_core::parts::validate_holes`]'s
+//! to judge, for the same reason: a part with a hole in the wrong place is
+//! refused when the catalogue is read, with core's message naming the hole
+//! and the place, never accepted here and refused by the solver.
 
-use super::outline::{dist, fmt_pt, loop_inside, scale_of, test_point, P};
+use super::outline::{dist, fmt_pt, scale_of, P};
 use super::raw::{PolygonRole, RawPart};
-use fixplan_core::parts::{validate_outline, validate_polygon, OutlineError, PolygonError};
+use fixplan_core::parts::{
+    validate_holes, validate_outline, validate_polygon, HoleError, OutlineError, PolygonError,
+};
 use fixplan_core::{Part, Units, Vertex};
 
 /// Why a polygon of a part cannot be used, naming the polygon so a part
-/// with several access constraints says which one is wrong.
+/// with several access constraints says which one is wrong (core's
+/// message on where a hole lies names the hole itself).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{polygon}: {problem}")]
+#[error("{}", invalid_message(.polygon, .problem))]
 pub struct InvalidPolygon {
     /// The outline or an access constraint.
     pub polygon: PolygonRole,
@@ -59,17 +64,24 @@ pub enum PolygonProblem {
     /// number); problems polygons share are [`PolygonProblem::Core`].
     #[error("{0}")]
     Arc(OutlineError),
-    /// A hole not inside the outline (SPEC 9.1).
-    #[error("lies outside the outline (near {} {}); a hole must lie inside the part", fmt_pt(*.near), .units.label())]
-    HoleOutside {
-        /// A point of the hole outside the outline.
-        near: [f64; 2],
-        /// The catalogue's units.
+    /// A hole in the wrong place (SPEC 9.1), as core's validation found
+    /// it, with the unit after coordinates.
+    #[error("{}", hole_message(.error, *.units))]
+    Placement {
+        /// Core's finding.
+        error: HoleError,
+        /// The catalogue's units, for the coordinates in the message.
         units: Units,
     },
-    /// A hole inside another hole (SPEC 9.1): no material around it.
-    #[error("lies inside hole {0}")]
-    HoleInHole(usize),
+}
+
+/// `polygon: problem`, except for a hole's placement, which core's
+/// message words with the hole's number ("hole 1 lies inside hole 0").
+fn invalid_message(polygon: &PolygonRole, problem: &PolygonProblem) -> String {
+    match problem {
+        PolygonProblem::Placement { .. } => problem.to_string(),
+        _ => format!("{polygon}: {problem}"),
+    }
 }
 
 /// Repairs and validates the outline, every hole and every access
@@ -104,28 +116,30 @@ pub fn validate_part(raw: RawPart, units: Units) -> Result<(Part, Vec<String>), 
     ))
 }
 
-/// Every hole inside the outline and outside the other holes (a point of
-/// each decides, as for the loops of a drawing; loops that cross are
-/// core's to report).
+/// Core's judgement of where the holes lie (SPEC 9.1). The holes stay as
+/// read (core's clockwise copies are the solver's business), so a part
+/// core accepts is the part the file holds.
 fn place_holes(
     outline: &[Vertex],
     holes: &[Vec<Vertex>],
     units: Units,
 ) -> Result<(), InvalidPolygon> {
-    for (k, h) in holes.iter().enumerate() {
-        let invalid = |problem| InvalidPolygon {
-            polygon: PolygonRole::Hole(k),
-            problem,
-        };
-        if !loop_inside(h, outline) {
-            let near = test_point(h, outline).map_or([h[0].x, h[0].y], |q| [q.x, q.y]);
-            return Err(invalid(PolygonProblem::HoleOutside { near, units }));
-        }
-        if let Some(j) = (0..holes.len()).find(|&j| j != k && loop_inside(h, &holes[j])) {
-            return Err(invalid(PolygonProblem::HoleInHole(j)));
-        }
+    if holes.is_empty() {
+        return Ok(());
     }
-    Ok(())
+    validate_holes(outline, holes).map(drop).map_err(|error| {
+        let hole = match error {
+            HoleError::Loop { index, .. }
+            | HoleError::MeetsOutline { index, .. }
+            | HoleError::Outside { index }
+            | HoleError::MeetsHole { index, .. } => index,
+            HoleError::Nested { inner, .. } => inner,
+        };
+        InvalidPolygon {
+            polygon: PolygonRole::Hole(hole),
+            problem: PolygonProblem::Placement { error, units },
+        }
+    })
 }
 
 /// Relative size under which two consecutive vertices are the same point.
@@ -275,6 +289,17 @@ impl Cleaning<'_> {
                 }
             }
         }
+    }
+}
+
+/// Core's message on a hole's place, with the unit after the coordinates
+/// of the point where two loops meet.
+fn hole_message(error: &HoleError, units: Units) -> String {
+    match error {
+        HoleError::MeetsOutline { .. } | HoleError::MeetsHole { .. } => {
+            format!("{error} {}", units.label())
+        }
+        _ => error.to_string(),
     }
 }
 

@@ -113,19 +113,19 @@ impl Ceiling {
     }
 }
 
-/// The catalogue `n` times over (the same entries again: the same ids).
-fn repeated(cat: &Catalog, n: usize) -> Catalog {
+/// The catalogue `count` times over (the same entries again: the same ids).
+fn repeated(cat: &Catalog, count: usize) -> Catalog {
     let mut c = cat.clone();
-    c.parts = (0..n.max(1)).flat_map(|_| cat.parts.clone()).collect();
+    c.parts = (0..count.max(1)).flat_map(|_| cat.parts.clone()).collect();
     c
 }
 
-/// The options of a cluster run of `catalog` for `n` one-thread workers
+/// The options of a cluster run of `catalog` for `workers` one-thread workers
 /// joining at `sock` under `prefix`, writing `output`.
 fn run_options(
     catalog: &Catalog,
-    a: &CeilingArgs,
-    n: usize,
+    args: &CeilingArgs,
+    workers: usize,
     sock: &Path,
     prefix: &str,
     output: &Path,
@@ -136,18 +136,18 @@ fn run_options(
             ..ZenohOptions::default()
         },
         key_prefix: prefix.to_string(),
-        transport: a.transport,
-        min_workers: n,
-        expected_threads: Some(n * a.worker_threads()),
-        worker_threads: Some(a.worker_threads()),
-        iox_clients: Some(n),
+        transport: args.transport,
+        min_workers: workers,
+        expected_threads: Some(workers * args.worker_threads()),
+        worker_threads: Some(args.worker_threads()),
+        iox_clients: Some(workers),
         quiet: true,
-        verify: a.verify,
+        verify: args.verify,
         ..ClusterOptions::default()
     };
     RunOptions {
         catalog: catalog.source.clone(),
-        kit: a.kit.clone(),
+        kit: args.kit.clone(),
         top_k: None,
         full_counts: false,
         output: output.to_path_buf(),
@@ -167,7 +167,7 @@ fn coordinate(
     spec: &KitSpec,
     opts: &RunOptions,
     sock: &Path,
-    n: usize,
+    worker_count: usize,
 ) -> Result<Ceiling> {
     let cpu0 = process_micros();
     let from = monotonic_micros();
@@ -178,7 +178,7 @@ fn coordinate(
     let to = monotonic_micros();
     let _ = std::fs::remove_file(sock);
     Ok(Ceiling {
-        workers: n,
+        workers: worker_count,
         parts: totals?.parts(),
         wall,
         process_cpu: process as f64 * 1e-6,
@@ -188,23 +188,30 @@ fn coordinate(
     })
 }
 
-/// One run of the real coordinator path with `n` simulated workers in
+/// One run of the real coordinator path with `worker_count` simulated workers in
 /// this process, writing `output`.
 pub fn run_once(
     catalog: &Catalog,
     spec: &KitSpec,
-    a: &CeilingArgs,
-    n: usize,
+    args: &CeilingArgs,
+    worker_count: usize,
     replay: &Arc<Replay>,
     output: &Path,
 ) -> Result<Ceiling> {
     let base = std::env::temp_dir().join(unique_name("ceiling"));
     let (sock, prefix) = round_endpoint(&base, &unique_name("ceiling"), 0);
-    let opts = run_options(catalog, a, n, &sock, &prefix, output);
+    let opts = run_options(catalog, args, worker_count, &sock, &prefix, output);
     let (h0, m0) = replay.counts();
-    let threads = a.worker_threads();
-    let workers = start_workers(n, threads, sock.clone(), &prefix, a.transport, replay);
-    let run = coordinate(catalog, spec, &opts, &sock, n);
+    let threads = args.worker_threads();
+    let workers = start_workers(
+        worker_count,
+        threads,
+        sock.clone(),
+        &prefix,
+        args.transport,
+        replay,
+    );
+    let run = coordinate(catalog, spec, &opts, &sock, worker_count);
     let worker_micros: u64 = workers.join().unwrap_or_default().iter().sum();
     let (h1, m1) = replay.counts();
     Ok(Ceiling {
@@ -221,22 +228,28 @@ fn forget_warm_up(output: &Path) -> Result<()> {
     std::fs::remove_file(output).with_context(|| format!("removing {}", output.display()))
 }
 
-/// The warm-up and measured runs with `n` simulated workers in a process
-/// of their own, writing `output`.
+/// The warm-up and measured runs with `worker_count` simulated workers
+/// in a process of their own, writing `output`.
 fn run_twice_apart(
     catalog: &Catalog,
     spec: &KitSpec,
-    a: &CeilingArgs,
-    n: usize,
+    args: &CeilingArgs,
+    worker_count: usize,
     output: &Path,
 ) -> Result<[Ceiling; 2]> {
     let base = std::env::temp_dir().join(unique_name("ceiling"));
     let prefix = unique_name("ceiling");
-    let workers = WorkerProcess::spawn(&base, &prefix, (n, a.worker_threads()), a.transport, 2)?;
+    let workers = WorkerProcess::spawn(
+        &base,
+        &prefix,
+        (worker_count, args.worker_threads()),
+        args.transport,
+        2,
+    )?;
     let run = |round| {
         let (sock, prefix) = round_endpoint(&base, &prefix, round);
-        let opts = run_options(catalog, a, n, &sock, &prefix, output);
-        coordinate(catalog, spec, &opts, &sock, n)
+        let opts = run_options(catalog, args, worker_count, &sock, &prefix, output);
+        coordinate(catalog, spec, &opts, &sock, worker_count)
     };
     let warm = run(0)?;
     forget_warm_up(output)?;
@@ -257,49 +270,52 @@ fn run_twice_apart(
 }
 
 /// Runs the measurements and prints them.
-pub fn bench_main(a: &CeilingArgs) -> Result<()> {
-    if let Some(base) = &a.serve_replay {
-        let n = a.simulated_workers.first().copied().unwrap_or(1).max(1);
-        let workers = (n, a.worker_threads());
-        return serve_main(base, &a.prefix, workers, a.transport, a.rounds);
+pub fn bench_main(args: &CeilingArgs) -> Result<()> {
+    if let Some(base) = &args.serve_replay {
+        let n = args.simulated_workers.first().copied().unwrap_or(1).max(1);
+        let workers = (n, args.worker_threads());
+        return serve_main(base, &args.prefix, workers, args.transport, args.rounds);
     }
-    let path = a
+    let path = args
         .catalog
         .clone()
         .unwrap_or_else(crate::run::default_catalog);
     let t = Instant::now();
     let cat = load_catalog(&path)?;
     let load_us = t.elapsed().as_secs_f64() * 1e6 / cat.parts.len().max(1) as f64;
-    let spec = load_kit(&a.kit, cat.units)?;
-    let catalog = repeated(&cat, a.repeat);
+    let spec = load_kit(&args.kit, cat.units)?;
+    let catalog = repeated(&cat, args.repeat);
     // Removed when dropped, on an error too (a failed run left its files).
     let tmp = tempfile::Builder::new()
         .prefix("ceiling-")
         .tempdir()
         .context("creating a temporary directory")?;
-    let dir = a.keep.clone().unwrap_or_else(|| tmp.path().to_path_buf());
+    let dir = args
+        .keep
+        .clone()
+        .unwrap_or_else(|| tmp.path().to_path_buf());
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     println!(
         "catalogue: {} parts ({} x {}), kit {}, transport {}, {} thread(s) a worker, results files in {}",
         catalog.parts.len(),
-        a.repeat,
+        args.repeat,
         cat.parts.len(),
         spec.name,
-        a.transport,
-        a.worker_threads(),
+        args.transport,
+        args.worker_threads(),
         dir.display()
     );
     let replay = Arc::new(Replay::default());
     let mut rows = Vec::new();
-    for &n in &a.simulated_workers {
+    for &n in &args.simulated_workers {
         let n = n.max(1);
         let out = dir.join(format!("replay-{n}.mcap"));
-        let [warm, run] = if a.in_process {
-            let warm = run_once(&catalog, &spec, a, n, &replay, &out)?;
+        let [warm, run] = if args.in_process {
+            let warm = run_once(&catalog, &spec, args, n, &replay, &out)?;
             forget_warm_up(&out)?;
-            [warm, run_once(&catalog, &spec, a, n, &replay, &out)?]
+            [warm, run_once(&catalog, &spec, args, n, &replay, &out)?]
         } else {
-            run_twice_apart(&catalog, &spec, a, n, &out)?
+            run_twice_apart(&catalog, &spec, args, n, &out)?
         };
         let (from, to) = run.window;
         if run.replayed.1 > 0 {

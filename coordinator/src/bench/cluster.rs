@@ -52,13 +52,14 @@ impl BenchArgs {
     }
 }
 
-fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
+fn inputs(args: &BenchArgs) -> Result<Vec<PartInput>> {
     let cat = load_catalog(
-        &a.catalog
+        &args
+            .catalog
             .clone()
             .unwrap_or_else(crate::run::default_catalog),
     )?;
-    let spec = load_kit(&a.kit, cat.units)?;
+    let spec = load_kit(&args.kit, cat.units)?;
     let ctx = JobContext {
         kit: &spec.kit,
         params: &spec.params,
@@ -78,7 +79,7 @@ fn inputs(a: &BenchArgs) -> Result<Vec<PartInput>> {
             })
         })
         .collect();
-    Ok((0..a.repeat.max(1))
+    Ok((0..args.repeat.max(1))
         .flat_map(|_| one.iter().cloned())
         .collect())
 }
@@ -139,11 +140,12 @@ fn throughput(
     })
 }
 
-/// The `p` quantile of `v` (NaN for no sample: `--round-trips 0`).
-fn percentile(v: &mut [f64], p: f64) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let last = v.len().saturating_sub(1);
-    v.get((last as f64 * p) as usize)
+/// The `fraction` quantile of `values` (NaN for no sample: `--round-trips 0`).
+fn percentile(values: &mut [f64], fraction: f64) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let last = values.len().saturating_sub(1);
+    values
+        .get((last as f64 * fraction) as usize)
         .copied()
         .unwrap_or(f64::NAN)
 }
@@ -165,7 +167,7 @@ fn sample_result(parts: &[PartInput]) -> Result<Vec<u8>> {
     })?)
 }
 
-fn round_trips_zenoh(msg: &[u8], n: usize) -> Result<Vec<f64>> {
+fn round_trips_zenoh(msg: &[u8], count: usize) -> Result<Vec<f64>> {
     let sock = std::env::temp_dir().join(format!(
         "{}.sock",
         fixplan_worker::host::unique_name("bench")
@@ -191,8 +193,8 @@ fn round_trips_zenoh(msg: &[u8], n: usize) -> Result<Vec<f64>> {
         ..ZenohOptions::default()
     })?;
     std::thread::sleep(Duration::from_millis(300));
-    let mut v = Vec::with_capacity(n);
-    for _ in 0..n + 50 {
+    let mut v = Vec::with_capacity(count);
+    for _ in 0..count + 50 {
         let t = Instant::now();
         request(&client, "bench/rt", msg.to_vec(), Duration::from_secs(5))?;
         v.push(t.elapsed().as_secs_f64() * 1e6);
@@ -204,7 +206,7 @@ fn round_trips_zenoh(msg: &[u8], n: usize) -> Result<Vec<f64>> {
     Ok(v.split_off(50))
 }
 
-fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
+fn round_trips_iox(msg: &[u8], count: usize) -> Result<Vec<f64>> {
     let prefix = iox::new_prefix();
     let service = "fixplan/bench".to_string();
     let ctl = Arc::new(iox::ServeControl::default());
@@ -230,8 +232,8 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
         .recv_timeout(Duration::from_secs(10))
         .context("iceoryx2 server")?;
     let client = IoxClient::open(&prefix, &service)?;
-    let mut v = Vec::with_capacity(n);
-    for _ in 0..n + 50 {
+    let mut v = Vec::with_capacity(count);
+    for _ in 0..count + 50 {
         let t = Instant::now();
         client.request(msg, Duration::from_secs(5))?;
         v.push(t.elapsed().as_secs_f64() * 1e6);
@@ -246,12 +248,12 @@ fn round_trips_iox(msg: &[u8], n: usize) -> Result<Vec<f64>> {
 
 /// Runs the measurements and prints them: throughput with 1 and 2 local
 /// workers, what the coordinator spent per shard, and round trips.
-pub fn bench_main(a: &BenchArgs) -> Result<()> {
-    let parts = inputs(a)?;
+pub fn bench_main(args: &BenchArgs) -> Result<()> {
+    let parts = inputs(args)?;
     println!(
         "catalogue: {} parts, verification {}",
         parts.len(),
-        a.verify_name()
+        args.verify_name()
     );
     let runs = [
         ("1 worker  (iceoryx2)", 1, TransportChoice::Auto),
@@ -262,18 +264,18 @@ pub fn bench_main(a: &BenchArgs) -> Result<()> {
     for (name, workers, transport) in runs {
         out.push((
             name,
-            throughput(&parts, workers, transport, a.shard_size, a.verify)?,
+            throughput(&parts, workers, transport, args.shard_size, args.verify)?,
         ));
     }
     print_throughput(&out, parts.len());
     print_coordinator(&out);
     let msg = sample_result(&parts)?;
-    let mut z = round_trips_zenoh(&msg, a.round_trips)?;
-    let mut i = round_trips_iox(&msg, a.round_trips)?;
+    let mut z = round_trips_zenoh(&msg, args.round_trips)?;
+    let mut i = round_trips_iox(&msg, args.round_trips)?;
     println!(
         "round trip of a {} B result message (reply: idle), {} samples:",
         msg.len(),
-        a.round_trips
+        args.round_trips
     );
     for (name, v) in [
         ("zenoh (unix socket)", &mut z),

@@ -51,11 +51,18 @@ pub struct PartsBenchArgs {
 
 /// `fixplan bench`: the time split per part, or with `--compare-flatten`
 /// exact arcs against flattened ones.
-pub fn bench_main(a: &PartsBenchArgs) -> Result<()> {
-    let catalog = a.catalog.as_deref();
-    if a.compare_flatten {
-        flatten::bench_main(&a.cases, catalog, &a.kit, a.repeat, a.top_k)
+pub fn bench_main(args: &PartsBenchArgs) -> Result<()> {
+    let catalog = args.catalog.as_deref();
+    if args.compare_flatten {
+        flatten::bench_main(&args.cases, catalog, &args.kit, args.repeat, args.top_k)
     } else {
-        parts::bench_main(&a.cases, catalog, a.arcs, &a.kit, a.repeat, a.top_k)
+        parts::bench_main(
+            &args.cases,
+            catalog,
+            args.arcs,
+            &args.kit,
+            args.repeat,
+            args.top_k,
+        )
     }
 }

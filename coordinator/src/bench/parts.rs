@@ -189,8 +189,8 @@ fn print_row(cells: &[String]) {
 
 /// One row: the time split, the counts (admissible fixtures only when
 /// counted: `-` in top-k mode) and the work counters.
-fn row(id: &str, mode: &str, m: &Measured) -> Vec<String> {
-    let (profile, c) = (&m.profile, &m.result.counts);
+fn row(id: &str, mode: &str, measured: &Measured) -> Vec<String> {
+    let (profile, c) = (&measured.profile, &measured.result.counts);
     let t = profile.timing;
     let total = profile.total_ns.max(1) as f64;
     let setup_enum = profile.total_ns.saturating_sub(t.setups_ns);
@@ -209,7 +209,7 @@ fn row(id: &str, mode: &str, m: &Measured) -> Vec<String> {
     vec![
         id.to_string(),
         mode.to_string(),
-        format!("{:.2}", ms(m.wall)),
+        format!("{:.2}", ms(measured.wall)),
         pct(setup_enum),
         pct(clamp),
         pct(t.admissibility_ns),

@@ -21,8 +21,8 @@ use std::sync::Mutex;
 /// fixtures are the same in every run of one catalogue).
 type OutcomeKey = (Digest, u64, u64, Option<u64>, Option<Bytes>, Option<u64>);
 
-fn key(a: &Assign) -> OutcomeKey {
-    let (range, good_enough, context, merged) = match &a.task {
+fn key(assign: &Assign) -> OutcomeKey {
+    let (range, good_enough, context, merged) = match &assign.task {
         Task::Enumerate { range, good_enough } => (range.clone(), *good_enough, None, None),
         Task::EnumerateAndFinish { range, context } => {
             (range.clone(), None, Some(context.clone()), None)
@@ -32,7 +32,7 @@ fn key(a: &Assign) -> OutcomeKey {
         }
     };
     (
-        a.digest,
+        assign.digest,
         range.start,
         range.end,
         good_enough.map(f64::to_bits),
@@ -41,17 +41,17 @@ fn key(a: &Assign) -> OutcomeKey {
     )
 }
 
-/// The key of `a`'s enumeration alone (no finish context), for a part
+/// The key of `assign`'s enumeration alone (no finish context), for a part
 /// listed many times: enumerated once, finished under each place.
-fn enumeration_key(a: &Assign) -> OutcomeKey {
-    let mut shard = key(a);
+fn enumeration_key(assign: &Assign) -> OutcomeKey {
+    let mut shard = key(assign);
     shard.4 = None;
     shard
 }
 
-/// `o` as the outcome of task `id`.
-fn renamed(o: &mut Outcome, id: u64) {
-    match o {
+/// `outcome` as the outcome of task `id`.
+fn renamed(outcome: &mut Outcome, id: u64) {
+    match outcome {
         Outcome::Done(d) => d.shard_id = id,
         Outcome::Failed(f) => f.shard_id = id,
     }
@@ -68,9 +68,10 @@ pub struct Replay {
 }
 
 impl std::fmt::Debug for Replay {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (hits, misses) = self.counts();
-        f.debug_struct("Replay")
+        formatter
+            .debug_struct("Replay")
             .field("hits", &hits)
             .field("misses", &misses)
             .finish_non_exhaustive()
@@ -81,70 +82,70 @@ impl Runner for Replay {
     /// The recorded outcome; else a recorded enumeration finished again
     /// for this task's context; else the task done ([`task::run`]) and
     /// recorded.
-    fn run(&self, a: &Assign, part: &CachedPart, finisher: Option<&dyn Finisher>) -> Outcome {
-        if let Some(o) = self.get(a) {
+    fn run(&self, assign: &Assign, part: &CachedPart, finisher: Option<&dyn Finisher>) -> Outcome {
+        if let Some(o) = self.get(assign) {
             return o;
         }
         let o = self
-            .refinished(a, part, finisher)
-            .unwrap_or_else(|| task::run(a, part, finisher));
-        self.put(a, o)
+            .refinished(assign, part, finisher)
+            .unwrap_or_else(|| task::run(assign, part, finisher));
+        self.put(assign, o)
     }
 }
 
 impl Replay {
-    /// The recorded outcome of `a`, renamed to `a`'s task id.
-    fn get(&self, a: &Assign) -> Option<Outcome> {
+    /// The recorded outcome of `assign`, renamed to `assign`'s task id.
+    fn get(&self, assign: &Assign) -> Option<Outcome> {
         let results = self.results.lock().unwrap_or_else(|e| e.into_inner());
-        let Some(o) = results.get(&key(a)) else {
+        let Some(o) = results.get(&key(assign)) else {
             self.misses.fetch_add(1, Ordering::Relaxed);
             return None;
         };
         let mut o = o.clone();
         drop(results);
-        renamed(&mut o, a.shard_id);
+        renamed(&mut o, assign.shard_id);
         self.hits.fetch_add(1, Ordering::Relaxed);
         Some(o)
     }
 
-    /// Records the outcome of `a` (a failure too: the same input fails
+    /// Records the outcome of `assign` (a failure too: the same input fails
     /// the same way), unless it was sent without its input, and returns
     /// the outcome to send: the one recorded first under its key. Two
     /// copies of a part may be enumerated at once in the warm-up; both
     /// then report the first one's timing, as the measured run will, so a
     /// cut part's merged timing (in its finishing's key) is the same in
     /// both runs.
-    fn put(&self, a: &Assign, o: Outcome) -> Outcome {
-        if a.input.is_none() && !matches!(o, Outcome::Done(_)) {
-            return o;
+    fn put(&self, assign: &Assign, outcome: Outcome) -> Outcome {
+        if assign.input.is_none() && !matches!(outcome, Outcome::Done(_)) {
+            return outcome;
         }
-        if !matches!(a.task, Task::Finish { .. }) {
+        if !matches!(assign.task, Task::Finish { .. }) {
             // A finishing has no enumeration to finish again elsewhere.
             let mut enumerations = self.enumerations.lock().unwrap_or_else(|e| e.into_inner());
             enumerations
-                .entry(enumeration_key(a))
-                .or_insert_with(|| o.clone());
+                .entry(enumeration_key(assign))
+                .or_insert_with(|| outcome.clone());
         }
         let mut results = self.results.lock().unwrap_or_else(|e| e.into_inner());
-        let mut first = results.entry(key(a)).or_insert(o).clone();
+        let mut first = results.entry(key(assign)).or_insert(outcome).clone();
         drop(results);
-        renamed(&mut first, a.shard_id);
+        renamed(&mut first, assign.shard_id);
         first
     }
 
     /// A whole part enumerated before under another finish context,
-    /// finished for `a`.
+    /// finished for `assign`.
     fn refinished(
         &self,
-        a: &Assign,
+        assign: &Assign,
         part: &CachedPart,
         finisher: Option<&dyn Finisher>,
     ) -> Option<Outcome> {
-        let Task::EnumerateAndFinish { context, .. } = &a.task else {
+        let Task::EnumerateAndFinish { context, .. } = &assign.task else {
             return None;
         };
         let enumerations = self.enumerations.lock().unwrap_or_else(|e| e.into_inner());
-        let Outcome::Done(mut done) = enumerations.get(&enumeration_key(a))?.clone() else {
+        let Outcome::Done(mut done) = enumerations.get(&enumeration_key(assign))?.clone() else {
             return None;
         };
         drop(enumerations);
@@ -163,7 +164,7 @@ impl Replay {
             context,
         };
         let finished = task::finished(Some(finisher?), &inputs);
-        done.shard_id = a.shard_id;
+        done.shard_id = assign.shard_id;
         done.answer = Answer::EnumeratedAndFinished { result, finished };
         Some(Outcome::Done(done))
     }

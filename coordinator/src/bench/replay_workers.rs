@@ -29,11 +29,11 @@ pub fn round_endpoint(base: &Path, prefix: &str, round: usize) -> (PathBuf, Stri
     (PathBuf::from(sock), format!("{prefix}-{round}"))
 }
 
-/// Starts `n` simulated workers of `threads` threads once the coordinator
+/// Starts `count` simulated workers of `threads` threads once the coordinator
 /// listens on `sock`; each returns its agent thread's CPU time in
 /// microseconds.
 pub fn start_workers(
-    n: usize,
+    count: usize,
     threads: usize,
     sock: PathBuf,
     prefix: &str,
@@ -47,7 +47,7 @@ pub fn start_workers(
             std::thread::sleep(Duration::from_millis(1));
         }
         let ep = format!("unixsock-stream/{}", sock.display());
-        let agents: Vec<_> = (0..n)
+        let agents: Vec<_> = (0..count)
             .map(|i| {
                 let opts = WorkerOptions {
                     zenoh: ZenohOptions {

@@ -27,7 +27,7 @@ pub struct ContactMark {
 
 /// A plate hole: position (plate frame) and whether it is a dowel hole.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Hole {
+pub struct PlateHole {
     /// Column, as the placement's `[col, row]` names it.
     pub col: i64,
     /// Row.
@@ -82,10 +82,10 @@ fn add(a: Point, b: Point) -> Point {
 }
 
 /// The plate holes: `(col, row)` at `(col, row) * spacing`.
-pub fn plate_holes(kit: &Kit) -> impl Iterator<Item = Hole> + '_ {
+pub fn plate_holes(kit: &Kit) -> impl Iterator<Item = PlateHole> + '_ {
     let l = kit.spacing;
     (0..kit.rows as i64).flat_map(move |row| {
-        (0..kit.cols as i64).map(move |col| Hole {
+        (0..kit.cols as i64).map(move |col| PlateHole {
             col,
             row,
             at: [col as f64 * l, row as f64 * l],
@@ -109,24 +109,27 @@ pub fn fixture_drawing(
     outline: &[Vertex],
     holes: &[Vec<Vertex>],
     access: &[Vec<Point>],
-    f: &FixtureReport,
+    fixture: &FixtureReport,
 ) -> FixtureDrawing {
     let l = kit.spacing;
     let r = kit.locator_radius;
-    let off = f.placement.locators[0];
+    let off = fixture.placement.locators[0];
     let off = [off[0] as f64 * l, off[1] as f64 * l];
-    let place = |p: Point| add(rot90(f.placement.rotation_deg, p), off);
-    let place_dir = |d: Point| rot90(f.placement.rotation_deg, d);
-    let theta = f.pose.theta_deg.to_radians();
-    let pose = |p: &Point| place(add(rot(theta, *p), [f.pose.x, f.pose.y]));
-    let k = f.clamp.rotation_deg;
-    let mount = [f.clamp.mount[0] as f64 * l, f.clamp.mount[1] as f64 * l];
+    let place = |p: Point| add(rot90(fixture.placement.rotation_deg, p), off);
+    let place_dir = |d: Point| rot90(fixture.placement.rotation_deg, d);
+    let theta = fixture.pose.theta_deg.to_radians();
+    let pose = |p: &Point| place(add(rot(theta, *p), [fixture.pose.x, fixture.pose.y]));
+    let k = fixture.clamp.rotation_deg;
+    let mount = [
+        fixture.clamp.mount[0] as f64 * l,
+        fixture.clamp.mount[1] as f64 * l,
+    ];
     let clamp_pt = |p: &Point, t: f64| place(add(mount, rot90(k, [p[0] + t, p[1]])));
-    let locators = f.locators.map(|p| DrawnCircle {
+    let locators = fixture.locators.map(|p| DrawnCircle {
         centre: place([p[0] as f64 * l, p[1] as f64 * l]),
         radius: r,
     });
-    let contacts = f
+    let contacts = fixture
         .contacts
         .iter()
         .map(|c| {
@@ -151,14 +154,14 @@ pub fn fixture_drawing(
             .clamp
             .plunger
             .iter()
-            .map(|p| clamp_pt(p, f.clamp.extension))
+            .map(|p| clamp_pt(p, fixture.clamp.extension))
             .collect(),
         tip: DrawnCircle {
-            centre: place(f.clamp.contact),
+            centre: place(fixture.clamp.contact),
             radius: r,
         },
         contacts,
-        clamp_holes: f
+        clamp_holes: fixture
             .placement
             .clamp_holes
             .iter()

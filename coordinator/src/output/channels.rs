@@ -95,21 +95,21 @@ pub fn part_slot(topic: &str) -> Option<usize> {
 
 /// `/fixplan/scene`: the best fixture on the plate, or the outline and
 /// why there is no fixture.
-fn scene_message(p: &PartContent) -> serde_json::Result<Vec<u8>> {
-    let caption = match &p.result.error {
+fn scene_message(content: &PartContent) -> serde_json::Result<Vec<u8>> {
+    let caption = match &content.result.error {
         Some(e) => e.clone(),
-        None => format!("{}: no fixture", p.entry.id),
+        None => format!("{}: no fixture", content.entry.id),
     };
     scene_json(PartScene {
-        index: p.index,
-        id: &p.entry.id,
-        units: p.units,
-        kit: p.kit,
-        outline: p.outline,
-        holes: p.holes,
-        access: p.access,
-        segment_loops: &p.result.segment_loops,
-        best: p.result.fixtures.first().ok_or(caption.as_str()),
+        index: content.index,
+        id: &content.entry.id,
+        units: content.units,
+        kit: content.kit,
+        outline: content.outline,
+        holes: content.holes,
+        access: content.access,
+        segment_loops: &content.result.segment_loops,
+        best: content.result.fixtures.first().ok_or(caption.as_str()),
     })
 }
 

@@ -44,8 +44,8 @@ thread_local! {
 
 thread_local! {
     /// One zstd context per thread for the chunks the coordinator checks
-    /// (its verification sample): making one per chunk was a fifth of the
-    /// check's decompression.
+    /// (its verification sample): making one per chunk costs a large share
+    /// of decompressing a small one.
     static DECOMPRESSOR: RefCell<Option<zstd::bulk::Decompressor<'static>>> = const { RefCell::new(None) };
 }
 

@@ -149,14 +149,17 @@ pub struct PointField {
 }
 
 impl From<&Point> for PointField {
-    fn from(p: &Point) -> PointField {
-        PointField { x: p[0], y: p[1] }
+    fn from(point: &Point) -> PointField {
+        PointField {
+            x: point[0],
+            y: point[1],
+        }
     }
 }
 
 impl From<&PointField> for Point {
-    fn from(p: &PointField) -> Point {
-        [p.x, p.y]
+    fn from(point: &PointField) -> Point {
+        [point.x, point.y]
     }
 }
 
@@ -186,18 +189,18 @@ pub struct VertexField {
 }
 
 impl From<&Vertex> for VertexField {
-    fn from(v: &Vertex) -> VertexField {
+    fn from(vertex: &Vertex) -> VertexField {
         VertexField {
-            x: v.x,
-            y: v.y,
-            bulge: v.is_arc().then_some(v.bulge),
+            x: vertex.x,
+            y: vertex.y,
+            bulge: vertex.is_arc().then_some(vertex.bulge),
         }
     }
 }
 
 impl From<&VertexField> for Vertex {
-    fn from(v: &VertexField) -> Vertex {
-        Vertex::new(v.x, v.y, v.bulge.unwrap_or(0.0))
+    fn from(vertex: &VertexField) -> Vertex {
+        Vertex::new(vertex.x, vertex.y, vertex.bulge.unwrap_or(0.0))
     }
 }
 
@@ -228,16 +231,16 @@ pub struct HoleLoopField {
 }
 
 impl From<&Vec<Vertex>> for HoleLoopField {
-    fn from(l: &Vec<Vertex>) -> HoleLoopField {
+    fn from(hole_loop: &Vec<Vertex>) -> HoleLoopField {
         HoleLoopField {
-            vertices: l.iter().map(VertexField::from).collect(),
+            vertices: hole_loop.iter().map(VertexField::from).collect(),
         }
     }
 }
 
 impl From<&HoleLoopField> for Vec<Vertex> {
-    fn from(l: &HoleLoopField) -> Vec<Vertex> {
-        l.vertices.iter().map(Vertex::from).collect()
+    fn from(hole_loop: &HoleLoopField) -> Vec<Vertex> {
+        hole_loop.vertices.iter().map(Vertex::from).collect()
     }
 }
 
@@ -252,14 +255,17 @@ pub struct HoleField {
 }
 
 impl From<&[i64; 2]> for HoleField {
-    fn from(h: &[i64; 2]) -> HoleField {
-        HoleField { i: h[0], j: h[1] }
+    fn from(hole: &[i64; 2]) -> HoleField {
+        HoleField {
+            i: hole[0],
+            j: hole[1],
+        }
     }
 }
 
 impl From<&HoleField> for [i64; 2] {
-    fn from(h: &HoleField) -> [i64; 2] {
-        [h.i, h.j]
+    fn from(hole: &HoleField) -> [i64; 2] {
+        [hole.i, hole.j]
     }
 }
 
@@ -392,11 +398,11 @@ pub struct WrenchField {
 }
 
 impl From<&[f64; 3]> for WrenchField {
-    fn from(w: &[f64; 3]) -> WrenchField {
+    fn from(wrench: &[f64; 3]) -> WrenchField {
         WrenchField {
-            force_x: w[0],
-            force_y: w[1],
-            torque: w[2],
+            force_x: wrench[0],
+            force_y: wrench[1],
+            torque: wrench[2],
         }
     }
 }
@@ -427,29 +433,30 @@ pub struct ParamsField {
 }
 
 impl From<&Params> for ParamsField {
-    fn from(p: &Params) -> ParamsField {
+    fn from(params: &Params) -> ParamsField {
         ParamsField {
-            max_clamp_angle_deg: p.max_clamp_angle_deg,
-            edge_trim: p.edge_trim,
-            min_clearance: p.min_clearance,
-            grid_step: p.grid_step,
-            top_k: p.top_k,
-            full_counts: p.full_counts,
-            wrenches: (p.wrenches.as_ref()).map(|ws| ws.iter().map(WrenchField::from).collect()),
+            max_clamp_angle_deg: params.max_clamp_angle_deg,
+            edge_trim: params.edge_trim,
+            min_clearance: params.min_clearance,
+            grid_step: params.grid_step,
+            top_k: params.top_k,
+            full_counts: params.full_counts,
+            wrenches: (params.wrenches.as_ref())
+                .map(|ws| ws.iter().map(WrenchField::from).collect()),
         }
     }
 }
 
 impl From<&ParamsField> for Params {
-    fn from(p: &ParamsField) -> Params {
+    fn from(params: &ParamsField) -> Params {
         Params {
-            max_clamp_angle_deg: p.max_clamp_angle_deg,
-            edge_trim: p.edge_trim,
-            min_clearance: p.min_clearance,
-            grid_step: p.grid_step,
-            top_k: p.top_k,
-            full_counts: p.full_counts,
-            wrenches: p.wrenches.as_ref().map(|ws| {
+            max_clamp_angle_deg: params.max_clamp_angle_deg,
+            edge_trim: params.edge_trim,
+            min_clearance: params.min_clearance,
+            grid_step: params.grid_step,
+            top_k: params.top_k,
+            full_counts: params.full_counts,
+            wrenches: params.wrenches.as_ref().map(|ws| {
                 ws.iter()
                     .map(|w| [w.force_x, w.force_y, w.torque])
                     .collect()
@@ -480,27 +487,27 @@ pub struct CountsField {
 }
 
 impl From<&Counts> for CountsField {
-    fn from(c: &Counts) -> CountsField {
+    fn from(counts: &Counts) -> CountsField {
         CountsField {
-            segments: c.segments,
-            combinations: c.combinations,
-            setups: c.setups,
-            candidates: c.candidates,
-            admissible: c.admissible(),
-            exact: c.exact,
+            segments: counts.segments,
+            combinations: counts.combinations,
+            setups: counts.setups,
+            candidates: counts.candidates,
+            admissible: counts.admissible(),
+            exact: counts.exact,
         }
     }
 }
 
 impl From<&CountsField> for Counts {
-    fn from(c: &CountsField) -> Counts {
+    fn from(counts: &CountsField) -> Counts {
         Counts {
-            segments: c.segments,
-            combinations: c.combinations,
-            setups: c.setups,
-            candidates: c.candidates,
-            admissible: c.admissible.filter(|_| c.exact).unwrap_or(0),
-            exact: c.exact,
+            segments: counts.segments,
+            combinations: counts.combinations,
+            setups: counts.setups,
+            candidates: counts.candidates,
+            admissible: counts.admissible.filter(|_| counts.exact).unwrap_or(0),
+            exact: counts.exact,
         }
     }
 }

@@ -59,8 +59,8 @@ pub struct PlacementField {
 }
 
 /// A score, `null` read as infinity (what serde_json writes for it).
-fn score_or_infinity<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+fn score_or_infinity<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(deserializer)?.unwrap_or(f64::INFINITY))
 }
 
 /// One ranked fixture.
@@ -100,26 +100,26 @@ fn lattice3(holes: &[HoleField; 3]) -> [[i64; 2]; 3] {
 }
 
 impl From<&FixtureReport> for FixtureField {
-    fn from(f: &FixtureReport) -> FixtureField {
+    fn from(fixture: &FixtureReport) -> FixtureField {
         FixtureField {
-            rank: f.rank,
-            score: f.score,
-            segments: f.segments,
-            locators: holes3(&f.locators),
+            rank: fixture.rank,
+            score: fixture.score,
+            segments: fixture.segments,
+            locators: holes3(&fixture.locators),
             pose: PoseField {
-                x: f.pose.x,
-                y: f.pose.y,
-                theta_deg: f.pose.theta_deg,
+                x: fixture.pose.x,
+                y: fixture.pose.y,
+                theta_deg: fixture.pose.theta_deg,
             },
             clamp: ClampPlacementField {
-                segment: f.clamp.segment,
-                rotation_deg: f.clamp.rotation_deg,
-                mount: HoleField::from(&f.clamp.mount),
-                extension: f.clamp.extension,
-                contact: PointField::from(&f.clamp.contact),
+                segment: fixture.clamp.segment,
+                rotation_deg: fixture.clamp.rotation_deg,
+                mount: HoleField::from(&fixture.clamp.mount),
+                extension: fixture.clamp.extension,
+                contact: PointField::from(&fixture.clamp.contact),
             },
-            borderline: f.borderline,
-            contacts: f
+            borderline: fixture.borderline,
+            contacts: fixture
                 .contacts
                 .iter()
                 .map(|c| ContactField {
@@ -128,9 +128,9 @@ impl From<&FixtureReport> for FixtureField {
                 })
                 .collect(),
             placement: PlacementField {
-                rotation_deg: f.placement.rotation_deg,
-                locators: holes3(&f.placement.locators),
-                clamp_holes: f
+                rotation_deg: fixture.placement.rotation_deg,
+                locators: holes3(&fixture.placement.locators),
+                clamp_holes: fixture
                     .placement
                     .clamp_holes
                     .iter()
@@ -142,26 +142,26 @@ impl From<&FixtureReport> for FixtureField {
 }
 
 impl From<&FixtureField> for FixtureReport {
-    fn from(f: &FixtureField) -> FixtureReport {
+    fn from(fixture: &FixtureField) -> FixtureReport {
         FixtureReport {
-            rank: f.rank,
-            score: f.score,
-            segments: f.segments,
-            locators: lattice3(&f.locators),
+            rank: fixture.rank,
+            score: fixture.score,
+            segments: fixture.segments,
+            locators: lattice3(&fixture.locators),
             pose: PoseReport {
-                x: f.pose.x,
-                y: f.pose.y,
-                theta_deg: f.pose.theta_deg,
+                x: fixture.pose.x,
+                y: fixture.pose.y,
+                theta_deg: fixture.pose.theta_deg,
             },
             clamp: ClampReport {
-                segment: f.clamp.segment,
-                rotation_deg: f.clamp.rotation_deg,
-                mount: (&f.clamp.mount).into(),
-                extension: f.clamp.extension,
-                contact: (&f.clamp.contact).into(),
+                segment: fixture.clamp.segment,
+                rotation_deg: fixture.clamp.rotation_deg,
+                mount: (&fixture.clamp.mount).into(),
+                extension: fixture.clamp.extension,
+                contact: (&fixture.clamp.contact).into(),
             },
-            borderline: f.borderline,
-            contacts: f
+            borderline: fixture.borderline,
+            contacts: fixture
                 .contacts
                 .iter()
                 .map(|c| ContactReport {
@@ -170,9 +170,9 @@ impl From<&FixtureField> for FixtureReport {
                 })
                 .collect(),
             placement: PlacementReport {
-                rotation_deg: f.placement.rotation_deg,
-                locators: lattice3(&f.placement.locators),
-                clamp_holes: f
+                rotation_deg: fixture.placement.rotation_deg,
+                locators: lattice3(&fixture.placement.locators),
+                clamp_holes: fixture
                     .placement
                     .clamp_holes
                     .iter()

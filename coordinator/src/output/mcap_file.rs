@@ -118,38 +118,38 @@ impl<W: Write> McapFile<W> {
     }
 
     /// Writes a metadata record.
-    pub fn metadata(&mut self, m: &Metadata) -> std::io::Result<()> {
+    pub fn metadata(&mut self, metadata: &Metadata) -> std::io::Result<()> {
         let offset = self.pos;
-        self.record(op::METADATA, &body(m)?)?;
+        self.record(op::METADATA, &body(metadata)?)?;
         self.metadata_indexes.push(MetadataIndex {
             offset,
             length: self.pos - offset,
-            name: m.name.clone(),
+            name: metadata.name.clone(),
         });
         self.stats.metadata_count += 1;
         Ok(())
     }
 
     /// Writes a chunk and its message indexes.
-    pub fn chunk(&mut self, c: &PartChunk) -> std::io::Result<()> {
+    pub fn chunk(&mut self, chunk: &PartChunk) -> std::io::Result<()> {
         let start = self.pos;
         let header = ChunkHeader {
-            message_start_time: c.log_time,
-            message_end_time: c.log_time,
-            uncompressed_size: c.uncompressed_size,
-            uncompressed_crc: c.uncompressed_crc,
+            message_start_time: chunk.log_time,
+            message_end_time: chunk.log_time,
+            uncompressed_size: chunk.uncompressed_size,
+            uncompressed_crc: chunk.uncompressed_crc,
             compression: "zstd".into(),
-            compressed_size: c.compressed.len() as u64,
+            compressed_size: chunk.compressed.len() as u64,
         };
-        self.record_parts(op::CHUNK, &[&body(&header)?, &c.compressed])?;
+        self.record_parts(op::CHUNK, &[&body(&header)?, &chunk.compressed])?;
         let chunk_length = self.pos - start;
         let mut by_channel: BTreeMap<u16, Vec<MessageIndexEntry>> = BTreeMap::new();
-        for &(channel, offset) in &c.offsets {
+        for &(channel, offset) in &chunk.offsets {
             by_channel
                 .entry(channel)
                 .or_default()
                 .push(MessageIndexEntry {
-                    log_time: c.log_time,
+                    log_time: chunk.log_time,
                     offset,
                 });
             *self
@@ -168,27 +168,27 @@ impl<W: Write> McapFile<W> {
             };
             self.record(op::MESSAGE_INDEX, &body(&index)?)?;
         }
-        let n = c.offsets.len() as u64;
+        let n = chunk.offsets.len() as u64;
         let s = &mut self.stats;
         if n > 0 {
             if s.message_count == 0 {
-                (s.message_start_time, s.message_end_time) = (c.log_time, c.log_time);
+                (s.message_start_time, s.message_end_time) = (chunk.log_time, chunk.log_time);
             }
-            s.message_start_time = s.message_start_time.min(c.log_time);
-            s.message_end_time = s.message_end_time.max(c.log_time);
+            s.message_start_time = s.message_start_time.min(chunk.log_time);
+            s.message_end_time = s.message_end_time.max(chunk.log_time);
         }
         s.message_count += n;
         s.chunk_count += 1;
         self.chunk_indexes.push(ChunkIndex {
-            message_start_time: c.log_time,
-            message_end_time: c.log_time,
+            message_start_time: chunk.log_time,
+            message_end_time: chunk.log_time,
             chunk_start_offset: start,
             chunk_length,
             message_index_offsets,
             message_index_length: self.pos - index_start,
             compression: "zstd".into(),
-            compressed_size: c.compressed.len() as u64,
-            uncompressed_size: c.uncompressed_size,
+            compressed_size: chunk.compressed.len() as u64,
+            uncompressed_size: chunk.uncompressed_size,
         });
         Ok(())
     }

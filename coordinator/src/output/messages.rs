@@ -184,11 +184,11 @@ impl CatalogInfo {
 /// what tells `--resume` that a file was written from the same parts.
 /// Each entry is hashed as one JSON line of the file's own field types
 /// (so a rename in core leaves it alone), written into a reused buffer.
-pub fn catalog_digest(c: &Catalog) -> String {
+pub fn catalog_digest(catalog: &Catalog) -> String {
     /// A part's geometry as hashed; `holes` absent when there are none,
     /// so a file of parts without holes written before holes resumes.
     #[derive(Serialize)]
-    struct Shape {
+    struct HashedShape {
         outline: Vec<VertexField>,
         #[serde(skip_serializing_if = "Vec::is_empty")]
         holes: Vec<HoleLoopField>,
@@ -198,19 +198,19 @@ pub fn catalog_digest(c: &Catalog) -> String {
     #[derive(Serialize)]
     struct Entry<'a> {
         id: &'a str,
-        part: Result<Shape, String>,
+        part: Result<HashedShape, String>,
         quantity: f64,
         top_k: Option<usize>,
         wrenches: Option<Vec<WrenchField>>,
     }
     let mut h = Sha256::new();
-    h.update(format!("units={}\n", UnitsName::from(c.units).text()));
+    h.update(format!("units={}\n", UnitsName::from(catalog.units).text()));
     let mut line = Vec::with_capacity(4096);
-    for p in &c.parts {
+    for p in &catalog.parts {
         let entry = Entry {
             id: &p.id,
             part: match &p.part {
-                Ok(part) => Ok(Shape {
+                Ok(part) => Ok(HashedShape {
                     outline: part.outline.iter().map(VertexField::from).collect(),
                     holes: part.holes.iter().map(HoleLoopField::from).collect(),
                     access: part.access.iter().map(PolygonField::from).collect(),
@@ -282,11 +282,11 @@ pub struct TimingField {
 }
 
 impl From<&SolveTiming> for TimingField {
-    fn from(t: &SolveTiming) -> TimingField {
+    fn from(timing: &SolveTiming) -> TimingField {
         TimingField {
-            prepare_ms: t.prepare_ms,
-            enumerate_ms: t.enumerate_ms,
-            shards: t.shards,
+            prepare_ms: timing.prepare_ms,
+            enumerate_ms: timing.enumerate_ms,
+            shards: timing.shards,
         }
     }
 }
@@ -323,17 +323,17 @@ pub struct StepField {
 }
 
 impl From<&StepSummary> for StepField {
-    fn from(s: &StepSummary) -> StepField {
+    fn from(summary: &StepSummary) -> StepField {
         StepField {
-            grid_step: s.grid_step,
-            counts: CountsField::from(&s.counts),
-            fixtures: s.fixtures,
-            best_score: s.best_score,
-            best: s.best.as_ref().map(FixtureField::from),
-            added: s.added,
-            improved_by: s.improved_by,
-            stopped_at: s.stopped_at,
-            enumerate_ms: s.enumerate_ms,
+            grid_step: summary.grid_step,
+            counts: CountsField::from(&summary.counts),
+            fixtures: summary.fixtures,
+            best_score: summary.best_score,
+            best: summary.best.as_ref().map(FixtureField::from),
+            added: summary.added,
+            improved_by: summary.improved_by,
+            stopped_at: summary.stopped_at,
+            enumerate_ms: summary.enumerate_ms,
         }
     }
 }
@@ -402,24 +402,24 @@ impl Message for PartMsg {
 }
 
 impl PartMessage for PartMsg {
-    fn of(p: &PartContent) -> PartMsg {
-        let (result, search) = (p.result, p.search);
+    fn of(content: &PartContent) -> PartMsg {
+        let (result, search) = (content.result, content.search);
         PartMsg {
-            index: p.index,
-            id: p.entry.id.clone(),
-            file: p.entry.file.as_ref().map(|f| f.display().to_string()),
+            index: content.index,
+            id: content.entry.id.clone(),
+            file: content.entry.file.as_ref().map(|f| f.display().to_string()),
             status: result.status.into(),
             error: result.error.clone(),
-            warnings: p.entry.warnings.clone(),
-            units: p.units.into(),
-            quantity: p.entry.quantity,
-            outline: p.outline.iter().map(VertexField::from).collect(),
-            holes: p.holes.iter().map(HoleLoopField::from).collect(),
-            access: p.access.iter().map(PolygonField::from).collect(),
+            warnings: content.entry.warnings.clone(),
+            units: content.units.into(),
+            quantity: content.entry.quantity,
+            outline: content.outline.iter().map(VertexField::from).collect(),
+            holes: content.holes.iter().map(HoleLoopField::from).collect(),
+            access: content.access.iter().map(PolygonField::from).collect(),
             counts: result.counts.as_ref().map(CountsField::from),
             fixtures: result.fixtures.len(),
             best_score: result.fixtures.first().map(|f| f.score),
-            timing: TimingField::from(&p.timing),
+            timing: TimingField::from(&content.timing),
             refine: (search.steps.as_ref()).map(|s| s.iter().map(StepField::from).collect()),
             stopped: search.stopped_at.map(|_| STOPPED_GOOD_ENOUGH.to_string()),
             stopped_at: search.stopped_at,
@@ -488,20 +488,9 @@ impl Message for FixturesMsg {
 }
 
 impl PartMessage for FixturesMsg {
-    fn of(p: &PartContent) -> FixturesMsg {
-        FixturesMsg::of_result(&p.entry.id, p.result)
+    fn of(content: &PartContent) -> FixturesMsg {
+        FixturesMsg::of_result(&content.entry.id, content.result)
     }
-}
-
-/// Why a fixtures message could not be read exactly.
-#[derive(Debug, thiserror::Error)]
-pub enum ExactReadError {
-    /// The message is not UTF-8.
-    #[error("not UTF-8: {0}")]
-    Utf8(#[from] std::str::Utf8Error),
-    /// The message is not a fixtures message.
-    #[error("{0}")]
-    Json(#[from] json5::Error),
 }
 
 /// One line of `fixplan export --json`: `{"part": ID, ...}` then the
@@ -515,15 +504,15 @@ struct ExportLine<'a> {
 
 impl FixturesMsg {
     /// The message of part `id`'s result.
-    pub fn of_result(id: &str, r: &SolveResult) -> FixturesMsg {
+    pub fn of_result(id: &str, result: &SolveResult) -> FixturesMsg {
         FixturesMsg {
             part: id.to_string(),
-            status: r.status.into(),
-            error: r.error.clone(),
-            counts: r.counts.as_ref().map(CountsField::from),
-            segment_kinds: r.segment_kinds.iter().map(|&k| k.into()).collect(),
-            segment_loops: r.segment_loops.clone(),
-            fixtures: r.fixtures.iter().map(FixtureField::from).collect(),
+            status: result.status.into(),
+            error: result.error.clone(),
+            counts: result.counts.as_ref().map(CountsField::from),
+            segment_kinds: result.segment_kinds.iter().map(|&k| k.into()).collect(),
+            segment_loops: result.segment_loops.clone(),
+            fixtures: result.fixtures.iter().map(FixtureField::from).collect(),
         }
     }
 
@@ -537,16 +526,6 @@ impl FixturesMsg {
             segment_loops: self.segment_loops.clone(),
             fixtures: self.fixtures.iter().map(Into::into).collect(),
         }
-    }
-
-    /// The message from its JSON `bytes`, every float exactly the f64 that
-    /// was written (integers exactly up to 2^53): what [`FixturesMsg::export_line`] needs to give
-    /// back core's bytes. serde_json's default number parse may land one
-    /// ulp off a 17-digit number; json5's parser (JSON is JSON5) parses
-    /// numbers with std's correctly rounded parse.
-    pub fn from_json_exact(bytes: &[u8]) -> Result<FixturesMsg, ExactReadError> {
-        let text = std::str::from_utf8(bytes)?;
-        Ok(json5::from_str(text)?)
     }
 
     /// The part's line of `fixplan export --json` (without the newline):
@@ -572,8 +551,8 @@ mod tests {
         Pattern, PlacementReport, PoseReport, SegmentKind, Status,
     };
 
-    fn json<T: Serialize>(m: &T) -> String {
-        serde_json::to_string(m).expect("json")
+    fn json<T: Serialize>(message: &T) -> String {
+        serde_json::to_string(message).expect("json")
     }
 
     /// Exact counts of a small part, as a full enumeration gives them.
@@ -663,17 +642,18 @@ mod tests {
         let written = FixturesMsg::of_result("p", &result);
         let text = json(&written);
         assert!(text.contains("\"score\":null"), "{text}");
-        let read = FixturesMsg::from_json_exact(text.as_bytes()).unwrap();
+        let read = serde_json::from_slice::<FixturesMsg>(text.as_bytes()).unwrap();
         assert_eq!(read.result(), result);
     }
 
-    /// Numbers of 17 significant digits, which serde_json's default parse
-    /// may miss by an ulp, come back as the f64s written: export gives
-    /// back core's bytes.
+    /// Numbers of 17 significant digits, which serde_json's parse without
+    /// `float_roundtrip` (the workspace turns it on) misses by an ulp
+    /// (54.286548683761524 is one), come back as the f64s written: export
+    /// gives back core's bytes.
     #[test]
     fn fixtures_are_read_back_exactly() {
         let mut f = fixture();
-        f.clamp.contact = [0.0, 92.99240966070201];
+        f.clamp.contact = [54.286548683761524, 92.99240966070201];
         f.score = 1.1407774087193523;
         f.pose.x = -55.54457980741133;
         f.contacts[0].normal = [0.6328716297238466, 0.774256740552307];
@@ -686,7 +666,7 @@ mod tests {
             fixtures: vec![f],
         };
         let written = FixturesMsg::of_result("p\u{1f600}", &result);
-        let read = FixturesMsg::from_json_exact(json(&written).as_bytes()).unwrap();
+        let read = serde_json::from_slice::<FixturesMsg>(json(&written).as_bytes()).unwrap();
         assert_eq!(read, written);
         assert_eq!(read.result(), result);
         let line = read.export_line().unwrap();
@@ -858,7 +838,7 @@ mod tests {
             String::from_utf8(fixtures.export_line().unwrap()).unwrap(),
             r#"{"part":"p","status":"ok","counts":{"segments":3,"combinations":10,"setups":4,"candidates":2,"admissible":1},"segment_kinds":["line","arc","line"],"fixtures":[{"rank":1,"score":0.25,"segments":[0,1,2],"locators":[[0,0],[2,0],[0,1]],"pose":{"x":1.0,"y":2.0,"theta_deg":90.0},"clamp":{"segment":1,"rotation_deg":180,"mount":[3,1],"extension":4.5,"contact":[5.0,6.0]},"borderline":false,"contacts":[{"point":[1.0,0.0],"normal":[0.0,1.0]}],"placement":{"rotation_deg":90,"locators":[[1,1],[3,1],[1,2]],"clamp_holes":[[4,2],[5,2]]}}]}"#
         );
-        let read = FixturesMsg::from_json_exact(json(&fixtures).as_bytes()).unwrap();
+        let read = serde_json::from_slice::<FixturesMsg>(json(&fixtures).as_bytes()).unwrap();
         assert_eq!(read, fixtures);
         // A part with holes lists the loop of every segment (SPEC 9.6),
         // in the message and in the exported result.

@@ -75,14 +75,14 @@ pub enum PartPlace {
 }
 
 impl std::fmt::Display for Damage {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+    fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.part {
-            PartPlace::Part(n) => write!(f, "part #{n}")?,
-            PartPlace::After(n) => write!(f, "the part after #{n}")?,
-            PartPlace::First => write!(f, "the first part")?,
-            PartPlace::NoPart => write!(f, "outside the parts")?,
+            PartPlace::Part(n) => write!(formatter, "part #{n}")?,
+            PartPlace::After(n) => write!(formatter, "the part after #{n}")?,
+            PartPlace::First => write!(formatter, "the first part")?,
+            PartPlace::NoPart => write!(formatter, "outside the parts")?,
         }
-        write!(f, " at byte {}: {}", self.offset, self.message)
+        write!(formatter, " at byte {}: {}", self.offset, self.message)
     }
 }
 
@@ -159,7 +159,7 @@ impl ResultsFile {
         if !self.bytes.starts_with(MAGIC) {
             return Err(self.format_err("it does not start with the MCAP magic"));
         }
-        let mut walk = Walk {
+        let mut walk = RecordWalk {
             footer: records::footer(&self.bytes),
             run: None,
             last: None,
@@ -209,7 +209,7 @@ impl ResultsFile {
 }
 
 /// The state of a walk through a file's data section.
-struct Walk {
+struct RecordWalk {
     footer: Option<records::Footer>,
     run: Option<RunMsg>,
     /// The last sound part.
@@ -222,7 +222,7 @@ struct Walk {
     keep_going: bool,
 }
 
-impl Walk {
+impl RecordWalk {
     /// Where a damaged record of unknown part lies.
     fn place(&self) -> PartPlace {
         match self.last {
@@ -243,17 +243,20 @@ impl Walk {
     /// message is unreadable (nothing else can be trusted then).
     fn record(
         &mut self,
-        r: Record<'_>,
+        mcap_record: Record<'_>,
         on_part: &mut dyn FnMut(&RunMsg, PartMessages) -> bool,
     ) -> Result<(), String> {
-        match r.opcode {
+        match mcap_record.opcode {
             op::HEADER | op::SCHEMA | op::CHANNEL | op::MESSAGE_INDEX | op::METADATA => Ok(()),
-            op::CHUNK => self.chunk(r, on_part),
+            op::CHUNK => self.chunk(mcap_record, on_part),
             other => {
                 let place = self.place();
                 self.flaw(
                     place,
-                    Flaw::at(r.offset, format!("unexpected record {other:#04x}")),
+                    Flaw::at(
+                        mcap_record.offset,
+                        format!("unexpected record {other:#04x}"),
+                    ),
                 );
                 self.damaged_since += 1;
                 Ok(())
@@ -263,49 +266,49 @@ impl Walk {
 
     fn chunk(
         &mut self,
-        r: Record<'_>,
+        record: Record<'_>,
         on_part: &mut dyn FnMut(&RunMsg, PartMessages) -> bool,
     ) -> Result<(), String> {
-        let read = ChunkRecord::parse(r.body).and_then(|c| {
+        let read = ChunkRecord::parse(record.body).and_then(|c| {
             let records = c.records()?;
             Ok((c, records))
         });
         let (chunk, data) = match read {
             Ok(x) => x,
             Err(message) => {
-                let index = ChunkRecord::parse(r.body)
+                let index = ChunkRecord::parse(record.body)
                     .ok()
                     .and_then(|c| self.claimed(&c));
-                return self.damaged_chunk(r.offset, index, message);
+                return self.damaged_chunk(record.offset, index, message);
             }
         };
         let messages = match records::messages(&data) {
             Ok(m) => m,
-            Err(message) => return self.damaged_chunk(r.offset, None, message),
+            Err(message) => return self.damaged_chunk(record.offset, None, message),
         };
         if messages.len() == 1 && messages[0].channel == RUN_CHANNEL.id {
             if self.run.is_some() {
                 let place = self.place();
-                self.flaw(place, Flaw::at(r.offset, "a second run message"));
+                self.flaw(place, Flaw::at(record.offset, "a second run message"));
                 return Ok(());
             }
             let run = serde_json::from_slice(messages[0].data)
-                .map_err(|e| format!("{TOPIC_RUN} at byte {}: {e}", r.offset))?;
+                .map_err(|e| format!("{TOPIC_RUN} at byte {}: {e}", record.offset))?;
             self.run = Some(run);
             return Ok(());
         }
         let Some(run) = self.run.as_ref() else {
             return Err(format!(
                 "a part's chunk at byte {} comes before the {TOPIC_RUN} message",
-                r.offset
+                record.offset
             ));
         };
         match part_of(run, &chunk, &messages) {
             Ok(m) => {
-                self.part(r.offset, m, on_part);
+                self.part(record.offset, m, on_part);
                 Ok(())
             }
-            Err((index, message)) => self.damaged_chunk(r.offset, index, message),
+            Err((index, message)) => self.damaged_chunk(record.offset, index, message),
         }
     }
 
@@ -345,10 +348,10 @@ impl Walk {
     fn part(
         &mut self,
         offset: usize,
-        m: PartMessages,
+        messages: PartMessages,
         on_part: &mut dyn FnMut(&RunMsg, PartMessages) -> bool,
     ) {
-        let index = m.index;
+        let index = messages.index;
         if let Some(last) = self.last {
             if index <= last {
                 self.flaw(
@@ -367,7 +370,7 @@ impl Walk {
         self.damaged_since = 0;
         self.parts.push(index);
         if let (true, Some(run)) = (self.keep_going, self.run.as_ref()) {
-            self.keep_going = on_part(run, m);
+            self.keep_going = on_part(run, messages);
         }
     }
 
@@ -411,21 +414,21 @@ impl Walk {
 
     /// The end of the data section of a complete file: its CRC, then the
     /// summary's.
-    fn data_end(&mut self, bytes: &[u8], r: Record<'_>, summary_start: usize) {
+    fn data_end(&mut self, bytes: &[u8], record: Record<'_>, summary_start: usize) {
         if !self.damage.is_empty() {
             return;
         }
-        let crc = crc32fast::hash(&bytes[..r.offset]);
-        match records::data_end_crc(r.body) {
+        let crc = crc32fast::hash(&bytes[..record.offset]);
+        match records::data_end_crc(record.body) {
             Ok(want) if want == 0 || want == crc => {}
             Ok(want) => self.flaw(
                 PartPlace::NoPart,
                 Flaw::at(
-                    r.offset,
+                    record.offset,
                     format!("the data section has CRC {crc:#010x}, not the {want:#010x} written (damage outside the parts' chunks)"),
                 ),
             ),
-            Err(m) => self.flaw(PartPlace::NoPart, Flaw::at(r.offset, m)),
+            Err(m) => self.flaw(PartPlace::NoPart, Flaw::at(record.offset, m)),
         }
         match self.footer {
             Some(footer) => {
@@ -548,52 +551,63 @@ pub struct PartRecord {
 
 impl PartRecord {
     /// Decodes the part and fixtures messages (the scene is for viewers).
-    pub fn decode(m: &PartMessages) -> Result<PartRecord, serde_json::Error> {
+    pub fn decode(messages: &PartMessages) -> Result<PartRecord, serde_json::Error> {
         Ok(PartRecord {
-            part: m.decode()?,
-            fixtures: m.decode()?,
+            part: messages.decode()?,
+            fixtures: messages.decode()?,
         })
     }
 }
 
-/// Calls `f` on each sound part of the results file at `path` (only the
+/// Calls `visit` on each sound part of the results file at `path`, its
+/// messages decoded by `decode`, in file order; stops at the first error,
+/// a message that does not decode named by file and part. Fails, after
+/// the sound parts, when the file is damaged. Every reader of parts
+/// (`show`, `render`, `export`) goes through it, so their errors read
+/// alike.
+pub fn for_each_decoded<T>(
+    path: &Path,
+    decode: impl Fn(&PartMessages) -> serde_json::Result<T>,
+    mut visit: impl FnMut(&RunMsg, T) -> anyhow::Result<()>,
+) -> anyhow::Result<Contents> {
+    let file = ResultsFile::open(path)?;
+    let mut err = None;
+    let contents = file.for_each_part(|run, m| {
+        let outcome = decode(&m)
+            .map_err(|e| anyhow::anyhow!("{}: part #{}: {e}", path.display(), m.index))
+            .and_then(|decoded| visit(run, decoded));
+        match outcome {
+            Ok(()) => true,
+            Err(e) => {
+                err = Some(e);
+                false
+            }
+        }
+    })?;
+    if let Some(e) = err {
+        return Err(e);
+    }
+    contents.sound(&file.path)?;
+    Ok(contents)
+}
+
+/// Calls `on_record` on each sound part of the results file at `path` (only the
 /// part `part` when given), decoded, in file order; stops at the first
 /// error. Fails when `part` names no part of the file, and, after the
 /// sound parts, when the file is damaged. `show` and `render` share it.
 pub fn for_each_record(
     path: &Path,
     part: Option<&str>,
-    mut f: impl FnMut(&RunMsg, &PartRecord) -> anyhow::Result<()>,
+    mut on_record: impl FnMut(&RunMsg, &PartRecord) -> anyhow::Result<()>,
 ) -> anyhow::Result<Contents> {
-    let file = ResultsFile::open(path)?;
-    let mut err = None;
     let mut found = false;
-    let contents = file.for_each_part(|run, m| {
-        let rec = match PartRecord::decode(&m) {
-            Ok(r) => r,
-            Err(e) => {
-                err = Some(anyhow::anyhow!(
-                    "{}: part #{}: {e}",
-                    path.display(),
-                    m.index
-                ));
-                return false;
-            }
-        };
-        if part.is_some_and(|p| p != rec.part.id) {
-            return true;
+    let contents = for_each_decoded(path, PartRecord::decode, |run, record| {
+        if part.is_some_and(|p| p != record.part.id) {
+            return Ok(());
         }
         found = true;
-        if let Err(e) = f(run, &rec) {
-            err = Some(e);
-            return false;
-        }
-        true
+        on_record(run, &record)
     })?;
-    if let Some(e) = err {
-        return Err(e);
-    }
-    contents.sound(&file.path)?;
     if let Some(p) = part {
         if !found {
             anyhow::bail!("{}: no part {p:?}", path.display());

@@ -123,9 +123,9 @@ pub fn record_at(bytes: &[u8], pos: usize) -> Step<'_> {
     }
 }
 
-fn le_u64(b: &[u8]) -> u64 {
+fn le_u64(bytes: &[u8]) -> u64 {
     let mut a = [0u8; 8];
-    a.copy_from_slice(&b[..8]);
+    a.copy_from_slice(&bytes[..8]);
     u64::from_le_bytes(a)
 }
 
@@ -141,15 +141,15 @@ impl<'a> Fields<'a> {
         Fields { body, pos: 0 }
     }
 
-    /// The next `n` bytes.
-    pub fn take(&mut self, n: u64, what: &str) -> Result<&'a [u8], String> {
+    /// The next `count` bytes.
+    pub fn take(&mut self, count: u64, what: &str) -> Result<&'a [u8], String> {
         let left = self.body.len() - self.pos;
-        match usize::try_from(n).ok().filter(|&n| n <= left) {
-            Some(n) => {
-                self.pos += n;
-                Ok(&self.body[self.pos - n..self.pos])
+        match usize::try_from(count).ok().filter(|&count| count <= left) {
+            Some(count) => {
+                self.pos += count;
+                Ok(&self.body[self.pos - count..self.pos])
             }
-            None => Err(format!("{what} needs {n} bytes where {left} are left")),
+            None => Err(format!("{what} needs {count} bytes where {left} are left")),
         }
     }
 

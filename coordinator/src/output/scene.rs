@@ -3,13 +3,13 @@
 //! metres, frame `plate`. Entity ids are the same for every part, so each
 //! part's scene replaces the previous one as Foxglove plays the file.
 //!
-//! Typed structs, not `serde_json::Value`: building a `Value` per plate
-//! hole made the scene most of the coordinator's time in a distributed run
-//! (~400 us a part). Fields are declared in alphabetical order, which is
-//! the order a `Value` map wrote them in, so the bytes did not change.
+//! Typed structs, not `serde_json::Value`: a `Value` per plate hole makes
+//! the scene most of the coordinator's time in a distributed run
+//! (docs/performance.md). Fields are declared in alphabetical order, the
+//! order a `Value` map writes them in, which the file's bytes keep.
 
 use crate::drawing::draw::{
-    bounds, fixture_drawing, plate_holes, plate_outline, DrawnCircle, FixtureDrawing, Hole,
+    bounds, fixture_drawing, plate_holes, plate_outline, DrawnCircle, FixtureDrawing, PlateHole,
 };
 use crate::drawing::hole_contacts::hole_contact_label;
 use crate::drawing::outline::{extent_points, flattened, moved};
@@ -30,8 +30,13 @@ struct Color {
     r: f64,
 }
 
-const fn color(r: f64, g: f64, b: f64, a: f64) -> Color {
-    Color { a, b, g, r }
+const fn color(red: f64, green: f64, blue: f64, alpha: f64) -> Color {
+    Color {
+        a: alpha,
+        b: blue,
+        g: green,
+        r: red,
+    }
 }
 
 #[derive(Serialize)]
@@ -50,13 +55,13 @@ struct Quat {
 }
 
 #[derive(Serialize)]
-struct Pose {
+struct ScenePose {
     orientation: Quat,
     position: Vec3,
 }
 
-fn identity_pose(x: f64, y: f64, z: f64) -> Pose {
-    Pose {
+fn identity_pose(x: f64, y: f64, z: f64) -> ScenePose {
+    ScenePose {
         orientation: Quat {
             w: 1.0,
             x: 0.0,
@@ -74,12 +79,12 @@ struct Time {
 }
 
 #[derive(Serialize)]
-struct Line {
+struct SceneLine {
     color: Color,
     colors: [Color; 0],
     indices: [u32; 0],
     points: Vec<Vec3>,
-    pose: Pose,
+    pose: ScenePose,
     scale_invariant: bool,
     thickness: f64,
     #[serde(rename = "type")]
@@ -90,7 +95,7 @@ struct Line {
 struct Cylinder {
     bottom_scale: f64,
     color: Color,
-    pose: Pose,
+    pose: ScenePose,
     size: Vec3,
     top_scale: f64,
 }
@@ -100,7 +105,7 @@ struct Arrow {
     color: Color,
     head_diameter: f64,
     head_length: f64,
-    pose: Pose,
+    pose: ScenePose,
     shaft_diameter: f64,
     shaft_length: f64,
 }
@@ -110,7 +115,7 @@ struct Text {
     billboard: bool,
     color: Color,
     font_size: f64,
-    pose: Pose,
+    pose: ScenePose,
     scale_invariant: bool,
     text: String,
 }
@@ -121,12 +126,12 @@ struct Text {
 struct Shapes {
     arrows: Vec<Arrow>,
     cylinders: Vec<Cylinder>,
-    lines: Vec<Line>,
+    lines: Vec<SceneLine>,
     texts: Vec<Text>,
 }
 
 #[derive(Serialize)]
-struct Entity<'a> {
+struct SceneEntity<'a> {
     arrows: Vec<Arrow>,
     cubes: [(); 0],
     cylinders: Vec<Cylinder>,
@@ -134,7 +139,7 @@ struct Entity<'a> {
     frame_locked: bool,
     id: &'a str,
     lifetime: Time,
-    lines: Vec<Line>,
+    lines: Vec<SceneLine>,
     metadata: [(); 0],
     models: [(); 0],
     spheres: [(); 0],
@@ -147,7 +152,7 @@ struct Entity<'a> {
 #[derive(Serialize)]
 pub struct SceneUpdate<'a> {
     deletions: [(); 0],
-    entities: Vec<Entity<'a>>,
+    entities: Vec<SceneEntity<'a>>,
 }
 
 struct Scene {
@@ -167,8 +172,8 @@ impl Scene {
         }
     }
 
-    fn loop_line(&self, pts: &[Point], thickness: f64, color: Color) -> Line {
-        Line {
+    fn loop_line(&self, pts: &[Point], thickness: f64, color: Color) -> SceneLine {
+        SceneLine {
             color,
             colors: [],
             indices: [],
@@ -183,16 +188,20 @@ impl Scene {
     /// A part outline as a closed line strip, arcs cut into short chords
     /// (Foxglove has no arc primitive); a polygon's points are its
     /// vertices, as before arcs.
-    fn outline_line(&self, outline: &[Vertex], thickness: f64, color: Color) -> Line {
+    fn outline_line(&self, outline: &[Vertex], thickness: f64, color: Color) -> SceneLine {
         self.loop_line(&flattened(outline, self.chord_error), thickness, color)
     }
 
-    fn disk(&self, c: &DrawnCircle, height: f64, color: Color) -> Cylinder {
-        let d = 2.0 * c.radius * self.m;
+    fn disk(&self, circle: &DrawnCircle, height: f64, color: Color) -> Cylinder {
+        let d = 2.0 * circle.radius * self.m;
         Cylinder {
             bottom_scale: 1.0,
             color,
-            pose: identity_pose(c.centre[0] * self.m, c.centre[1] * self.m, height / 2.0),
+            pose: identity_pose(
+                circle.centre[0] * self.m,
+                circle.centre[1] * self.m,
+                height / 2.0,
+            ),
             size: Vec3 {
                 x: d,
                 y: d,
@@ -208,7 +217,7 @@ impl Scene {
             color,
             head_diameter: len * 0.2,
             head_length: len * 0.3,
-            pose: Pose {
+            pose: ScenePose {
                 orientation: Quat {
                     w: a.cos(),
                     x: 0.0,
@@ -233,20 +242,20 @@ impl Scene {
         }
     }
 
-    fn entity<'a>(&self, id: &'a str, s: Shapes) -> Entity<'a> {
-        Entity {
-            arrows: s.arrows,
+    fn entity<'a>(&self, id: &'a str, shapes: Shapes) -> SceneEntity<'a> {
+        SceneEntity {
+            arrows: shapes.arrows,
             cubes: [],
-            cylinders: s.cylinders,
+            cylinders: shapes.cylinders,
             frame_id: FRAME,
             frame_locked: false,
             id,
             lifetime: Time { nsec: 0, sec: 0 },
-            lines: s.lines,
+            lines: shapes.lines,
             metadata: [],
             models: [],
             spheres: [],
-            texts: s.texts,
+            texts: shapes.texts,
             timestamp: Time {
                 nsec: self.ns % 1_000_000_000,
                 sec: self.ns / 1_000_000_000,
@@ -273,7 +282,7 @@ impl Scene {
         outline: &[Vertex],
         holes: &[Vec<Vertex>],
         access: &[Vec<Point>],
-    ) -> Vec<Entity<'static>> {
+    ) -> Vec<SceneEntity<'static>> {
         let plate = plate_outline(kit);
         let middle = |b: Option<[Point; 2]>| {
             b.map(|[lo, hi]| [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0])
@@ -308,16 +317,16 @@ impl Scene {
     }
 
     /// The disk of one plate hole: the same for every part of a run.
-    fn hole_disk(&self, kit: &Kit, h: &Hole) -> Cylinder {
+    fn hole_disk(&self, kit: &Kit, hole: &PlateHole) -> Cylinder {
         let hole_r = kit.locator_radius.min(0.3 * kit.spacing);
-        let c = if h.dowel {
+        let c = if hole.dowel {
             color(0.55, 0.55, 0.55, 1.0)
         } else {
             color(0.35, 0.35, 0.4, 1.0)
         };
         self.disk(
             &DrawnCircle {
-                centre: h.at,
+                centre: hole.at,
                 radius: hole_r,
             },
             0.0005,
@@ -328,7 +337,7 @@ impl Scene {
     /// The plate: its edge and the holes within 1.5 spacings of the
     /// fixture's bounds `[lo, hi]` (a whole plate is hundreds of disks a
     /// part).
-    fn plate(&self, kit: &Kit, extent: [Point; 2]) -> Entity<'static> {
+    fn plate(&self, kit: &Kit, extent: [Point; 2]) -> SceneEntity<'static> {
         let holes = plate_holes(kit)
             .filter(|h| near_fixture(kit, extent, h.at))
             .map(|h| self.hole_disk(kit, &h))
@@ -337,7 +346,7 @@ impl Scene {
     }
 
     /// The plate entity with these hole disks.
-    fn plate_with(&self, kit: &Kit, holes: Vec<Cylinder>) -> Entity<'static> {
+    fn plate_with(&self, kit: &Kit, holes: Vec<Cylinder>) -> SceneEntity<'static> {
         self.entity(
             "plate",
             Shapes {
@@ -354,16 +363,26 @@ impl Scene {
     fn posed_part(
         &self,
         id: &str,
-        d: &FixtureDrawing,
+        drawing: &FixtureDrawing,
         hi: Point,
-        f: &FixtureReport,
+        fixture: &FixtureReport,
         segment_loops: &[usize],
-    ) -> Entity<'static> {
-        let mut part_lines = vec![self.outline_line(&d.part, 3.0, PART)];
-        part_lines.extend(d.holes.iter().map(|h| self.outline_line(h, 2.0, PART)));
-        part_lines.extend(d.access.iter().map(|a| self.loop_line(a, 2.0, ACCESS)));
-        let mut label = format!("{id}  rank {}  score {:.4}", f.rank, f.score);
-        if let Some(l) = hole_contact_label(segment_loops, f) {
+    ) -> SceneEntity<'static> {
+        let mut part_lines = vec![self.outline_line(&drawing.part, 3.0, PART)];
+        part_lines.extend(
+            drawing
+                .holes
+                .iter()
+                .map(|h| self.outline_line(h, 2.0, PART)),
+        );
+        part_lines.extend(
+            drawing
+                .access
+                .iter()
+                .map(|a| self.loop_line(a, 2.0, ACCESS)),
+        );
+        let mut label = format!("{id}  rank {}  score {:.4}", fixture.rank, fixture.score);
+        if let Some(l) = hole_contact_label(segment_loops, fixture) {
             label = format!("{label}  {l}");
         }
         self.entity(
@@ -377,15 +396,15 @@ impl Scene {
     }
 
     /// Locators, clamp (body, plunger, tip) and the contact normals.
-    fn fixture(&self, kit: &Kit, d: &FixtureDrawing) -> Entity<'static> {
+    fn fixture(&self, kit: &Kit, drawing: &FixtureDrawing) -> SceneEntity<'static> {
         let steel = color(0.85, 0.85, 0.2, 1.0);
-        let mut cylinders: Vec<Cylinder> = d
+        let mut cylinders: Vec<Cylinder> = drawing
             .locators
             .iter()
             .map(|c| self.disk(c, 0.01, steel))
             .collect();
-        cylinders.push(self.disk(&d.tip, 0.01, color(0.9, 0.2, 0.2, 1.0)));
-        let arrows = d
+        cylinders.push(self.disk(&drawing.tip, 0.01, color(0.9, 0.2, 0.2, 1.0)));
+        let arrows = drawing
             .contacts
             .iter()
             .map(|c| {
@@ -403,8 +422,8 @@ impl Scene {
                 arrows,
                 cylinders,
                 lines: vec![
-                    self.loop_line(&d.clamp_body, 2.0, color(0.9, 0.2, 0.2, 1.0)),
-                    self.loop_line(&d.plunger, 2.0, color(0.9, 0.5, 0.5, 1.0)),
+                    self.loop_line(&drawing.clamp_body, 2.0, color(0.9, 0.2, 0.2, 1.0)),
+                    self.loop_line(&drawing.plunger, 2.0, color(0.9, 0.5, 0.5, 1.0)),
                 ],
                 ..Shapes::default()
             },
@@ -454,17 +473,17 @@ pub struct PartScene<'a> {
 /// no fixture, or the error. Arcs are drawn as chords within `1e-3` of the
 /// part's size (and 5 degrees of turn); contacts on arcs, as on lines, are
 /// arrows along the reported inward normal.
-pub fn scene_update(p: PartScene) -> SceneUpdate<'static> {
-    let s = Scene::of(p.index, p.units, p.outline);
-    let entities = match p.best {
-        Err(caption) => s.unplaced(p.kit, caption, p.outline, p.holes, p.access),
+pub fn scene_update(part: PartScene) -> SceneUpdate<'static> {
+    let s = Scene::of(part.index, part.units, part.outline);
+    let entities = match part.best {
+        Err(caption) => s.unplaced(part.kit, caption, part.outline, part.holes, part.access),
         Ok(f) => {
-            let d = fixture_drawing(p.kit, p.outline, p.holes, p.access, f);
+            let d = fixture_drawing(part.kit, part.outline, part.holes, part.access, f);
             let extent = d.bounds();
             vec![
-                s.plate(p.kit, extent),
-                s.posed_part(p.id, &d, extent[1], f, p.segment_loops),
-                s.fixture(p.kit, &d),
+                s.plate(part.kit, extent),
+                s.posed_part(part.id, &d, extent[1], f, part.segment_loops),
+                s.fixture(part.kit, &d),
             ]
         }
     };
@@ -498,19 +517,19 @@ struct HoleCache {
 }
 
 impl HoleCache {
-    fn new(s: &Scene, kit: &Kit) -> serde_json::Result<HoleCache> {
+    fn new(scene: &Scene, kit: &Kit) -> serde_json::Result<HoleCache> {
         let holes = plate_holes(kit)
-            .map(|h| Ok((h.at, serde_json::to_vec(&s.hole_disk(kit, &h))?)))
+            .map(|h| Ok((h.at, serde_json::to_vec(&scene.hole_disk(kit, &h))?)))
             .collect::<serde_json::Result<_>>()?;
         Ok(HoleCache {
             kit: kit.clone(),
-            m: s.m,
+            m: scene.m,
             holes,
         })
     }
 
-    fn serves(&self, s: &Scene, kit: &Kit) -> bool {
-        self.m.to_bits() == s.m.to_bits() && self.kit == *kit
+    fn serves(&self, scene: &Scene, kit: &Kit) -> bool {
+        self.m.to_bits() == scene.m.to_bits() && self.kit == *kit
     }
 }
 
@@ -526,20 +545,20 @@ const BEFORE_HOLES: &[u8] = br#"{"deletions":[],"entities":[{"arrows":[],"cubes"
 /// the scene is serialised with no plate hole, and the holes near the
 /// fixture are copied in from this thread's `HoleCache` where serde_json
 /// would have written them.
-pub fn scene_json(p: PartScene) -> serde_json::Result<Vec<u8>> {
-    let whole = || serde_json::to_vec(&scene_update(p));
-    let Ok(f) = p.best else {
+pub fn scene_json(part: PartScene) -> serde_json::Result<Vec<u8>> {
+    let whole = || serde_json::to_vec(&scene_update(part));
+    let Ok(f) = part.best else {
         return whole();
     };
-    let (id, kit) = (p.id, p.kit);
-    let s = Scene::of(p.index, p.units, p.outline);
-    let d = fixture_drawing(kit, p.outline, p.holes, p.access, f);
+    let (id, kit) = (part.id, part.kit);
+    let s = Scene::of(part.index, part.units, part.outline);
+    let d = fixture_drawing(kit, part.outline, part.holes, part.access, f);
     let extent = d.bounds();
     let holeless = serde_json::to_vec(&SceneUpdate {
         deletions: [],
         entities: vec![
             s.plate_with(kit, Vec::new()),
-            s.posed_part(id, &d, extent[1], f, p.segment_loops),
+            s.posed_part(id, &d, extent[1], f, part.segment_loops),
             s.fixture(kit, &d),
         ],
     })?;

@@ -175,11 +175,14 @@ pub(crate) mod tests {
 
     /// What a viewer's schema parser needs of a generated schema: its
     /// title, draft 2020-12, nothing it refuses, no `$ref`, no `null`.
-    pub(crate) fn assert_viewer_ready(title: &str, v: &serde_json::Value) {
-        assert_eq!(v["title"], title);
-        assert_eq!(v["$schema"], "https://json-schema.org/draft/2020-12/schema");
-        assert_eq!(viewer_refusals(v), Vec::<String>::new(), "{title}");
-        let text = v.to_string();
+    pub(crate) fn assert_viewer_ready(title: &str, value: &serde_json::Value) {
+        assert_eq!(value["title"], title);
+        assert_eq!(
+            value["$schema"],
+            "https://json-schema.org/draft/2020-12/schema"
+        );
+        assert_eq!(viewer_refusals(value), Vec::<String>::new(), "{title}");
+        let text = value.to_string();
         assert!(!text.contains("\"$ref\""), "{title} has a $ref");
         assert!(!text.contains("\"null\""), "{title} has a nullable field");
     }

@@ -169,15 +169,15 @@ impl ResultsWriter {
 
     /// Writes one part's messages (compressing them here: resumed and
     /// merged files; a run writes finished chunks, [`Self::write_chunk`]).
-    pub fn write_part(&mut self, m: &PartMessages) -> Result<(), OutError> {
-        self.write_chunk(&m.chunk()?)
+    pub fn write_part(&mut self, messages: &PartMessages) -> Result<(), OutError> {
+        self.write_chunk(&messages.chunk()?)
     }
 
     /// Writes one part's chunk, and flushes the file every few parts.
-    pub fn write_chunk(&mut self, c: &PartChunk) -> Result<(), OutError> {
-        self.w.chunk(c)?;
+    pub fn write_chunk(&mut self, chunk: &PartChunk) -> Result<(), OutError> {
+        self.w.chunk(chunk)?;
         let (parts, bytes) = self.unflushed;
-        self.unflushed = (parts + 1, bytes + c.compressed.len());
+        self.unflushed = (parts + 1, bytes + chunk.compressed.len());
         if self.unflushed.0 >= FLUSH_PARTS || self.unflushed.1 >= FLUSH_BYTES {
             self.w.flush()?;
             self.unflushed = (0, 0);

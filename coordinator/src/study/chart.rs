@@ -63,13 +63,13 @@ impl Layout {
         }
     }
 
-    /// The x of score `v`.
-    fn sx(&self, v: f64) -> f64 {
-        self.sc_x + self.sc_w * (v / self.smax)
+    /// The x of score `value`.
+    fn sx(&self, value: f64) -> f64 {
+        self.sc_x + self.sc_w * (value / self.smax)
     }
 
     /// The `<svg>` element, background, title and both legends.
-    fn head(&self, rep: &StudyReport, s: &mut String) {
+    fn head(&self, rep: &StudyReport, out: &mut String) {
         let Layout {
             width,
             height,
@@ -77,36 +77,36 @@ impl Layout {
             sc_x,
             ..
         } = *self;
-        s.push_str(&format!(
+        out.push_str(&format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{height:.0}\" viewBox=\"0 0 {width:.0} {height:.0}\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n"
         ));
-        s.push_str(&format!(
+        out.push_str(&format!(
             "<rect width=\"{width:.0}\" height=\"{height:.0}\" fill=\"white\"/>\n"
         ));
-        s.push_str(&format!(
+        out.push_str(&format!(
             "<text x=\"20\" y=\"26\" font-size=\"16\" font-weight=\"bold\">fixplan study: {} ({} parts), {} kits</text>\n",
             escape(&rep.summary.catalog.name),
             rep.summary.catalog.parts,
             rep.kits.len()
         ));
-        s.push_str(&format!(
+        out.push_str(&format!(
             "<text x=\"{cov_x:.0}\" y=\"56\" font-weight=\"bold\">parts held (%)</text>\n\
              <rect x=\"{:.0}\" y=\"47\" width=\"12\" height=\"8\" fill=\"#2b6cb0\"/><text x=\"{:.0}\" y=\"55\" font-size=\"11\">by count</text>\n\
              <rect x=\"{:.0}\" y=\"47\" width=\"12\" height=\"8\" fill=\"#90cdf4\"/><text x=\"{:.0}\" y=\"55\" font-size=\"11\">by quantity</text>\n",
             cov_x + 110.0, cov_x + 126.0, cov_x + 190.0, cov_x + 206.0
         ));
-        s.push_str(&format!(
+        out.push_str(&format!(
             "<text x=\"{sc_x:.0}\" y=\"56\" font-weight=\"bold\">best score of the parts held (lower is better)</text>\n\
              <text x=\"{sc_x:.0}\" y=\"72\" font-size=\"11\" fill=\"#444\">dot: median, bar: to the 90th percentile</text>\n"
         ));
     }
 
     /// Grid lines and tick labels of both axes.
-    fn axes(&self, s: &mut String) {
+    fn axes(&self, svg: &mut String) {
         let Layout { top, bottom, .. } = *self;
         for i in 0..=4 {
             let x = self.cov_x + self.cov_w * i as f64 / 4.0;
-            s.push_str(&format!(
+            svg.push_str(&format!(
                 "<line x1=\"{x:.1}\" y1=\"{top:.0}\" x2=\"{x:.1}\" y2=\"{bottom:.0}\" stroke=\"#ddd\"/>\n<text x=\"{x:.1}\" y=\"{:.0}\" text-anchor=\"middle\" font-size=\"11\">{}</text>\n",
                 bottom + 16.0,
                 i * 25
@@ -116,37 +116,37 @@ impl Layout {
         for i in 0..=ticks {
             let v = self.smax * i as f64 / ticks as f64;
             let x = self.sx(v);
-            s.push_str(&format!(
+            svg.push_str(&format!(
                 "<line x1=\"{x:.1}\" y1=\"{top:.0}\" x2=\"{x:.1}\" y2=\"{bottom:.0}\" stroke=\"#ddd\"/>\n<text x=\"{x:.1}\" y=\"{:.0}\" text-anchor=\"middle\" font-size=\"11\">{v:.2}</text>\n",
                 bottom + 16.0
             ));
         }
     }
 
-    /// Row `n`: stripe, name, coverage bars and the score dot and whisker.
-    fn kit_row(&self, n: usize, k: &StudyKitMsg, s: &mut String) {
+    /// Row `row`: stripe, name, coverage bars and the score dot and whisker.
+    fn kit_row(&self, row: usize, kit: &StudyKitMsg, svg: &mut String) {
         let Layout {
             cov_x,
             cov_w,
             row_h,
             ..
         } = *self;
-        let y = self.top + row_h * n as f64;
-        if n % 2 == 1 {
-            s.push_str(&format!(
+        let y = self.top + row_h * row as f64;
+        if row % 2 == 1 {
+            svg.push_str(&format!(
                 "<rect x=\"10\" y=\"{y:.0}\" width=\"{:.0}\" height=\"{row_h:.0}\" fill=\"#f5f7fa\"/>\n",
                 self.width - 20.0
             ));
         }
-        s.push_str(&format!(
+        svg.push_str(&format!(
             "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"end\">{}</text>\n",
             cov_x - 10.0,
             y + 19.0,
-            escape(&k.name)
+            escape(&kit.name)
         ));
-        let wc = cov_w * k.held_pct / 100.0;
-        let wq = cov_w * k.held_quantity_pct / 100.0;
-        s.push_str(&format!(
+        let wc = cov_w * kit.held_pct / 100.0;
+        let wq = cov_w * kit.held_quantity_pct / 100.0;
+        svg.push_str(&format!(
             "<rect x=\"{cov_x:.0}\" y=\"{:.1}\" width=\"{wc:.1}\" height=\"10\" fill=\"#2b6cb0\"/>\n\
              <rect x=\"{cov_x:.0}\" y=\"{:.1}\" width=\"{wq:.1}\" height=\"8\" fill=\"#90cdf4\"/>\n\
              <text x=\"{:.1}\" y=\"{:.1}\" font-size=\"10\">{}/{}</text>\n",
@@ -154,36 +154,36 @@ impl Layout {
             y + 16.0,
             cov_x + wc.max(wq) + 4.0,
             y + 18.0,
-            k.held,
-            k.parts
+            kit.held,
+            kit.parts
         ));
-        if let Some(m) = k.median_score {
+        if let Some(m) = kit.median_score {
             let cy = y + row_h / 2.0;
-            if let Some(p) = k.p90_score {
-                s.push_str(&format!(
+            if let Some(p) = kit.p90_score {
+                svg.push_str(&format!(
                     "<line x1=\"{:.1}\" y1=\"{cy:.1}\" x2=\"{:.1}\" y2=\"{cy:.1}\" stroke=\"#c05621\" stroke-width=\"3\"/>\n",
                     self.sx(m),
                     self.sx(p)
                 ));
             }
-            s.push_str(&format!(
+            svg.push_str(&format!(
                 "<circle cx=\"{:.1}\" cy=\"{cy:.1}\" r=\"5\" fill=\"#dd6b20\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"10\">{m:.3}</text>\n",
                 self.sx(m),
-                self.sx(k.p90_score.unwrap_or(m)) + 8.0,
+                self.sx(kit.p90_score.unwrap_or(m)) + 8.0,
                 cy + 4.0
             ));
         }
     }
 
     /// The parts no kit holds, and the end of the `<svg>`.
-    fn foot(&self, rep: &StudyReport, s: &mut String) {
+    fn foot(&self, rep: &StudyReport, out: &mut String) {
         let sm = &rep.summary;
         let foot = if sm.unheld.is_empty() {
             "every part is held by at least one kit".to_string()
         } else {
             format!("parts no kit holds: {}", sm.unheld.join(", "))
         };
-        s.push_str(&format!(
+        out.push_str(&format!(
             "<text x=\"20\" y=\"{:.0}\" font-size=\"11\" fill=\"#444\">{}</text>\n</svg>\n",
             self.bottom + 42.0,
             escape(&foot)

@@ -49,14 +49,14 @@ pub struct StudyPartRow {
 
 impl StudyPartRow {
     /// The row of a part solved in `ms` milliseconds.
-    pub fn solved(id: &str, quantity: f64, r: &SolveResult, ms: f64) -> StudyPartRow {
+    pub fn solved(id: &str, quantity: f64, result: &SolveResult, ms: f64) -> StudyPartRow {
         StudyPartRow {
             id: id.to_string(),
-            status: r.status.into(),
-            error: r.error.clone(),
+            status: result.status.into(),
+            error: result.error.clone(),
             quantity,
-            counts: r.counts.as_ref().map(CountsField::from),
-            best_score: r.fixtures.first().map(|f| f.score),
+            counts: result.counts.as_ref().map(CountsField::from),
+            best_score: result.fixtures.first().map(|f| f.score),
             ms,
             shared: None,
         }

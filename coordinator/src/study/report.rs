@@ -3,8 +3,8 @@
 
 use super::messages::StudyReport;
 
-fn opt(x: Option<f64>, prec: usize) -> String {
-    x.map_or("-".into(), |v| format!("{v:.prec$}"))
+fn opt(value: Option<f64>, prec: usize) -> String {
+    value.map_or("-".into(), |v| format!("{v:.prec$}"))
 }
 
 /// The terminal table: a row per kit, then the parts no kit holds and the
@@ -58,11 +58,11 @@ pub fn table(rep: &StudyReport) -> String {
     s
 }
 
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
     } else {
-        s.to_string()
+        text.to_string()
     }
 }
 

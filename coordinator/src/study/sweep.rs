@@ -203,17 +203,17 @@ pub enum SweepValue {
 }
 
 impl fmt::Display for SweepValue {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SweepValue::Num(x) | SweepValue::TravelMax(x) => write!(f, "{}", fmt_num(*x)),
-            SweepValue::Plate(c, r) => write!(f, "{c}x{r}"),
-            SweepValue::TravelPair(a, b) => write!(f, "{}..{}", fmt_num(*a), fmt_num(*b)),
+            SweepValue::Num(x) | SweepValue::TravelMax(x) => write!(formatter, "{}", fmt_num(*x)),
+            SweepValue::Plate(c, r) => write!(formatter, "{c}x{r}"),
+            SweepValue::TravelPair(a, b) => write!(formatter, "{}..{}", fmt_num(*a), fmt_num(*b)),
         }
     }
 }
 
-fn fmt_num(x: f64) -> String {
-    let s = format!("{x:.6}");
+fn fmt_num(value: f64) -> String {
+    let s = format!("{value:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
         "0".into()
@@ -241,9 +241,9 @@ pub struct Sweep {
 /// One point of a sweep: a value per clause.
 pub type SweepPoint = Vec<(SweepKey, SweepValue)>;
 
-fn round(x: f64) -> f64 {
+fn round(value: f64) -> f64 {
     // Ranges accumulate rounding (0.1 + 0.2): keep 9 decimals.
-    let r = (x * 1e9).round() / 1e9;
+    let r = (value * 1e9).round() / 1e9;
     if r == 0.0 {
         0.0
     } else {
@@ -251,16 +251,16 @@ fn round(x: f64) -> f64 {
     }
 }
 
-fn parse_num(s: &str) -> Result<f64, ClauseError> {
-    let t = s.trim();
+fn parse_num(text: &str) -> Result<f64, ClauseError> {
+    let t = text.trim();
     match t.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         _ => Err(ClauseError::NotANumber(t.to_string())),
     }
 }
 
-fn parse_int(s: &str, what: &'static str) -> Result<u32, ClauseError> {
-    let t = s.trim();
+fn parse_int(input: &str, what: &'static str) -> Result<u32, ClauseError> {
+    let t = input.trim();
     match t.parse::<u32>() {
         Ok(n) if n >= 1 => Ok(n),
         _ => Err(ClauseError::NotAWholeNumber {
@@ -494,8 +494,9 @@ impl Sweep {
 }
 
 /// `key=value, key=value` of a point (lengths in the catalogue's unit).
-pub fn point_label(p: &[(SweepKey, SweepValue)]) -> String {
-    p.iter()
+pub fn point_label(point: &[(SweepKey, SweepValue)]) -> String {
+    point
+        .iter()
         .map(|(k, v)| format!("{}={v}", k.name()))
         .collect::<Vec<_>>()
         .join(", ")
@@ -503,10 +504,10 @@ pub fn point_label(p: &[(SweepKey, SweepValue)]) -> String {
 
 /// The base kit with a point applied, checked (SPEC section 1). Its name is
 /// `BASE{key=value, ...}`.
-pub fn apply(base: &KitSpec, p: &[(SweepKey, SweepValue)]) -> Result<KitSpec, SweepError> {
+pub fn apply(base: &KitSpec, point: &[(SweepKey, SweepValue)]) -> Result<KitSpec, SweepError> {
     let mut k = base.clone();
-    k.name = format!("{}{{{}}}", base.name, point_label(p));
-    for &(key, v) in p {
+    k.name = format!("{}{{{}}}", base.name, point_label(point));
+    for &(key, v) in point {
         match (key, v) {
             (SweepKey::LocatorRadius, SweepValue::Num(x)) => k.kit.locator_radius = x,
             (SweepKey::Spacing, SweepValue::Num(x)) => k.kit.spacing = x,
@@ -542,8 +543,8 @@ pub fn apply(base: &KitSpec, p: &[(SweepKey, SweepValue)]) -> Result<KitSpec, Sw
 mod tests {
     use super::*;
 
-    fn nums(s: &Sweep, i: usize) -> Vec<f64> {
-        s.clauses[i]
+    fn nums(sweep: &Sweep, index: usize) -> Vec<f64> {
+        sweep.clauses[index]
             .values
             .iter()
             .map(|v| match v {

@@ -30,14 +30,17 @@ struct View {
 }
 
 impl View {
-    fn new(b: [Point; 2]) -> View {
-        let (dx, dy) = ((b[1][0] - b[0][0]).max(1e-9), (b[1][1] - b[0][1]).max(1e-9));
+    fn new(bounds: [Point; 2]) -> View {
+        let (dx, dy) = (
+            (bounds[1][0] - bounds[0][0]).max(1e-9),
+            (bounds[1][1] - bounds[0][1]).max(1e-9),
+        );
         let k = (WIDTH - 2.0 * PAD) / dx.max(dy * 1.0);
         let w = dx * k + 2.0 * PAD;
         let h = dy * k + 2.0 * PAD;
         View {
-            x0: b[0][0],
-            y1: b[1][1],
+            x0: bounds[0][0],
+            y1: bounds[1][1],
             k,
             w: w.max(WIDTH),
             h,
@@ -122,18 +125,18 @@ impl View {
         d
     }
 
-    fn circle(&self, out: &mut String, c: Point, r: f64, style: &str) {
-        let (x, y) = self.p(c);
+    fn circle(&self, out: &mut String, centre: Point, radius: f64, style: &str) {
+        let (x, y) = self.p(centre);
         let _ = writeln!(
             out,
             r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" {style}/>"#,
-            r * self.k
+            radius * self.k
         );
     }
 }
 
-fn header(v: &View) -> String {
-    let h = v.h + CAPTION;
+fn header(view: &View) -> String {
+    let h = view.h + CAPTION;
     format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.0} {h:.0}\" \
          font-family=\"sans-serif\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
@@ -142,16 +145,16 @@ fn header(v: &View) -> String {
          patternTransform=\"rotate(45)\"><rect width=\"8\" height=\"8\" fill=\"#ffb347\" fill-opacity=\"0.35\"/>\
          <line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"#e07b00\" stroke-width=\"2\"/></pattern></defs>\n\
          <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
-        w = v.w
+        w = view.w
     )
 }
 
-fn caption(out: &mut String, v: &View, lines: &[String]) {
+fn caption(out: &mut String, view: &View, lines: &[String]) {
     for (i, l) in lines.iter().enumerate() {
         let _ = writeln!(
             out,
             r##"<text x="{PAD}" y="{:.1}" font-size="{}" fill="#222">{}</text>"##,
-            v.h + 18.0 + 20.0 * i as f64,
+            view.h + 18.0 + 20.0 * i as f64,
             if i == 0 { 15 } else { 12 },
             escape(l)
         );
@@ -161,10 +164,10 @@ fn caption(out: &mut String, v: &View, lines: &[String]) {
 /// The SVG of one fixture of a part: the plate around it, the part in its
 /// pose, clamp, locators and contact normals, and a caption with the
 /// numbers a machinist sets the fixture up by.
-pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String {
+pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, fixture: &FixtureReport) -> String {
     let kit = &run.kit();
     let (outline, holes, access) = (rec.part.outline(), rec.part.holes(), rec.part.access());
-    let d: FixtureDrawing = fixture_drawing(kit, &outline, &holes, &access, f);
+    let d: FixtureDrawing = fixture_drawing(kit, &outline, &holes, &access, fixture);
     let l = kit.spacing;
     let [lo, hi] = d.bounds();
     let b = [
@@ -179,20 +182,24 @@ pub fn fixture_svg(run: &RunMsg, rec: &PartRecord, f: &FixtureReport) -> String 
     draw_clamp(&mut s, &v, &d, hole_r);
     draw_locators(&mut s, &v, &d);
     draw_contacts(&mut s, &v, &d, l);
-    caption(&mut s, &v, &fixture_caption(rec, f));
+    caption(&mut s, &v, &fixture_caption(rec, fixture));
     s.push_str("</svg>\n");
     s
 }
 
 /// Plate: edge and the holes within `b` (dowel filled, tapped as rings).
-fn draw_plate(s: &mut String, v: &View, kit: &Kit, b: [Point; 2], hole_r: f64) {
-    v.polygon(
-        s,
+fn draw_plate(svg: &mut String, view: &View, kit: &Kit, bounds: [Point; 2], hole_r: f64) {
+    view.polygon(
+        svg,
         &plate_outline(kit),
         r##"fill="#eef0f3" stroke="#9aa3ad" stroke-width="1.5""##,
     );
     for h in plate_holes(kit) {
-        if h.at[0] < b[0][0] || h.at[0] > b[1][0] || h.at[1] < b[0][1] || h.at[1] > b[1][1] {
+        if h.at[0] < bounds[0][0]
+            || h.at[0] > bounds[1][0]
+            || h.at[1] < bounds[0][1]
+            || h.at[1] > bounds[1][1]
+        {
             continue;
         }
         let style = if h.dowel {
@@ -200,21 +207,21 @@ fn draw_plate(s: &mut String, v: &View, kit: &Kit, b: [Point; 2], hole_r: f64) {
         } else {
             r##"fill="none" stroke="#7d8893" stroke-width="1.2" stroke-dasharray="2,2""##
         };
-        v.circle(s, h.at, hole_r, style);
+        view.circle(svg, h.at, hole_r, style);
     }
 }
 
 /// Part in its pose (with its holes) and its access regions, hatched.
-fn draw_part(s: &mut String, v: &View, d: &FixtureDrawing) {
-    v.region(
-        s,
-        &d.part,
-        &d.holes,
+fn draw_part(svg: &mut String, view: &View, drawing: &FixtureDrawing) {
+    view.region(
+        svg,
+        &drawing.part,
+        &drawing.holes,
         r##"fill="#cfe3f7" fill-opacity="0.9" stroke="#1f5fa8" stroke-width="2""##,
     );
-    for a in &d.access {
-        v.polygon(
-            s,
+    for a in &drawing.access {
+        view.polygon(
+            svg,
             a,
             r##"fill="url(#hatch)" stroke="#e07b00" stroke-width="1.5""##,
         );
@@ -222,40 +229,40 @@ fn draw_part(s: &mut String, v: &View, d: &FixtureDrawing) {
 }
 
 /// Clamp: body, plunger at its extension, tip; mount holes marked.
-fn draw_clamp(s: &mut String, v: &View, d: &FixtureDrawing, hole_r: f64) {
-    v.polygon(
-        s,
-        &d.clamp_body,
+fn draw_clamp(svg: &mut String, view: &View, drawing: &FixtureDrawing, hole_r: f64) {
+    view.polygon(
+        svg,
+        &drawing.clamp_body,
         r##"fill="#d9443a" fill-opacity="0.22" stroke="#b0271f" stroke-width="1.5""##,
     );
-    v.polygon(
-        s,
-        &d.plunger,
+    view.polygon(
+        svg,
+        &drawing.plunger,
         r##"fill="#d9443a" fill-opacity="0.55" stroke="#b0271f" stroke-width="1.2""##,
     );
-    v.circle(
-        s,
-        d.tip.centre,
-        d.tip.radius,
+    view.circle(
+        svg,
+        drawing.tip.centre,
+        drawing.tip.radius,
         r##"fill="#e8776f" stroke="#b0271f" stroke-width="1.5""##,
     );
-    for h in &d.clamp_holes {
-        v.circle(s, *h, hole_r * 0.6, r##"fill="#b0271f""##);
+    for h in &drawing.clamp_holes {
+        view.circle(svg, *h, hole_r * 0.6, r##"fill="#b0271f""##);
     }
 }
 
 /// Locators with labels L1 to L3 (the caption's order).
-fn draw_locators(s: &mut String, v: &View, d: &FixtureDrawing) {
-    for (i, c) in d.locators.iter().enumerate() {
-        v.circle(
-            s,
+fn draw_locators(svg: &mut String, view: &View, drawing: &FixtureDrawing) {
+    for (i, c) in drawing.locators.iter().enumerate() {
+        view.circle(
+            svg,
             c.centre,
             c.radius,
             r##"fill="#4a4f57" stroke="#1d2025" stroke-width="1.5""##,
         );
-        let (x, y) = v.p(c.centre);
+        let (x, y) = view.p(c.centre);
         let _ = writeln!(
-            s,
+            svg,
             r#"<text x="{x:.1}" y="{:.1}" font-size="12" fill="white" text-anchor="middle">L{}</text>"#,
             y + 4.0,
             i + 1
@@ -264,20 +271,20 @@ fn draw_locators(s: &mut String, v: &View, d: &FixtureDrawing) {
 }
 
 /// Contacts: points and inward normals, `0.6 l` long.
-fn draw_contacts(s: &mut String, v: &View, d: &FixtureDrawing, l: f64) {
-    for c in &d.contacts {
-        let (x, y) = v.p(c.at);
+fn draw_contacts(svg: &mut String, view: &View, drawing: &FixtureDrawing, l: f64) {
+    for c in &drawing.contacts {
+        let (x, y) = view.p(c.at);
         let e = [
             c.at[0] + 0.6 * l * c.normal[0],
             c.at[1] + 0.6 * l * c.normal[1],
         ];
-        let (ex, ey) = v.p(e);
+        let (ex, ey) = view.p(e);
         let _ = writeln!(
-            s,
+            svg,
             r##"<line x1="{x:.2}" y1="{y:.2}" x2="{ex:.2}" y2="{ey:.2}" stroke="#138a36" stroke-width="2" marker-end="url(#arrow)"/>"##
         );
         let _ = writeln!(
-            s,
+            svg,
             r##"<circle cx="{x:.2}" cy="{y:.2}" r="3.5" fill="#138a36"/>"##
         );
     }
@@ -285,7 +292,7 @@ fn draw_contacts(s: &mut String, v: &View, d: &FixtureDrawing, l: f64) {
 
 /// Rank and score (and the contacts in holes); pose and clamp setting;
 /// the plate holes used.
-fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
+fn fixture_caption(rec: &PartRecord, fixture: &FixtureReport) -> [String; 3] {
     let u = rec.part.units.text();
     let holes = |h: &[[i64; 2]]| {
         h.iter()
@@ -298,25 +305,33 @@ fn fixture_caption(rec: &PartRecord, f: &FixtureReport) -> [String; 3] {
         .map_or(Some(0), |c| Counts::from(c).admissible())
         .map_or(String::new(), |a| format!(" of {a}"));
     // Contacts on a hole's wall (SPEC 9), e.g. "L2 in hole 3".
-    let in_holes = hole_contact_label(&rec.fixtures.segment_loops, f)
+    let in_holes = hole_contact_label(&rec.fixtures.segment_loops, fixture)
         .map_or(String::new(), |l| format!(" — {l}"));
     [
         format!(
             "{} — rank {}{of} — score {:.4}{}{in_holes}",
             rec.part.id,
-            f.rank,
-            f.score,
-            if f.borderline { " (borderline)" } else { "" }
+            fixture.rank,
+            fixture.score,
+            if fixture.borderline {
+                " (borderline)"
+            } else {
+                ""
+            }
         ),
         format!(
             "pose x {:.2} {u}, y {:.2} {u}, theta {:.2}°; clamp rotation {}°, extension {:.2} {u}",
-            f.pose.x, f.pose.y, f.pose.theta_deg, f.clamp.rotation_deg, f.clamp.extension,
+            fixture.pose.x,
+            fixture.pose.y,
+            fixture.pose.theta_deg,
+            fixture.clamp.rotation_deg,
+            fixture.clamp.extension,
         ),
         format!(
             "plate holes [col,row]: locators {}, clamp {}{}",
-            holes(&f.placement.locators),
-            holes(&f.placement.clamp_holes),
-            if f.placement.rotation_deg != 0 {
+            holes(&fixture.placement.locators),
+            holes(&fixture.placement.clamp_holes),
+            if fixture.placement.rotation_deg != 0 {
                 " (plate turned 90°)"
             } else {
                 ""

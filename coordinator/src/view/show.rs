@@ -3,8 +3,9 @@
 
 use crate::drawing::hole_contacts::hole_contact_label;
 use crate::output::fields::StatusName;
-use crate::output::messages::{FixturesMsg, Message};
-use crate::output::reader::{for_each_record, PartRecord, ResultsFile};
+use crate::output::messages::FixturesMsg;
+use crate::output::reader::{for_each_decoded, for_each_record, PartRecord};
+use crate::output::writer::PartMessages;
 use anyhow::Result;
 use fixplan_core::parts::edges_of;
 use fixplan_core::{Counts, FixtureReport, SegmentKind, Status, Vertex};
@@ -50,8 +51,9 @@ pub fn show(path: &Path, part: Option<&str>, top: usize, out: &mut dyn Write) ->
 }
 
 /// The admissible count, or what a top-k mode result says instead of it.
-pub(super) fn admissible_word(c: &Counts) -> String {
-    c.admissible()
+pub(super) fn admissible_word(counts: &Counts) -> String {
+    counts
+        .admissible()
         .map_or("not counted (top-k mode)".into(), |a| a.to_string())
 }
 
@@ -214,9 +216,23 @@ impl ArcSegments {
     /// One line per contact on an arc: which locator (or the clamp), the
     /// segment, the centre of the locator or tip and the inward normal
     /// (canonical plate frame, as the results report them).
-    fn print_contacts(&self, f: &FixtureReport, unit: &str, out: &mut dyn Write) -> Result<()> {
-        let on = [f.segments[0], f.segments[1], f.segments[2], f.clamp.segment];
-        for ((name, seg), c) in ["L1", "L2", "L3", "clamp"].iter().zip(on).zip(&f.contacts) {
+    fn print_contacts(
+        &self,
+        fixture: &FixtureReport,
+        unit: &str,
+        out: &mut dyn Write,
+    ) -> Result<()> {
+        let on = [
+            fixture.segments[0],
+            fixture.segments[1],
+            fixture.segments[2],
+            fixture.clamp.segment,
+        ];
+        for ((name, seg), c) in ["L1", "L2", "L3", "clamp"]
+            .iter()
+            .zip(on)
+            .zip(&fixture.contacts)
+        {
             if self.is_arc(seg) {
                 writeln!(
                     out,
@@ -231,42 +247,17 @@ impl ArcSegments {
 
 /// Prints one JSON line per part: `{"part": ID, ...SPEC Appendix A result}`,
 /// converted back from the fixtures message ([`FixturesMsg::export_line`]).
+/// A `part` that names no part prints nothing.
 pub fn export_json(path: &Path, part: Option<&str>, out: &mut dyn Write) -> Result<()> {
-    let file = ResultsFile::open(path)?;
-    let mut err = None;
-    let contents = file.for_each_part(|_, m| {
-        let message = m.get(FixturesMsg::TOPIC).unwrap_or_default();
-        let fixtures = match FixturesMsg::from_json_exact(message) {
-            Ok(f) => f,
-            Err(e) => {
-                err = Some(anyhow::anyhow!(
-                    "{}: part #{}: {e}",
-                    path.display(),
-                    m.index
-                ));
-                return false;
-            }
-        };
+    let contents = for_each_decoded(path, PartMessages::decode::<FixturesMsg>, |_, fixtures| {
         if part.is_some_and(|p| p != fixtures.part) {
-            return true;
+            return Ok(());
         }
-        let line = match fixtures.export_line() {
-            Ok(line) => line,
-            Err(e) => {
-                err = Some(e.into());
-                return false;
-            }
-        };
-        if let Err(e) = out.write_all(&line).and_then(|_| out.write_all(b"\n")) {
-            err = Some(e.into());
-            return false;
-        }
-        true
+        let line = fixtures.export_line()?;
+        out.write_all(&line)?;
+        out.write_all(b"\n")?;
+        Ok(())
     })?;
-    if let Some(e) = err {
-        return Err(e);
-    }
-    contents.sound(&file.path)?;
     warn_incomplete(path, contents.complete, &contents.truncated);
     Ok(())
 }

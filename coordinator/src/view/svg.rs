@@ -2,8 +2,8 @@
 
 /// Text made safe for SVG/HTML content and attribute values: part ids and
 /// error messages come from user files.
-pub fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
+pub fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")

@@ -100,8 +100,8 @@ fn dist(a: Point, b: Point) -> f64 {
 }
 
 /// The numbers after each `cmd` letter of an SVG path's data.
-fn path_numbers(d: &str, cmd: char) -> Vec<Vec<f64>> {
-    d.split(cmd)
+fn path_numbers(data: &str, cmd: char) -> Vec<Vec<f64>> {
+    data.split(cmd)
         .skip(1)
         .map(|rest| {
             let end = rest
@@ -322,13 +322,13 @@ fn show_names_arc_segments_and_their_contacts() {
 /// The midpoint of an SVG arc `A r,r 0 large sweep x2,y2` from `(x1, y1)`,
 /// by the SVG specification's conversion to centre form (implementation
 /// notes, B.2.4), so that the flags are checked against their meaning.
-fn svg_arc_midpoint(start: Point, r: f64, large: bool, sweep: bool, end: Point) -> Point {
+fn svg_arc_midpoint(start: Point, radius: f64, large: bool, sweep: bool, end: Point) -> Point {
     let (hx, hy) = ((start[0] - end[0]) / 2.0, (start[1] - end[1]) / 2.0);
-    let r2 = r * r;
+    let r2 = radius * radius;
     let h2 = hx * hx + hy * hy;
     let sign = if large != sweep { 1.0 } else { -1.0 };
     let coef = sign * ((r2 - h2) / h2).max(0.0).sqrt();
-    let r = r.max(h2.sqrt());
+    let radius = radius.max(h2.sqrt());
     let c = [
         coef * hy + (start[0] + end[0]) / 2.0,
         -coef * hx + (start[1] + end[1]) / 2.0,
@@ -341,7 +341,7 @@ fn svg_arc_midpoint(start: Point, r: f64, large: bool, sweep: bool, end: Point) 
         dt -= tau;
     }
     let t = t1 + dt / 2.0;
-    [c[0] + r * t.cos(), c[1] + r * t.sin()]
+    [c[0] + radius * t.cos(), c[1] + radius * t.sin()]
 }
 
 /// The part-only picture of a plate whose right end has bulge `bulge`:

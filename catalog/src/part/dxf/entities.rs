@@ -38,7 +38,7 @@ pub(super) fn flip_all(pts: &mut [Vertex], flip: bool) {
 }
 
 /// What one entity adds to the drawing.
-pub(super) enum Shape {
+pub(super) enum EntityShape {
     /// A loop on its own (closed polyline, circle, full ellipse).
     Closed(Vec<Vertex>),
     /// A piece to be joined with others (line, arc, open polyline, spline).
@@ -53,7 +53,7 @@ pub(super) enum Shape {
     Nothing,
 }
 
-const NOT_PLANAR: Shape = Shape::Ignored("is not in the XY plane", Vec::new());
+const NOT_PLANAR: EntityShape = EntityShape::Ignored("is not in the XY plane", Vec::new());
 
 /// How curves are read: chords within `tol` (file units) when `flatten`,
 /// else exact arcs (and chords for what is not circular); a spline gets at
@@ -67,9 +67,11 @@ pub(super) struct Curves {
 
 /// The shape of an entity other than an INSERT (which the caller
 /// explodes).
-pub(super) fn entity_shape(entity: &EntityType, curves: Curves) -> Shape {
+pub(super) fn entity_shape(entity: &EntityType, curves: Curves) -> EntityShape {
     match entity {
-        EntityType::Line(l) => Shape::Open(straight(vec![[l.p1.x, l.p1.y], [l.p2.x, l.p2.y]])),
+        EntityType::Line(l) => {
+            EntityShape::Open(straight(vec![[l.p1.x, l.p1.y], [l.p2.x, l.p2.y]]))
+        }
         EntityType::Arc(a) => arc_shape(a, curves),
         EntityType::Circle(c) => circle_shape(c, curves),
         EntityType::Ellipse(el) => ellipse_shape(el, curves),
@@ -85,100 +87,102 @@ pub(super) fn entity_shape(entity: &EntityType, curves: Curves) -> Shape {
         | EntityType::MLine(_)
         | EntityType::ProxyEntity(_)
         | EntityType::Helix(_)
-        | EntityType::Shape(_) => Shape::Ignored(
+        | EntityType::Shape(_) => EntityShape::Ignored(
             "is not supported (explode it into lines, arcs and polylines)",
             Vec::new(),
         ),
         // Text, dimensions, points, construction lines, images and the like
         // are annotations.
-        _ => Shape::Nothing,
+        _ => EntityShape::Nothing,
     }
 }
 
 /// A SPLINE flattened within the chord tolerance; it lies in the XY plane
 /// when its control points all have one z (SPLINE points are world
 /// coordinates, so its normal does not mirror it).
-fn spline_shape(s: &dxf::entities::Spline, curves: Curves) -> Shape {
-    let ends: Vec<P> = [s.control_points.first(), s.control_points.last()]
+fn spline_shape(curve: &dxf::entities::Spline, curves: Curves) -> EntityShape {
+    let ends: Vec<P> = [curve.control_points.first(), curve.control_points.last()]
         .into_iter()
-        .chain([s.fit_points.first(), s.fit_points.last()])
+        .chain([curve.fit_points.first(), curve.fit_points.last()])
         .flatten()
         .map(|p| [p.x, p.y])
         .collect();
-    let z0 = s
+    let z0 = curve
         .control_points
         .first()
-        .or(s.fit_points.first())
+        .or(curve.fit_points.first())
         .map_or(0.0, |p| p.z);
-    let planar = s
+    let planar = curve
         .control_points
         .iter()
-        .chain(&s.fit_points)
+        .chain(&curve.fit_points)
         .all(|p| (p.z - z0).abs() <= 1e-9 * (1.0 + z0.abs()));
     if !planar {
-        return Shape::Ignored("is not in the XY plane", ends);
+        return EntityShape::Ignored("is not in the XY plane", ends);
     }
-    let ctrl: Vec<[f64; 2]> = s.control_points.iter().map(|p| [p.x, p.y]).collect();
+    let ctrl: Vec<[f64; 2]> = curve.control_points.iter().map(|p| [p.x, p.y]).collect();
     match spline::flatten(
-        s.degree_of_curve,
-        &s.knot_values,
-        &s.weight_values,
+        curve.degree_of_curve,
+        &curve.knot_values,
+        &curve.weight_values,
         &ctrl,
         curves.tol,
         curves.spline_pieces,
     ) {
-        Ok(pts) => Shape::Open(straight(pts)),
-        Err(SplineProblem::Unusable(why)) => Shape::Ignored(why, ends),
-        Err(SplineProblem::Limit(l)) => Shape::Limit(l),
+        Ok(pts) => EntityShape::Open(straight(pts)),
+        Err(SplineProblem::Unusable(why)) => EntityShape::Ignored(why, ends),
+        Err(SplineProblem::Limit(l)) => EntityShape::Limit(l),
     }
 }
 
-/// A circular arc from angle `a0` (radians) sweeping `sweep` about `c`:
+/// A circular arc from angle `a0` (radians) sweeping `sweep` about `centre`:
 /// one or two bulge vertices, or chords.
-fn circular(c: P, r: f64, a0: f64, sweep: f64, curves: Curves) -> Vec<Vertex> {
+fn circular(centre: P, radius: f64, a0: f64, sweep: f64, curves: Curves) -> Vec<Vertex> {
     if curves.flatten {
-        let mut pts = vec![[c[0] + r * a0.cos(), c[1] + r * a0.sin()]];
-        pts.extend(arc_points(c, r, a0, sweep, curves.tol, 1));
+        let mut pts = vec![[centre[0] + radius * a0.cos(), centre[1] + radius * a0.sin()]];
+        pts.extend(arc_points(centre, radius, a0, sweep, curves.tol, 1));
         straight(pts)
     } else {
-        exact_arc(c, r, a0, sweep)
+        exact_arc(centre, radius, a0, sweep)
     }
 }
 
-fn arc_shape(a: &dxf::entities::Arc, curves: Curves) -> Shape {
-    let Some(flip) = ocs_flip(a.normal.x, a.normal.y, a.normal.z) else {
+fn arc_shape(arc: &dxf::entities::Arc, curves: Curves) -> EntityShape {
+    let Some(flip) = ocs_flip(arc.normal.x, arc.normal.y, arc.normal.z) else {
         return NOT_PLANAR;
     };
-    let c = [a.center.x, a.center.y];
-    let a0 = a.start_angle.to_radians();
-    let mut sweep = (a.end_angle - a.start_angle).rem_euclid(360.0).to_radians();
+    let c = [arc.center.x, arc.center.y];
+    let a0 = arc.start_angle.to_radians();
+    let mut sweep = (arc.end_angle - arc.start_angle)
+        .rem_euclid(360.0)
+        .to_radians();
     if sweep == 0.0 {
         sweep = std::f64::consts::TAU;
     }
-    let mut pts = circular(c, a.radius, a0, sweep, curves);
+    let mut pts = circular(c, arc.radius, a0, sweep, curves);
     flip_all(&mut pts, flip);
-    Shape::Open(pts)
+    EntityShape::Open(pts)
 }
 
 /// A circle as a closed loop: two half arcs, or chords.
-fn circle_loop_of(c: P, r: f64, curves: Curves) -> Vec<Vertex> {
+fn circle_loop_of(centre: P, radius: f64, curves: Curves) -> Vec<Vertex> {
     if curves.flatten {
-        straight(circle_loop(c, r, curves.tol))
+        straight(circle_loop(centre, radius, curves.tol))
     } else {
-        exact_circle(c, r)
+        exact_circle(centre, radius)
     }
 }
 
-fn circle_shape(c: &dxf::entities::Circle, curves: Curves) -> Shape {
-    let Some(flip) = ocs_flip(c.normal.x, c.normal.y, c.normal.z) else {
+fn circle_shape(circle: &dxf::entities::Circle, curves: Curves) -> EntityShape {
+    let Some(flip) = ocs_flip(circle.normal.x, circle.normal.y, circle.normal.z) else {
         return NOT_PLANAR;
     };
-    let mut pts = circle_loop_of([c.center.x, c.center.y], c.radius, curves);
+    let mut pts = circle_loop_of([circle.center.x, circle.center.y], circle.radius, curves);
     flip_all(&mut pts, flip);
-    Shape::Closed(pts)
+    EntityShape::Closed(pts)
 }
 
-fn ellipse_shape(el: &dxf::entities::Ellipse, curves: Curves) -> Shape {
+fn ellipse_shape(el: &dxf::entities::Ellipse, curves: Curves) -> EntityShape {
     let Some(flip) = ocs_flip(el.normal.x, el.normal.y, el.normal.z) else {
         return NOT_PLANAR;
     };
@@ -206,9 +210,9 @@ fn ellipse_shape(el: &dxf::entities::Ellipse, curves: Curves) -> Shape {
         }
         flip_all(&mut pts, flip);
         return if full {
-            Shape::Closed(pts)
+            EntityShape::Closed(pts)
         } else {
-            Shape::Open(pts)
+            EntityShape::Open(pts)
         };
     }
     let tol = curves.tol;
@@ -226,15 +230,15 @@ fn ellipse_shape(el: &dxf::entities::Ellipse, curves: Curves) -> Shape {
     flip_all(&mut pts, flip);
     if full {
         pts.pop();
-        Shape::Closed(pts)
+        EntityShape::Closed(pts)
     } else {
-        Shape::Open(pts)
+        EntityShape::Open(pts)
     }
 }
 
 /// A polyline's vertices as a closed loop or an open piece, by its flag:
 /// the bulges kept (an open polyline's last one is no edge), or flattened.
-fn polyline_points(verts: &[(P, f64)], closed: bool, flip: bool, curves: Curves) -> Shape {
+fn polyline_points(verts: &[(P, f64)], closed: bool, flip: bool, curves: Curves) -> EntityShape {
     let mut exact: Vec<Vertex> = verts
         .iter()
         .map(|&(p, b)| Vertex::new(p[0], p[1], b))
@@ -258,13 +262,13 @@ fn polyline_points(verts: &[(P, f64)], closed: bool, flip: bool, curves: Curves)
     };
     flip_all(&mut pts, flip);
     if closed {
-        Shape::Closed(pts)
+        EntityShape::Closed(pts)
     } else {
-        Shape::Open(pts)
+        EntityShape::Open(pts)
     }
 }
 
-fn lwpolyline_shape(pl: &dxf::entities::LwPolyline, curves: Curves) -> Shape {
+fn lwpolyline_shape(pl: &dxf::entities::LwPolyline, curves: Curves) -> EntityShape {
     let d = &pl.extrusion_direction;
     let Some(flip) = ocs_flip(d.x, d.y, d.z) else {
         return NOT_PLANAR;
@@ -273,14 +277,14 @@ fn lwpolyline_shape(pl: &dxf::entities::LwPolyline, curves: Curves) -> Shape {
     polyline_points(&verts, pl.flags & 1 == 1, flip, curves)
 }
 
-fn polyline_shape(pl: &dxf::entities::Polyline, curves: Curves) -> Shape {
+fn polyline_shape(pl: &dxf::entities::Polyline, curves: Curves) -> EntityShape {
     // 8: 3D polyline, 16: 3D mesh, 64: polyface mesh.
     if pl.flags & (8 | 16 | 64) != 0 {
         let pts = pl
             .vertices()
             .map(|v| [v.location.x, v.location.y])
             .collect();
-        return Shape::Ignored("is a 3D polyline or mesh", pts);
+        return EntityShape::Ignored("is a 3D polyline or mesh", pts);
     }
     let Some(flip) = ocs_flip(pl.normal.x, pl.normal.y, pl.normal.z) else {
         return NOT_PLANAR;
@@ -296,8 +300,8 @@ fn polyline_shape(pl: &dxf::entities::Polyline, curves: Curves) -> Shape {
 }
 
 /// The DXF type name of an entity, for messages.
-pub(super) fn entity_name(e: &EntityType) -> &'static str {
-    match e {
+pub(super) fn entity_name(kind: &EntityType) -> &'static str {
+    match kind {
         EntityType::Line(_) => "LINE",
         EntityType::Arc(_) => "ARC",
         EntityType::Circle(_) => "CIRCLE",

@@ -40,12 +40,12 @@ use crate::units::LengthUnit;
 use dxf::enums::Units as DxfUnits;
 use dxf::Drawing;
 use fixplan_core::{Units, Vertex};
-use walk::{Found, Layer, Walk};
+use walk::{DxfFindings, DxfWalk, Layer};
 
 /// `$INSUNITS` as a length unit; `None` when the drawing says "unitless"
 /// (then the catalogue's fallback applies).
-fn drawing_units(u: DxfUnits) -> Result<Option<LengthUnit>, DxfError> {
-    Ok(Some(match u {
+fn drawing_units(units: DxfUnits) -> Result<Option<LengthUnit>, DxfError> {
+    Ok(Some(match units {
         DxfUnits::Unitless => return Ok(None),
         DxfUnits::Millimeters => LengthUnit::Mm,
         DxfUnits::Centimeters => LengthUnit::Cm,
@@ -185,9 +185,9 @@ fn read_loops(bytes: &[u8], opts: &ReadOptions) -> Result<Loops, DxfError> {
     // file units here.
     let tol = opts.chord_tolerance / scale.factor;
     let join_tol = opts.join_tolerance / scale.factor;
-    let mut walk = Walk::new(&drawing, opts, tol, join_tol);
+    let mut walk = DxfWalk::new(&drawing, opts, tol, join_tol);
     walk.run(&drawing)?;
-    let Found {
+    let DxfFindings {
         part,
         access,
         warnings,

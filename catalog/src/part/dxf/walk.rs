@@ -6,7 +6,7 @@
 
 use super::super::outline::{dist, reversed, Affine, Piece, P};
 use super::super::raw::{LayerFilter, LimitExceeded, Limits, ReadOptions};
-use super::entities::{entity_name, entity_shape, ocs_flip, Curves, Shape};
+use super::entities::{entity_name, entity_shape, ocs_flip, Curves, EntityShape};
 use super::error::DxfError;
 use super::transform;
 use dxf::entities::{Entity, EntityType, Insert};
@@ -31,7 +31,7 @@ pub(super) struct Layer {
 
 /// Everything the entities of a drawing gave, still in file units.
 #[derive(Default)]
-pub(super) struct Found {
+pub(super) struct DxfFindings {
     pub part: Layer,
     pub access: Layer,
     pub warnings: Vec<String>,
@@ -49,7 +49,7 @@ struct Place {
 }
 
 /// The state of one pass over a drawing.
-pub(super) struct Walk<'a> {
+pub(super) struct DxfWalk<'a> {
     blocks: HashMap<String, &'a Block>,
     opts: &'a ReadOptions,
     limits: Limits,
@@ -65,7 +65,7 @@ pub(super) struct Walk<'a> {
     /// Each loop and piece read so far by its rounded vertices, with its
     /// label, to drop repeats.
     seen: HashMap<Vec<(i64, i64, i64)>, String>,
-    pub found: Found,
+    pub found: DxfFindings,
 }
 
 fn limit(what: String, limit: usize, key: &'static str) -> DxfError {
@@ -76,7 +76,7 @@ fn limit(what: String, limit: usize, key: &'static str) -> DxfError {
     })
 }
 
-impl<'a> Walk<'a> {
+impl<'a> DxfWalk<'a> {
     pub fn new(drawing: &'a Drawing, opts: &'a ReadOptions, tol: f64, join_tol: f64) -> Self {
         let mut blocks = HashMap::new();
         for b in drawing.blocks() {
@@ -84,7 +84,7 @@ impl<'a> Walk<'a> {
             // definition stands.
             blocks.entry(b.name.to_ascii_lowercase()).or_insert(b);
         }
-        Walk {
+        DxfWalk {
             blocks,
             opts,
             limits: opts.limits,
@@ -95,7 +95,7 @@ impl<'a> Walk<'a> {
             skipped: 0,
             layers_seen: HashSet::new(),
             seen: HashMap::new(),
-            found: Found::default(),
+            found: DxfFindings::default(),
         }
     }
 
@@ -194,9 +194,9 @@ impl<'a> Walk<'a> {
             &mut self.found.part
         };
         let (pts, closed) = match shape {
-            Shape::Closed(p) => (p, true),
-            Shape::Open(p) => (p, false),
-            Shape::Ignored(why, pts) => {
+            EntityShape::Closed(p) => (p, true),
+            EntityShape::Open(p) => (p, false),
+            EntityShape::Ignored(why, pts) => {
                 self.found
                     .warnings
                     .push(format!("{warn_label} {why}; ignored"));
@@ -204,8 +204,8 @@ impl<'a> Walk<'a> {
                 dest.ignored.push((warn_label, pts));
                 return Ok(());
             }
-            Shape::Limit(l) => return Err(DxfError::Limit(l)),
-            Shape::Nothing => return Ok(()),
+            EntityShape::Limit(l) => return Err(DxfError::Limit(l)),
+            EntityShape::Nothing => return Ok(()),
         };
         self.keep(pts, closed, access, (label, warn_label), at, curves.tol)
     }

@@ -30,24 +30,28 @@ pub(crate) fn dist(a: P, b: P) -> f64 {
 }
 
 /// Largest absolute coordinate, the scale for relative tolerances.
-pub(crate) fn scale_of(p: &[P]) -> f64 {
-    p.iter()
+pub(crate) fn scale_of(points: &[P]) -> f64 {
+    points
+        .iter()
         .fold(0.0f64, |m, q| m.max(q[0].abs()).max(q[1].abs()))
 }
 
-/// How many chords keep a circular arc of radius `r` and sweep `sweep`
+/// How many chords keep a circular arc of radius `radius` and sweep `sweep`
 /// (radians, any sign) within `tol` of the true curve.
-pub(crate) fn arc_pieces(r: f64, sweep: f64, tol: f64) -> usize {
-    let r = r.abs();
+pub(crate) fn arc_pieces(radius: f64, sweep: f64, tol: f64) -> usize {
+    let radius = radius.abs();
     let sweep = sweep.abs();
-    if !(r.is_finite() && sweep.is_finite() && tol.is_finite()) || r == 0.0 || sweep == 0.0 {
+    if !(radius.is_finite() && sweep.is_finite() && tol.is_finite())
+        || radius == 0.0
+        || sweep == 0.0
+    {
         return 1;
     }
     // Sagitta of a chord spanning angle a is r (1 - cos(a/2)).
-    let step = if tol >= r {
+    let step = if tol >= radius {
         std::f64::consts::PI
     } else {
-        2.0 * (1.0 - tol / r).acos()
+        2.0 * (1.0 - tol / radius).acos()
     };
     let n = if step > 0.0 {
         (sweep / step).ceil()
@@ -63,22 +67,29 @@ pub(crate) fn arc_pieces(r: f64, sweep: f64, tol: f64) -> usize {
 
 /// Points of a circular arc from angle `a0` sweeping `sweep` radians (CCW
 /// when positive), start excluded, end included.
-pub(crate) fn arc_points(c: P, r: f64, a0: f64, sweep: f64, tol: f64, min: usize) -> Vec<P> {
-    let n = arc_pieces(r, sweep, tol).max(min).min(MAX_ARC_PIECES);
+pub(crate) fn arc_points(
+    centre: P,
+    radius: f64,
+    a0: f64,
+    sweep: f64,
+    tol: f64,
+    min: usize,
+) -> Vec<P> {
+    let n = arc_pieces(radius, sweep, tol).max(min).min(MAX_ARC_PIECES);
     (1..=n)
         .map(|k| {
             let a = a0 + sweep * k as f64 / n as f64;
-            [c[0] + r * a.cos(), c[1] + r * a.sin()]
+            [centre[0] + radius * a.cos(), centre[1] + radius * a.sin()]
         })
         .collect()
 }
 
 /// A full circle as a closed loop (at least 3 vertices, so that a tiny
 /// circle still reaches validation and is reported by size, not shape).
-pub(crate) fn circle_loop(c: P, r: f64, tol: f64) -> Vec<P> {
-    let mut pts = arc_points(c, r, 0.0, std::f64::consts::TAU, tol, 3);
+pub(crate) fn circle_loop(centre: P, radius: f64, tol: f64) -> Vec<P> {
+    let mut pts = arc_points(centre, radius, 0.0, std::f64::consts::TAU, tol, 3);
     pts.pop();
-    pts.insert(0, [c[0] + r, c[1]]);
+    pts.insert(0, [centre[0] + radius, centre[1]]);
     pts
 }
 
@@ -93,12 +104,18 @@ pub(crate) fn positions(vertices: &[Vertex]) -> Vec<P> {
     vertices.iter().map(|q| [q.x, q.y]).collect()
 }
 
-/// An exact circular arc of centre `c` and radius `r` from angle `a0`
+/// An exact circular arc of centre `centre` and radius `radius` from angle `a0`
 /// sweeping `sweep` radians (CCW when positive), both ends included, the
 /// end with bulge 0: one bulge vertex, or two half arcs for a full turn
 /// (a bulge of `tan(pi / 2)` is no number).
-pub(crate) fn exact_arc(c: P, r: f64, a0: f64, sweep: f64) -> Vec<Vertex> {
-    let at = |a: f64| Vertex::new(c[0] + r * a.cos(), c[1] + r * a.sin(), 0.0);
+pub(crate) fn exact_arc(centre: P, radius: f64, a0: f64, sweep: f64) -> Vec<Vertex> {
+    let at = |a: f64| {
+        Vertex::new(
+            centre[0] + radius * a.cos(),
+            centre[1] + radius * a.sin(),
+            0.0,
+        )
+    };
     let pieces = if sweep.abs() >= std::f64::consts::TAU - 1e-9 {
         2
     } else {
@@ -117,10 +134,10 @@ pub(crate) fn exact_arc(c: P, r: f64, a0: f64, sweep: f64) -> Vec<Vertex> {
 
 /// A full circle as a closed loop of two half arcs (bulge 1 on both
 /// vertices, SPEC 8.1), starting at angle 0.
-pub(crate) fn exact_circle(c: P, r: f64) -> Vec<Vertex> {
+pub(crate) fn exact_circle(centre: P, radius: f64) -> Vec<Vertex> {
     vec![
-        Vertex::new(c[0] + r, c[1], 1.0),
-        Vertex::new(c[0] - r, c[1], 1.0),
+        Vertex::new(centre[0] + radius, centre[1], 1.0),
+        Vertex::new(centre[0] - radius, centre[1], 1.0),
     ]
 }
 

@@ -20,4 +20,3 @@ pub(crate) use curves::{
 pub(crate) use join::{join_pieces, nearest_other_end, reversed, OpenChain, Piece};
 pub use pick::OutlinePickError;
 pub(crate) use pick::{keep_holes, pick_outline, pick_outlines};
-pub(crate) use region::{loop_inside, test_point};

@@ -84,19 +84,19 @@ pub(crate) fn keep_holes(
     }
 }
 
-fn hole_warning(label: &str, l: &[Vertex], units: Units) -> String {
+fn hole_warning(label: &str, hole_loop: &[Vertex], units: Units) -> String {
     format!(
         "{label} near {} {} is a loop inside the outline (a hole or pocket); ignored: fixtures hold the outer outline only",
-        fmt_pt(l.first().map(|v| pt(*v)).unwrap_or_default()),
+        fmt_pt(hole_loop.first().map(|v| pt(*v)).unwrap_or_default()),
         units.label()
     )
 }
 
 /// A loop inside hole `hole` of the part: no material, so not the part's.
-fn in_hole_warning(label: &str, l: &[Vertex], hole: usize, units: Units) -> String {
+fn in_hole_warning(label: &str, inner: &[Vertex], hole: usize, units: Units) -> String {
     format!(
         "{label} near {} {} lies inside hole {hole} (a drawn counterbore, text or mark); ignored",
-        fmt_pt(l.first().map(|v| pt(*v)).unwrap_or_default()),
+        fmt_pt(inner.first().map(|v| pt(*v)).unwrap_or_default()),
         units.label()
     )
 }
@@ -261,8 +261,8 @@ pub(crate) fn pick_outlines(
     Ok(parts)
 }
 
-fn box_distance(b: &Aabb, q: fixplan_core::parts::V2) -> f64 {
-    let dx = (b.min.x - q.x).max(q.x - b.max.x).max(0.0);
-    let dy = (b.min.y - q.y).max(q.y - b.max.y).max(0.0);
+fn box_distance(aabb: &Aabb, point: fixplan_core::parts::V2) -> f64 {
+    let dx = (aabb.min.x - point.x).max(point.x - aabb.max.x).max(0.0);
+    let dy = (aabb.min.y - point.y).max(point.y - aabb.max.y).max(0.0);
     dx.hypot(dy)
 }

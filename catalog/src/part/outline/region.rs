@@ -9,11 +9,11 @@ use fixplan_core::Vertex;
 /// Unsigned area of the true region (arcs included: a circle is two
 /// vertices) for choosing the largest loop; an overflowing loop counts as
 /// the largest rather than as NaN, so the choice stays total.
-pub(crate) fn loop_area(p: &[Vertex]) -> f64 {
-    let a = if p.iter().any(Vertex::is_arc) {
-        mass_properties(p).area.abs()
+pub(crate) fn loop_area(vertices: &[Vertex]) -> f64 {
+    let a = if vertices.iter().any(Vertex::is_arc) {
+        mass_properties(vertices).area.abs()
     } else {
-        signed_area(&p.iter().map(Vertex::point).collect::<Vec<_>>()).abs()
+        signed_area(&vertices.iter().map(Vertex::point).collect::<Vec<_>>()).abs()
     };
     if a.is_finite() {
         a
@@ -23,9 +23,9 @@ pub(crate) fn loop_area(p: &[Vertex]) -> f64 {
 }
 
 /// Bounding box of the true loop (arcs bulge out of their chords).
-pub(crate) fn loop_aabb(p: &[Vertex]) -> Aabb {
-    let mut pts = Vec::with_capacity(p.len() * 2);
-    for e in edges_of(p) {
+pub(crate) fn loop_aabb(vertices: &[Vertex]) -> Aabb {
+    let mut pts = Vec::with_capacity(vertices.len() * 2);
+    for e in edges_of(vertices) {
         let b = e.aabb();
         pts.push(b.min);
         pts.push(b.max);
@@ -33,9 +33,12 @@ pub(crate) fn loop_aabb(p: &[Vertex]) -> Aabb {
     Aabb::of(&pts)
 }
 
-/// Whether box `a` lies within box `b` (boundaries included).
-pub(crate) fn aabb_within(a: &Aabb, b: &Aabb) -> bool {
-    a.min.x >= b.min.x && a.min.y >= b.min.y && a.max.x <= b.max.x && a.max.y <= b.max.y
+/// Whether box `inner` lies within box `outer` (boundaries included).
+pub(crate) fn aabb_within(inner: &Aabb, outer: &Aabb) -> bool {
+    inner.min.x >= outer.min.x
+        && inner.min.y >= outer.min.y
+        && inner.max.x <= outer.max.x
+        && inner.max.y <= outer.max.y
 }
 
 /// Crossings of the ray from `p` towards +x with a y-monotone piece of

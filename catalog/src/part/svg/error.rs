@@ -162,8 +162,8 @@ impl From<Exceeded> for SvgError {
 }
 
 impl From<PrescanRefusal> for SvgError {
-    fn from(r: PrescanRefusal) -> Self {
-        match r {
+    fn from(refusal: PrescanRefusal) -> Self {
+        match refusal {
             PrescanRefusal::Exceeded(e) => e.into(),
             PrescanRefusal::EntityLoop(name) => SvgError::EntityLoop(name),
             PrescanRefusal::ExternalEntity { name, kind, uri } => {

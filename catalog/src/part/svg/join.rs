@@ -116,10 +116,13 @@ pub(super) fn join_into(
 
 /// A piece all of whose points are one point (`M 5 5 L 5 5`, a `<line>` of
 /// length zero): nothing to draw or join.
-fn degenerate(p: &Piece, tol: f64) -> bool {
-    p.pts
-        .first()
-        .is_none_or(|a| p.pts.iter().all(|b| dist([a.x, a.y], [b.x, b.y]) <= tol))
+fn degenerate(piece: &Piece, tol: f64) -> bool {
+    piece.pts.first().is_none_or(|a| {
+        piece
+            .pts
+            .iter()
+            .all(|b| dist([a.x, a.y], [b.x, b.y]) <= tol)
+    })
 }
 
 /// The outline picked from the closed loops, given the open chains left:

@@ -10,9 +10,9 @@ pub(super) struct Lexer<'a> {
 }
 
 impl<'a> Lexer<'a> {
-    pub(super) fn new(s: &'a str) -> Self {
+    pub(super) fn new(text: &'a str) -> Self {
         Lexer {
-            s: s.as_bytes(),
+            s: text.as_bytes(),
             i: 0,
         }
     }

@@ -67,19 +67,19 @@ impl Budget {
         )
     }
 
-    /// Spends `n` vertices.
-    pub(super) fn vertices(&mut self, n: usize) -> Result<(), Exceeded> {
+    /// Spends `count` vertices.
+    pub(super) fn vertices(&mut self, count: usize) -> Result<(), Exceeded> {
         spend(
             &mut self.vertices,
-            n,
+            count,
             "vertices in the file (curves flattened)",
             MAX_VERTICES,
         )
     }
 }
 
-fn spend(left: &mut usize, n: usize, what: &'static str, limit: usize) -> Result<(), Exceeded> {
-    *left = left.checked_sub(n).ok_or(Exceeded { what, limit })?;
+fn spend(left: &mut usize, count: usize, what: &'static str, limit: usize) -> Result<(), Exceeded> {
+    *left = left.checked_sub(count).ok_or(Exceeded { what, limit })?;
     Ok(())
 }
 
@@ -107,17 +107,17 @@ pub(super) fn prescan(text: &str) -> Result<(), PrescanRefusal> {
 /// Upper bounds on start tags (`<` before a name) and attributes (`=`
 /// signs): no quote or comment can hide one from this count, which only
 /// errs on the safe side (an `=` in text counts as an attribute).
-fn count_tags(s: &[u8]) -> (usize, usize) {
-    let elements = s
+fn count_tags(bytes: &[u8]) -> (usize, usize) {
+    let elements = bytes
         .windows(2)
         .filter(|w| w[0] == b'<' && (w[1].is_ascii_alphabetic() || w[1] == b'_' || w[1] >= 0x80))
         .count();
-    let attributes = s.iter().filter(|&&c| c == b'=').count();
+    let attributes = bytes.iter().filter(|&&c| c == b'=').count();
     (elements, attributes)
 }
 
 /// A general entity of the internal DTD subset.
-enum Entity<'a> {
+enum XmlEntity<'a> {
     /// Replacement text, as written (references unexpanded).
     Internal(&'a str),
     /// `SYSTEM "uri"` or `PUBLIC "id" "uri"`.
@@ -126,7 +126,7 @@ enum Entity<'a> {
 
 /// Declarations `<!ENTITY name ...>` (parameter entities, `%`, are not
 /// expanded by the parser and are skipped).
-fn declarations(text: &str) -> Vec<(&str, Entity<'_>)> {
+fn declarations(text: &str) -> Vec<(&str, XmlEntity<'_>)> {
     let mut out = Vec::new();
     let mut rest = text;
     while let Some(at) = rest.find("<!ENTITY") {
@@ -138,13 +138,13 @@ fn declarations(text: &str) -> Vec<(&str, Entity<'_>)> {
         let name_end = t.find(|c: char| c.is_whitespace()).unwrap_or(t.len());
         let (name, t) = (&t[..name_end], t[name_end..].trim_start());
         let entity = if let Some(after) = t.strip_prefix("SYSTEM") {
-            quoted(after.trim_start()).map(|(v, _)| Entity::External("SYSTEM", v))
+            quoted(after.trim_start()).map(|(v, _)| XmlEntity::External("SYSTEM", v))
         } else if let Some(after) = t.strip_prefix("PUBLIC") {
             quoted(after.trim_start())
                 .and_then(|(_, rest)| quoted(rest.trim_start()))
-                .map(|(v, _)| Entity::External("PUBLIC", v))
+                .map(|(v, _)| XmlEntity::External("PUBLIC", v))
         } else {
-            quoted(t).map(|(v, _)| Entity::Internal(v))
+            quoted(t).map(|(v, _)| XmlEntity::Internal(v))
         };
         if let Some(e) = entity {
             out.push((name, e));
@@ -153,19 +153,19 @@ fn declarations(text: &str) -> Vec<(&str, Entity<'_>)> {
     out
 }
 
-/// A quoted string at the start of `s`: its text and what follows it.
-fn quoted(s: &str) -> Option<(&str, &str)> {
-    let q = s.chars().next().filter(|c| *c == '"' || *c == '\'')?;
-    let end = s[1..].find(q)? + 1;
-    Some((&s[1..end], &s[end + 1..]))
+/// A quoted string at the start of `text`: its text and what follows it.
+fn quoted(text: &str) -> Option<(&str, &str)> {
+    let q = text.chars().next().filter(|c| *c == '"' || *c == '\'')?;
+    let end = text[1..].find(q)? + 1;
+    Some((&text[1..end], &text[end + 1..]))
 }
 
-/// The names of the `&name;` references in `s` (character references
+/// The names of the `&name;` references in `text` (character references
 /// and the five predefined entities are not expanded beyond one byte and
 /// are left out).
-fn references(s: &str) -> impl Iterator<Item = &str> {
-    s.match_indices('&').filter_map(move |(i, _)| {
-        let r = &s[i + 1..];
+fn references(text: &str) -> impl Iterator<Item = &str> {
+    text.match_indices('&').filter_map(move |(i, _)| {
+        let r = &text[i + 1..];
         let end = r.find(';')?;
         let name = &r[..end];
         let plain = !name.is_empty()
@@ -196,7 +196,7 @@ fn check_entities(text: &str) -> Result<(), PrescanRefusal> {
     let mut sizes: std::collections::HashMap<&str, Option<usize>> = Default::default();
     fn size<'a>(
         name: &'a str,
-        decls: &[(&'a str, Entity<'a>)],
+        decls: &[(&'a str, XmlEntity<'a>)],
         sizes: &mut std::collections::HashMap<&'a str, Option<usize>>,
         stack: &mut Vec<&'a str>,
     ) -> Result<usize, PrescanRefusal> {
@@ -207,8 +207,8 @@ fn check_entities(text: &str) -> Result<(), PrescanRefusal> {
             return Ok(0);
         };
         let value = match e {
-            Entity::Internal(v) => *v,
-            Entity::External(kind, uri) => {
+            XmlEntity::Internal(v) => *v,
+            XmlEntity::External(kind, uri) => {
                 return Err(PrescanRefusal::ExternalEntity {
                     name: name.to_string(),
                     kind,

@@ -80,16 +80,16 @@ fn in_element(node: roxmltree::Node, problem: ElementProblem) -> SvgError {
     }
 }
 
-fn points_attr(s: &str) -> Result<Vec<P>, SvgError> {
-    let mut lx = Lexer::new(s);
+fn points_attr(text: &str) -> Result<Vec<P>, SvgError> {
+    let mut lx = Lexer::new(text);
     let mut v = Vec::new();
     while !lx.at_end() {
         let x = lx
             .number()
-            .ok_or_else(|| SvgError::BadPoints(s.to_string()))?;
+            .ok_or_else(|| SvgError::BadPoints(text.to_string()))?;
         let y = lx
             .number()
-            .ok_or_else(|| SvgError::OddPoints(s.to_string()))?;
+            .ok_or_else(|| SvgError::OddPoints(text.to_string()))?;
         v.push([x, y]);
     }
     Ok(v)
@@ -128,7 +128,7 @@ fn marked_access(node: roxmltree::Node) -> bool {
 
 /// What the walk through the document has found so far, in user units
 /// after transforms.
-struct Walk {
+struct SvgWalk {
     tol: f64,
     /// Circular arcs may stay exact (`arcs = "exact"`).
     exact: bool,
@@ -184,7 +184,7 @@ fn foreign(node: roxmltree::Node) -> bool {
 /// Walks the drawing in document order without recursion (an explicit
 /// stack of child iterators), so that nesting costs heap, not stack, and
 /// is bounded by [`limits::MAX_DEPTH`].
-fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut Walk) -> Result<(), SvgError> {
+fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut SvgWalk) -> Result<(), SvgError> {
     let mut stack = vec![(root.children(), ctm, access)];
     while let Some((children, ctm, access)) = stack.last_mut() {
         let (ctm, access) = (*ctm, *access);
@@ -391,7 +391,7 @@ fn ellipse(el: roxmltree::Node, tol: f64, exact: bool) -> Result<Sub, SvgError> 
     Ok(Sub { pts, closed: true })
 }
 
-impl Walk {
+impl SvgWalk {
     /// Adds an element's subpaths, transformed: closed ones as loops (or
     /// access loops), open ones as pieces to join.
     fn add(&mut self, el: roxmltree::Node, subs: Vec<Sub>, ctm: Affine, access: bool) {
@@ -515,7 +515,7 @@ fn read_loops(bytes: &[u8], opts: &ReadOptions) -> Result<Drawn, SvgError> {
         return Err(SvgError::NotSvg(root.tag_name().name().to_string()));
     }
     let (k, unit_note) = units::user_unit(root, opts)?;
-    let mut w = Walk {
+    let mut w = SvgWalk {
         tol: opts.chord_tolerance / k,
         exact: !opts.arcs.flatten(),
         loops: Vec::new(),
@@ -612,16 +612,16 @@ pub fn write_svg(part: &Part, units: Units) -> String {
 
 /// A `<path>` element of a closed loop of the part, `attrs` first, with
 /// `data-fixplan-bulges` when it has arcs (so it reads back bit for bit).
-fn loop_path(attrs: &str, l: &[Vertex]) -> String {
-    let bulges = if l.iter().any(Vertex::is_arc) {
-        let list: Vec<String> = l.iter().map(|v| format!("{:?}", v.bulge)).collect();
+fn loop_path(attrs: &str, vertices: &[Vertex]) -> String {
+    let bulges = if vertices.iter().any(Vertex::is_arc) {
+        let list: Vec<String> = vertices.iter().map(|v| format!("{:?}", v.bulge)).collect();
         format!(" data-fixplan-bulges=\"{}\"", list.join(" "))
     } else {
         String::new()
     };
     format!(
         "  <path {attrs} stroke=\"black\"{bulges} d=\"{}\"/>\n",
-        path_data(l)
+        path_data(vertices)
     )
 }
 

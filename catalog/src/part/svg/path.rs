@@ -30,10 +30,10 @@ pub enum PathError {
 }
 
 impl From<Exceeded> for PathError {
-    fn from(e: Exceeded) -> Self {
+    fn from(exceeded: Exceeded) -> Self {
         PathError::TooBig {
-            what: e.what,
-            limit: e.limit,
+            what: exceeded.what,
+            limit: exceeded.limit,
         }
     }
 }
@@ -183,10 +183,10 @@ impl PathParser<'_> {
     }
 
     /// Reads and draws one command's parameters.
-    fn command(&mut self, c: u8) -> Result<(), PathError> {
-        let rel = c.is_ascii_lowercase();
+    fn command(&mut self, letter: u8) -> Result<(), PathError> {
+        let rel = letter.is_ascii_lowercase();
         let base = if rel { self.pos } else { [0.0, 0.0] };
-        match c.to_ascii_uppercase() {
+        match letter.to_ascii_uppercase() {
             b'M' => {
                 self.flush(false);
                 let p = self.point(base)?;
@@ -207,15 +207,15 @@ impl PathParser<'_> {
                 let y = self.num()? + if rel { self.pos[1] } else { 0.0 };
                 self.line_to([self.pos[0], y]);
             }
-            b'C' | b'S' => self.cubic_to(c.eq_ignore_ascii_case(&b'C'), base)?,
-            b'Q' | b'T' => self.quad_to(c.eq_ignore_ascii_case(&b'Q'), base)?,
+            b'C' | b'S' => self.cubic_to(letter.eq_ignore_ascii_case(&b'C'), base)?,
+            b'Q' | b'T' => self.quad_to(letter.eq_ignore_ascii_case(&b'Q'), base)?,
             b'A' => self.arc_to(base)?,
             b'Z' => {
                 self.flush(true);
                 self.pos = self.start;
                 self.last_ctrl = None;
             }
-            _ => return Err(PathError::UnknownCommand(c as char)),
+            _ => return Err(PathError::UnknownCommand(letter as char)),
         }
         Ok(())
     }

@@ -21,24 +21,24 @@ pub enum TransformError {
 
 /// A `transform` attribute as one map (its transforms composed left to
 /// right, as SVG applies them right to left).
-pub(super) fn parse_transform(s: &str) -> Result<Affine, TransformError> {
+pub(super) fn parse_transform(text: &str) -> Result<Affine, TransformError> {
     let mut m = Affine::ID;
-    let mut rest = s.trim();
+    let mut rest = text.trim();
     while !rest.is_empty() {
         let open = rest
             .find('(')
-            .ok_or_else(|| TransformError::Syntax(s.to_string()))?;
+            .ok_or_else(|| TransformError::Syntax(text.to_string()))?;
         let close = rest[open..]
             .find(')')
             .map(|c| c + open)
-            .ok_or_else(|| TransformError::Syntax(s.to_string()))?;
+            .ok_or_else(|| TransformError::Syntax(text.to_string()))?;
         let name = rest[..open].trim().trim_start_matches(',').trim();
         let mut lx = Lexer::new(&rest[open + 1..close]);
         let mut args = Vec::new();
         while !lx.at_end() {
             args.push(
                 lx.number()
-                    .ok_or_else(|| TransformError::BadNumber(s.to_string()))?,
+                    .ok_or_else(|| TransformError::BadNumber(text.to_string()))?,
             );
         }
         let t = match (name, args.as_slice()) {

@@ -40,20 +40,20 @@ impl Length {
     }
 }
 
-fn length(s: Option<&str>) -> Length {
-    let Some(s) = s.map(str::trim) else {
+fn length(text: Option<&str>) -> Length {
+    let Some(text) = text.map(str::trim) else {
         return Length::None;
     };
-    let end = s
+    let end = text
         .find(|c: char| c.is_ascii_alphabetic() || c == '%')
-        .unwrap_or(s.len());
-    let Ok(v) = s[..end].trim().parse::<f64>() else {
+        .unwrap_or(text.len());
+    let Ok(v) = text[..end].trim().parse::<f64>() else {
         return Length::None;
     };
     if !(v.is_finite() && v > 0.0) {
         return Length::None;
     }
-    let mm = match s[end..].trim().to_ascii_lowercase().as_str() {
+    let mm = match text[end..].trim().to_ascii_lowercase().as_str() {
         "" | "px" => return Length::Px(v),
         "mm" => LengthUnit::Mm.mm(),
         "cm" => LengthUnit::Cm.mm(),
