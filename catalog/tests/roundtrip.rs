@@ -153,14 +153,13 @@ proptest! {
             access: Vec::new(),
         };
         // Skip invalid draws and those that validation repairs (collinear
-        // vertices between straight edges). Not through JSON: serde_json
-        // reads some shortest-form floats back one ulp off.
+        // vertices between straight edges).
         let repaired = || {
             parse_part(write_dxf(&part, units).as_bytes(), Format::Dxf, &ReadOptions::new(units))
                 .map_or(true, |(_, w)| !w.is_empty())
         };
         prop_assume!(validate_outline(&part.outline).is_ok() && !repaired());
-        for format in [Format::Dxf, Format::Svg] {
+        for format in [Format::Dxf, Format::Svg, Format::Json] {
             prop_assert_eq!(&round_trip(&part, units, format), &part);
         }
     }
