@@ -122,9 +122,9 @@ fn per_setup(reading: &TimedReading) -> String {
     }
 }
 
-fn ratio(a: f64, b: f64) -> String {
-    if b > 0.0 {
-        format!("{:.2}x", a / b)
+fn ratio(numerator: f64, denominator: f64) -> String {
+    if denominator > 0.0 {
+        format!("{:.2}x", numerator / denominator)
     } else {
         "-".into()
     }
@@ -154,9 +154,9 @@ fn print_header() {
     );
 }
 
-fn print_pair(id: &str, exact: &PreparedPart, e: &TimedReading, f: &TimedReading) {
+fn print_pair(id: &str, exact: &PreparedPart, exact_run: &TimedReading, flat_run: &TimedReading) {
     let (edges, arcs) = (exact.outline().edges().len(), arc_count(exact));
-    let (ec, fc) = (&e.result.counts, &f.result.counts);
+    let (ec, fc) = (&exact_run.result.counts, &flat_run.result.counts);
     let us = |t: &TimedReading| t.wall as f64 / 1e3 / t.result.counts.setups.max(1) as f64;
     println!(
         "{:<40} {:>6} | {:>9} {:>10} {:>9.2} {:>8} | {:>9} {:>10} {:>9.2} {:>8} | {:>7} {:>7} {:>7} {:>7}",
@@ -164,14 +164,14 @@ fn print_pair(id: &str, exact: &PreparedPart, e: &TimedReading, f: &TimedReading
         format!("{edges}({arcs})"),
         ec.setups,
         ec.candidates,
-        e.wall as f64 / 1e6,
-        per_setup(e),
+        exact_run.wall as f64 / 1e6,
+        per_setup(exact_run),
         fc.setups,
         fc.candidates,
-        f.wall as f64 / 1e6,
-        per_setup(f),
-        ratio(e.wall as f64, f.wall as f64),
-        ratio(us(e), us(f)),
+        flat_run.wall as f64 / 1e6,
+        per_setup(flat_run),
+        ratio(exact_run.wall as f64, flat_run.wall as f64),
+        ratio(us(exact_run), us(flat_run)),
         ratio(ec.setups as f64, fc.setups as f64),
         ratio(ec.candidates as f64, fc.candidates as f64),
     );

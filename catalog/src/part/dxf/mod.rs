@@ -84,8 +84,8 @@ impl Scale {
         [p[0] * self.factor, p[1] * self.factor]
     }
 
-    fn vertex(self, v: Vertex) -> Vertex {
-        Vertex::new(v.x * self.factor, v.y * self.factor, v.bulge)
+    fn vertex(self, vertex: Vertex) -> Vertex {
+        Vertex::new(vertex.x * self.factor, vertex.y * self.factor, vertex.bulge)
     }
 }
 

@@ -99,7 +99,7 @@ impl<'a> DxfWalk<'a> {
         }
     }
 
-    /// Reads the drawing's model-space entities; `k` numbers them from 1 in
+    /// Reads the drawing's model-space entities; `number` numbers them from 1 in
     /// file order, as messages do.
     pub fn run(&mut self, drawing: &Drawing) -> Result<(), DxfError> {
         let top = Place {
@@ -135,7 +135,7 @@ impl<'a> DxfWalk<'a> {
         }
     }
 
-    fn entity(&mut self, e: &Entity, k: usize, at: &Place) -> Result<(), DxfError> {
+    fn entity(&mut self, entity: &Entity, number: usize, at: &Place) -> Result<(), DxfError> {
         self.entities += 1;
         if self.entities > self.limits.entities {
             return Err(limit(
@@ -147,27 +147,27 @@ impl<'a> DxfWalk<'a> {
                 "entities",
             ));
         }
-        let own = e.common.layer.as_str();
+        let own = entity.common.layer.as_str();
         let layer = match &at.layer {
             Some(inherited) if own.trim() == "0" => inherited.clone(),
             _ => own.to_string(),
         };
         self.layers_seen.insert(LayerFilter::key(&layer));
-        let name = entity_name(&e.specific);
-        let handle = if e.common.handle.is_empty() {
+        let name = entity_name(&entity.specific);
+        let handle = if entity.common.handle.is_empty() {
             String::new()
         } else {
-            format!(" (handle {})", e.common.handle.as_string())
+            format!(" (handle {})", entity.common.handle.as_string())
         };
-        let label = format!("{name} #{k}{} on layer {layer}", at.path);
-        let warn_label = format!("{name} #{k}{handle}{} on layer {layer}", at.path);
-        if let EntityType::Insert(ins) = &e.specific {
+        let label = format!("{name} #{number}{} on layer {layer}", at.path);
+        let warn_label = format!("{name} #{number}{handle}{} on layer {layer}", at.path);
+        if let EntityType::Insert(ins) = &entity.specific {
             if self.opts.layers.ignores(&layer) {
                 self.skipped += 1;
                 return Ok(());
             }
             let inner = Place {
-                path: format!(" of INSERT #{k}{}", at.path),
+                path: format!(" of INSERT #{number}{}", at.path),
                 layer: Some(layer),
                 ..at.clone()
             };
@@ -187,7 +187,7 @@ impl<'a> DxfWalk<'a> {
             flatten: self.opts.arcs.flatten() || access || !similar,
             spline_pieces: self.limits.spline_pieces,
         };
-        let shape = entity_shape(&e.specific, curves);
+        let shape = entity_shape(&entity.specific, curves);
         let dest = if access {
             &mut self.found.access
         } else {

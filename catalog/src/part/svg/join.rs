@@ -129,15 +129,15 @@ fn degenerate(piece: &Piece, tol: f64) -> bool {
 /// a chain within the outline's extent is linework inside the part (a
 /// centre line, a hatch) and is ignored with a warning; any other chain,
 /// or chains with no outline at all, is the error (the outline would be a
-/// guess). `k` maps user units to catalogue units as the loops were
+/// guess). `scale` maps user units to catalogue units as the loops were
 /// mapped (y flipped).
 pub(super) fn settle_open(
     picked: Result<RawPart, OutlinePickError>,
     open: Vec<Open>,
-    k: f64,
+    scale: f64,
     tol: f64,
 ) -> Result<RawPart, SvgError> {
-    let mut parts = settle_open_parts(picked.map(|raw| vec![raw]), open, k, tol)?;
+    let mut parts = settle_open_parts(picked.map(|raw| vec![raw]), open, scale, tol)?;
     parts
         .pop()
         .ok_or(SvgError::Outline(OutlinePickError::NoClosedLoop {
@@ -150,7 +150,7 @@ pub(super) fn settle_open(
 pub(super) fn settle_open_parts(
     picked: Result<Vec<RawPart>, OutlinePickError>,
     open: Vec<Open>,
-    k: f64,
+    scale: f64,
     tol: f64,
 ) -> Result<Vec<RawPart>, SvgError> {
     let Some(first) = open.first() else {
@@ -169,7 +169,7 @@ pub(super) fn settle_open_parts(
             let user: Vec<Vertex> = raw
                 .outline
                 .iter()
-                .map(|v| Vertex::new(v.x / k, -v.y / k, 0.0))
+                .map(|v| Vertex::new(v.x / scale, -v.y / scale, 0.0))
                 .collect();
             bbox_of(user.iter())
         })

@@ -184,7 +184,12 @@ fn foreign(node: roxmltree::Node) -> bool {
 /// Walks the drawing in document order without recursion (an explicit
 /// stack of child iterators), so that nesting costs heap, not stack, and
 /// is bounded by [`limits::MAX_DEPTH`].
-fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut SvgWalk) -> Result<(), SvgError> {
+fn walk(
+    root: roxmltree::Node,
+    ctm: Affine,
+    access: bool,
+    state: &mut SvgWalk,
+) -> Result<(), SvgError> {
     let mut stack = vec![(root.children(), ctm, access)];
     while let Some((children, ctm, access)) = stack.last_mut() {
         let (ctm, access) = (*ctm, *access);
@@ -202,7 +207,7 @@ fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut SvgWalk) -> Re
                 "path" | "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon"
             );
             if drawn || (is_container(name) && child.children().any(|c| c.is_element())) {
-                w.warnings.push(format!(
+                state.warnings.push(format!(
                     "{} is hidden (display:none, e.g. a hidden layer); not read",
                     describe(child)
                 ));
@@ -220,7 +225,7 @@ fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut SvgWalk) -> Re
             let viewport = ["x", "y", "width", "height", "viewBox"];
             if child.tag_name().name() == "svg" && viewport.iter().any(|a| child.has_attribute(*a))
             {
-                w.warnings.push(format!(
+                state.warnings.push(format!(
                     "{} is a nested viewport; its x, y, width, height and viewBox are not applied (its shapes are read in the outer user units)",
                     describe(child)
                 ));
@@ -234,10 +239,12 @@ fn walk(root: roxmltree::Node, ctm: Affine, access: bool, w: &mut SvgWalk) -> Re
             stack.push((child.children(), ctm, access));
             continue;
         }
-        let tol = w.tol / ctm.max_scale();
-        let exact = w.exact && !access && ctm.is_similarity();
-        if let Some(subs) = element_subpaths(child, tol, exact, &mut w.warnings, &mut w.budget)? {
-            w.add(child, subs, ctm, access);
+        let tol = state.tol / ctm.max_scale();
+        let exact = state.exact && !access && ctm.is_similarity();
+        if let Some(subs) =
+            element_subpaths(child, tol, exact, &mut state.warnings, &mut state.budget)?
+        {
+            state.add(child, subs, ctm, access);
         }
     }
     Ok(())
