@@ -4,6 +4,7 @@
     python3 scripts/real_reference.py            # rewrite expected.json
     python3 scripts/real_reference.py --check    # recompute and compare
     python3 scripts/real_reference.py --show F   # print one file's loops
+    python3 scripts/real_reference.py --catalog  # rewrite examples/real/catalog.toml
 
 Reads every DXF with ezdxf and every SVG with svgelements (both installed
 with pip, neither shares a line with fixplan's readers) and writes, per
@@ -42,6 +43,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 REAL = os.path.join(HERE, "..", "catalog", "tests", "real")
 EXPECTED = os.path.join(REAL, "expected.json")
+# The same set as one catalogue for the benches, written from expected.json.
+CATALOG = os.path.join(HERE, "..", "examples", "real", "catalog.toml")
 # Per-file read options: what a manifest entry would give (units of a
 # unitless file, layers to read or ignore). Kept beside the files.
 OPTIONS = os.path.join(REAL, "options.json")
@@ -509,7 +512,48 @@ def close(a, b):
     return a == b
 
 
+CATALOG_HEAD = """\
+# The real-files test set (catalog/tests/real, read with the options of
+# its expected.json) as one catalogue, for `fixplan bench --compare-flatten
+# --catalog examples/real/catalog.toml`. Written from expected.json;
+# parts without arcs are skipped by --compare-flatten.
+# Rewrite with `python3 scripts/real_reference.py --catalog`.
+name = "real"
+units = "mm"
+"""
+
+
+def toml_value(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, list):
+        return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    return json.dumps(v)
+
+
+def write_catalog():
+    """examples/real/catalog.toml: one part per file of expected.json, its
+    read options as manifest keys, so the benches read what the test
+    reads."""
+    with open(EXPECTED) as f:
+        files = json.load(f)["files"]
+    out = [CATALOG_HEAD]
+    for g in files:
+        name = g["file"]
+        out.append("\n[[part]]\n")
+        out.append(f'id = "{name.replace(".", "_")}"\n')
+        out.append(f"file = '../../catalog/tests/real/{name}'\n")
+        for k, v in g["options"].items():
+            out.append(f"{k} = {toml_value(v)}\n")
+    with open(CATALOG, "w") as f:
+        f.write("".join(out))
+    print(f"real_reference: {len(files)} files written to examples/real/catalog.toml")
+    return 0
+
+
 def main(argv):
+    if len(argv) > 1 and argv[1] == "--catalog":
+        return write_catalog()
     if len(argv) > 1 and argv[1] == "--show":
         with open(OPTIONS) as f:
             opts = json.load(f).get(argv[2], {})
