@@ -1,6 +1,10 @@
 //! Clamp placement (SPEC section 4): candidate contacts where a plunger
 //! axis crosses a segment's form-closure interval, then the mount search by
-//! increasing extension with every admissibility test.
+//! increasing extension with every admissibility test. [`arc_reach`]
+//! narrows an arc segment's axis lines before the exact tests.
+
+mod arc_reach;
+pub(crate) use arc_reach::{ArcPiece, ClampWindow};
 
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, LocatorWrenches};
@@ -177,6 +181,11 @@ pub(crate) struct ClampSearch<'a> {
     pub(crate) metric: &'a dyn Metric,
     /// Part, access regions and locators, for the clearance checks.
     pub(crate) obstacles: Obstacles<'a>,
+    /// Each segment's [`ArcPiece`] (`None` for a line), numbered as
+    /// `segments`.
+    pub(crate) arc_pieces: &'a [Option<ArcPiece>],
+    /// The directions the setting's angle test can accept.
+    pub(crate) window: ClampWindow,
 }
 
 impl ClampSearch<'_> {
@@ -327,7 +336,14 @@ impl ClampSearch<'_> {
 
     /// Candidates on an arc segment (SPEC 8.5): the points where each
     /// plunger axis line crosses the posed grown circle, each tested for
-    /// span, angle and form closure on its own normal.
+    /// span, angle and form closure on its own normal. Only the lines
+    /// [`arc_reach`] keeps are tried, and on each only the side facing
+    /// the push: at the other point `q_d - C'_d` (along `d`, an axis) is
+    /// `fl(C'_d + side half) - C'_d`, of the sign of `side` or zero since
+    /// rounding is monotone, so `d . f <= 0 < eps` there (and at a
+    /// tangency, `half = 0`, on both). The tests that remain are those of
+    /// every point kept, the cheap form-closure test before the `atan2`
+    /// of the inner one: the candidates are the same, in the same order.
     fn arc_candidates(
         &self,
         ctx: &SetupContext,
@@ -340,49 +356,47 @@ impl ClampSearch<'_> {
         let pose = ctx.setup.pose;
         let centre = pose.apply(arc.center);
         let rho = arc.radius;
+        let convex = arc.is_convex();
+        // Always there (built from the same segments); without it every
+        // line is tried.
+        let piece = self.arc_pieces.get(j).copied().flatten();
+        debug_assert!(piece.is_some(), "arc segment {j} without its piece");
+        let piece = piece.map(|p| p.posed(&pose, arc.center, rho));
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;
             }
             let d = rot90(k, v2(1.0, 0.0));
             let e = rot90(k, v2(0.0, 1.0));
+            // The window's centre: where the inward normal is `d`.
+            let n = if convex { -d } else { d };
             // Axis line `line`: e . q - y0 = line.
             let gc = e.dot(&centre) - self.setting.clamp.y0;
-            let mut line = (gc - rho).ceil() as i64;
-            while (line as f64) <= gc + rho {
+            let lines = match &piece {
+                Some(piece) => piece.axis_lines(&self.window, n, e, gc, rho),
+                None => Some((gc - rho, gc + rho)),
+            };
+            let Some((lo, hi)) = lines else {
+                continue;
+            };
+            let side = n.dot(&d);
+            let mut line = ((gc - rho).ceil() as i64).max(lo.ceil() as i64);
+            while (line as f64) <= gc + rho && (line as f64) <= hi {
                 let h = line as f64 - gc;
                 let w2 = (rho - h.abs()) * (rho + h.abs());
-                if w2 >= 0.0 {
+                if w2 > 0.0 {
                     let half = w2.sqrt();
+                    let q = centre + e * h + d * (side * half);
                     // Near tangency the two points merge: borderline.
                     let tangency = rho - h.abs();
-                    let sides: &[f64] = if half == 0.0 { &[0.0] } else { &[-1.0, 1.0] };
-                    for &side in sides {
-                        let q = centre + e * h + d * (side * half);
-                        let f = arc_inward_normal(centre, rho, arc.is_convex(), q);
-                        let Some(angle_margin) = self.angle_margin(k, f) else {
-                            continue;
-                        };
-                        let inner = seg.inner_margin(seg.param_of(pose.inverse_apply(q)));
-                        if inner <= 0.0 {
-                            continue;
-                        }
-                        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
-                        if lam <= 0.0 {
-                            continue;
-                        }
+                    if let Some((f, margin)) = self.arc_point(ctx, seg, arc, k, centre, q) {
                         let cand = Candidate {
                             segment: j,
                             rotation: k,
                             line,
                             q,
                             f,
-                            margin: ctx
-                                .base_margin
-                                .min(inner)
-                                .min(lam)
-                                .min(angle_margin)
-                                .min(tangency),
+                            margin: margin.min(tangency),
                         };
                         self.offer(ctx, &cand, acc, scratch);
                     }
@@ -390,6 +404,32 @@ impl ClampSearch<'_> {
                 line += 1;
             }
         }
+    }
+
+    /// SPEC 8.5's tests of one point `q` of an arc segment posed with
+    /// its centre at `centre`: the inward normal there and the decision
+    /// margin of a candidate before tangency, `None` when a test fails.
+    #[inline(always)]
+    fn arc_point(
+        &self,
+        ctx: &SetupContext,
+        seg: &Segment,
+        arc: &GrownArc,
+        k: u8,
+        centre: V2,
+        q: V2,
+    ) -> Option<(V2, f64)> {
+        let f = arc_inward_normal(centre, arc.radius, arc.is_convex(), q);
+        let angle_margin = self.angle_margin(k, f)?;
+        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
+        if lam <= 0.0 {
+            return None;
+        }
+        let inner = seg.inner_margin(seg.param_of(ctx.setup.pose.inverse_apply(q)));
+        if inner <= 0.0 {
+            return None;
+        }
+        Some((f, ctx.base_margin.min(inner).min(lam).min(angle_margin)))
     }
 
     /// SPEC 4 (c): the push direction of rotation `k` against the inward
