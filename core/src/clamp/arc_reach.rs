@@ -72,6 +72,8 @@ pub(crate) struct ArcPiece {
     cos_half: f64,
     /// The piece's ends (`s0`, `s1`).
     ends: [V2; 2],
+    /// `1 / rho`: a setup's rounding bound then needs no division.
+    inv_rho: f64,
 }
 
 impl ArcPiece {
@@ -89,6 +91,7 @@ impl ArcPiece {
             mid: dir(0.5 * (seg.s0 + seg.s1)),
             cos_half: if half >= PI { -1.0 } else { half.cos() },
             ends: [dir(seg.s0), dir(seg.s1)],
+            inv_rho: 1.0 / arc.radius,
         })
     }
 
@@ -109,7 +112,7 @@ impl ArcPiece {
             mid: pose.rotate(self.mid),
             cos_half: self.cos_half,
             ends: [pose.rotate(self.ends[0]), pose.rotate(self.ends[1])],
-            err: 1e-12 + 1e-14 * scale / rho,
+            err: 1e-12 + 1e-14 * scale * self.inv_rho,
         }
     }
 }

@@ -132,11 +132,11 @@ struct SetupContext<'a> {
 
 impl SetupContext<'_> {
     /// See `count_only`.
-    fn count_only(&self, search: &ClampSearch, acc: &mut Accumulator) -> bool {
+    fn count_only(&self, search: &ClampSearch, acc: &mut Accumulator, hint: &mut usize) -> bool {
         if let Some(weak) = self.count_only.get() {
             return weak;
         }
-        let weak = acc.prune && search.locators_too_weak(&self.part_locators, acc);
+        let weak = acc.prune && search.locators_too_weak(&self.part_locators, acc, hint);
         self.count_only.set(Some(weak));
         weak
     }
@@ -182,7 +182,7 @@ pub(crate) struct ClampSearch<'a> {
     /// Part, access regions and locators, for the clearance checks.
     pub(crate) obstacles: Obstacles<'a>,
     /// Each segment's [`ArcPiece`] (`None` for a line), numbered as
-    /// `segments`.
+    /// `segments`; empty, arcs try every axis line across their circle.
     pub(crate) arc_pieces: &'a [Option<ArcPiece>],
     /// The directions the setting's angle test can accept.
     pub(crate) window: ClampWindow,
@@ -297,41 +297,67 @@ impl ClampSearch<'_> {
         }
         let q0 = pose.apply(line.origin);
         let dq = pose.rotate(line.u);
-        let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, seg.s0 + EPS, seg.s1 - EPS) else {
+        let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
+        // No axis line across the whole segment, none across its interval
+        // (within it, see `axis_span`): the interval need not be solved.
+        let crossed = (0..4u8).zip(angle_margins).any(|(k, m)| {
+            m.is_some() && {
+                let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
+                ceil_i64(gmin) as f64 <= gmax
+            }
+        });
+        if !crossed {
+            return;
+        }
+        let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, s_lo, s_hi) else {
             return;
         };
         for (k, angle_margin) in (0..4u8).zip(angle_margins) {
             let Some(angle_margin) = angle_margin else {
                 continue;
             };
-            let e = rot90(k, v2(0.0, 1.0));
-            let g0 = e.dot(&q0) - self.setting.clamp.y0;
-            let g1 = e.dot(&dq);
-            let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
-            let (gmin, gmax) = (ga.min(gb), ga.max(gb));
-            let mut line = gmin.ceil() as i64;
+            let (g0, g1, gmin, gmax) = self.axis_span(k, q0, dq, lo, hi);
+            let mut line = ceil_i64(gmin);
             while (line as f64) <= gmax {
                 let s = (line as f64 - g0) / g1;
                 if s > lo && s < hi {
-                    let q = q0 + dq * s;
-                    let lam = ctx.lw.lambda(&wrench(q, f));
-                    let cand = Candidate {
-                        segment: j,
-                        rotation: k,
-                        line,
-                        q,
-                        f,
-                        margin: ctx
-                            .base_margin
-                            .min(seg.inner_margin(s))
-                            .min(lam.min() - EPS)
-                            .min(angle_margin),
-                    };
-                    self.offer(ctx, &cand, acc, scratch);
+                    if ctx.count_only.get() == Some(true) {
+                        // What `offer` would do, without the candidate.
+                        acc.counts.candidates += 1;
+                    } else {
+                        let q = q0 + dq * s;
+                        let lam = ctx.lw.lambda(&wrench(q, f));
+                        let cand = Candidate {
+                            segment: j,
+                            rotation: k,
+                            line,
+                            q,
+                            f,
+                            margin: ctx
+                                .base_margin
+                                .min(seg.inner_margin(s))
+                                .min(lam.min() - EPS)
+                                .min(angle_margin),
+                        };
+                        self.offer(ctx, &cand, acc, scratch);
+                    }
                 }
                 line += 1;
             }
         }
+    }
+
+    /// The axis lines of rotation `k` (`e . q - y0 = line`) along the
+    /// contacts `q0 + s dq`, `s` in `[lo, hi]`: `g(s) = g0 + g1 s` and
+    /// the range of `g` there. Each step rounds monotonically in `s`, so a
+    /// narrower `[lo, hi]` gives a range within this one, bit for bit.
+    #[inline(always)]
+    fn axis_span(&self, k: u8, q0: V2, dq: V2, lo: f64, hi: f64) -> (f64, f64, f64, f64) {
+        let e = rot90(k, v2(0.0, 1.0));
+        let g0 = e.dot(&q0) - self.setting.clamp.y0;
+        let g1 = e.dot(&dq);
+        let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
+        (g0, g1, ga.min(gb), ga.max(gb))
     }
 
     /// Candidates on an arc segment (SPEC 8.5): the points where each
@@ -357,30 +383,37 @@ impl ClampSearch<'_> {
         let centre = pose.apply(arc.center);
         let rho = arc.radius;
         let convex = arc.is_convex();
-        // Always there (built from the same segments); without it every
-        // line is tried.
-        let piece = self.arc_pieces.get(j).copied().flatten();
-        debug_assert!(piece.is_some(), "arc segment {j} without its piece");
-        let piece = piece.map(|p| p.posed(&pose, arc.center, rho));
+        // Posed at the first rotation with an axis line across the circle
+        // (small arcs often have none). Without pieces (a test's reference
+        // search) every line across the circle is tried.
+        let mut piece = None;
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;
             }
             let d = rot90(k, v2(1.0, 0.0));
             let e = rot90(k, v2(0.0, 1.0));
-            // The window's centre: where the inward normal is `d`.
-            let n = if convex { -d } else { d };
             // Axis line `line`: e . q - y0 = line.
             let gc = e.dot(&centre) - self.setting.clamp.y0;
-            let lines = match &piece {
-                Some(piece) => piece.axis_lines(&self.window, n, e, gc, rho),
+            let first = ceil_i64(gc - rho);
+            if first as f64 > gc + rho {
+                continue;
+            }
+            let posed = *piece.get_or_insert_with(|| {
+                let piece = self.arc_pieces.get(j).copied().flatten();
+                piece.map(|p| p.posed(&pose, arc.center, rho))
+            });
+            // The window's centre: where the inward normal is `d`.
+            let n = if convex { -d } else { d };
+            let lines = match &posed {
+                Some(posed) => posed.axis_lines(&self.window, n, e, gc, rho),
                 None => Some((gc - rho, gc + rho)),
             };
             let Some((lo, hi)) = lines else {
                 continue;
             };
             let side = n.dot(&d);
-            let mut line = ((gc - rho).ceil() as i64).max(lo.ceil() as i64);
+            let mut line = first.max(ceil_i64(lo));
             while (line as f64) <= gc + rho && (line as f64) <= hi {
                 let h = line as f64 - gc;
                 let w2 = (rho - h.abs()) * (rho + h.abs());
@@ -444,9 +477,14 @@ impl ClampSearch<'_> {
 
     /// Whether no candidate of a setup with these locators can enter the
     /// top-k held: the metric's floor for them is above the k-th score.
-    fn locators_too_weak(&self, locators: &[PartContact; 3], acc: &mut Accumulator) -> bool {
+    fn locators_too_weak(
+        &self,
+        locators: &[PartContact; 3],
+        acc: &mut Accumulator,
+        hint: &mut usize,
+    ) -> bool {
         let bound = acc.top.score_bound();
-        let weak = bound.is_finite() && self.metric.locators_exceed(locators, bound);
+        let weak = bound.is_finite() && self.metric.locators_exceed(locators, bound, hint);
         acc.work.setups_floored += weak as u64;
         weak
     }
@@ -461,7 +499,7 @@ impl ClampSearch<'_> {
         scratch: &mut Scratch,
     ) {
         acc.counts.candidates += 1;
-        if ctx.count_only(self, acc) {
+        if ctx.count_only(self, acc, &mut scratch.metric_hint) {
             return;
         }
         if acc.prune {
@@ -578,8 +616,8 @@ impl ClampSearch<'_> {
         let d = rot90(k, v2(1.0, 0.0));
         let dq = d.dot(&cand.q);
         let c = &self.setting.clamp;
-        let m_hi = (dq - c.t_min + EPS).floor() as i64;
-        let m_lo = (dq - c.t_max - EPS).ceil() as i64;
+        let m_hi = floor_i64(dq - c.t_min + EPS);
+        let m_lo = ceil_i64(dq - c.t_max - EPS);
         let di = rot90i(k, [1, 0]);
         let ei = rot90i(k, [0, 1]);
         let mut along = m_hi;
@@ -673,5 +711,66 @@ impl ClampSearch<'_> {
             tm.metric_ns += ns;
         }
         score
+    }
+}
+
+/// `x.ceil() as i64`, the same value for every `x` (NaN and out of range
+/// included) without a call to libm's `ceil` (no SSE4.1 in the baseline
+/// target): the loops over axis lines and mounts run it per setup.
+#[inline(always)]
+fn ceil_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// `x.floor() as i64`, see [`ceil_i64`].
+#[inline(always)]
+fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ceil_i64, floor_i64};
+
+    /// The integer ceil and floor against the libm ones cast, at the
+    /// places casts and rounding differ: halves, integers, signed zeros,
+    /// the edges of exact integers and of `i64`, infinities and NaN.
+    #[test]
+    fn integer_ceil_and_floor_match_the_cast_libm_ones() {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            i64::MAX as f64,
+            i64::MIN as f64,
+            2f64.powi(63) * 2.0,
+            2f64.powi(52) - 0.5,
+            2f64.powi(53) + 2.0,
+        ];
+        let mut rng = crate::test_rng::Xorshift::new(0x51_7cc1_b727_220a);
+        for i in 0..20_000 {
+            let x = rng.signed_unit() * 10f64.powi(i % 22 - 3);
+            xs.extend([x, x.round(), x.round() + 0.5, x.round() - 0.5]);
+        }
+        for x in xs {
+            assert_eq!(ceil_i64(x), x.ceil() as i64, "ceil {x:e}");
+            assert_eq!(floor_i64(x), x.floor() as i64, "floor {x:e}");
+        }
     }
 }

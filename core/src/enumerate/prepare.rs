@@ -324,7 +324,7 @@ impl PreparedPart {
     }
 
     /// The clamp search against this part, its setting and its metric.
-    fn clamp_search(&self) -> ClampSearch<'_> {
+    pub(crate) fn clamp_search(&self) -> ClampSearch<'_> {
         ClampSearch {
             segments: &self.segments,
             setting: &self.setting,
