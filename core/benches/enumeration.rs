@@ -3,10 +3,11 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use fixplan_core::parts::Accumulator;
 use fixplan_core::parts::{
-    polygon_clearance, polygon_clearance_below, solve_poses, v2, wrench, AngleSet, Feature, Line,
-    LineFeature, LocatorSweep, LocatorWrenches, MaxForceMetric, Metric, PartContact, Segment,
-    SweepScratch, SweptSegment,
+    combinations_in, polygon_clearance, polygon_clearance_below, solve_poses, v2, wrench, AngleSet,
+    Feature, Line, LineFeature, LocatorSweep, LocatorWrenches, MaxForceMetric, Metric, PartContact,
+    Scratch, Segment, Setup, SweepScratch, SweptSegment,
 };
 use fixplan_core::{prepare, Case, EnumerateOptions};
 use std::hint::black_box;
@@ -96,7 +97,7 @@ fn pieces(c: &mut Criterion) {
     });
     let [l1, l2, l3, _] = contacts;
     c.bench_function("metric_locators_exceed_256_never", |b| {
-        b.iter(|| m.locators_exceed(black_box(&[l1, l2, l3]), f64::MAX))
+        b.iter(|| m.locators_exceed(black_box(&[l1, l2, l3]), f64::MAX, &mut 0))
     });
     c.bench_function("clearance_capped_body_vs_57_edges", |b| {
         b.iter(|| polygon_clearance_below(black_box(&body), black_box(&part), 1e-6))
@@ -171,5 +172,41 @@ fn whole_parts(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, pieces, whole_parts);
+/// Clamp placement alone on a part with arcs: every setup of
+/// `bracket-arcs`, found once, then given its candidates (the arcs' axis
+/// lines narrowed by `clamp/arc_reach.rs`), scored and mounted; with full
+/// counts and in top-10 mode (where most setups are floored and only
+/// counted).
+fn clamp_on_arcs(c: &mut Criterion) {
+    let k = case("bracket-arcs");
+    let p = prepare(&k.part(), &k.kit, &k.params, k.units).expect("valid case");
+    let mut setups: Vec<Setup> = Vec::new();
+    for (_, combo) in combinations_in(p.segments().len(), 0..u64::MAX) {
+        p.setups_of_combination(combo, |s| setups.push(*s));
+    }
+    let mut g = c.benchmark_group("clamp_placement_bracket_arcs");
+    g.sample_size(20);
+    for (name, part, acc) in [
+        ("full_counts", p.clone(), Accumulator::new(0)),
+        (
+            "top10_mode",
+            p.with_top_k(10, false),
+            Accumulator::top_k_mode(10),
+        ),
+    ] {
+        let mut scratch = Scratch::default();
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut acc = acc.clone();
+                for s in &setups {
+                    part.process_setup(s, &mut acc, &mut scratch);
+                }
+                acc.counts.candidates
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, pieces, whole_parts, clamp_on_arcs);
 criterion_main!(benches);

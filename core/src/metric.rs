@@ -47,9 +47,11 @@ pub trait Metric: Send + Sync + std::fmt::Debug {
     /// Whether every fixture with these three locator contacts scores
     /// above `bound` (`None` scores count as infinite), whatever the clamp
     /// contact: a top-k whose k-th score is `bound` then skips the setup's
-    /// mount searches. `false` (the default) knows nothing.
-    fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64) -> bool {
-        let _ = (locators, bound);
+    /// mount searches. `false` (the default) knows nothing. `hint` is as
+    /// in [`Self::score_bounded`] (and may be the same state): it never
+    /// changes the answer.
+    fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64, hint: &mut usize) -> bool {
+        let _ = (locators, bound, hint);
         false
     }
 }
@@ -133,9 +135,9 @@ impl<T: MaxForce> Metric for T {
         max_force_bounded(&w, self.applied(), bound, hint)
     }
 
-    fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64) -> bool {
+    fn locators_exceed(&self, locators: &[PartContact; 3], bound: f64, hint: &mut usize) -> bool {
         let w = locators.map(|c| self.wrench(&c));
-        max_force_floor_exceeds(&w, self.applied(), self.applied_max_norm(), bound)
+        max_force_floor_exceeds(&w, self.applied(), self.applied_max_norm(), bound, hint)
     }
 }
 
@@ -270,8 +272,10 @@ fn largest_force(inv: &Matrix3<f64>, mu: &[f64; 4], p: &Vector3<f64>) -> f64 {
 /// very operations of [`max_force`], so the floor is at most the score in
 /// floating point too (adding a non-negative number never rounds below the
 /// other). The first applied wrench above `bound` settles it, so most
-/// setups that fail stop after a few. Dependent wrenches: no fourth wrench
-/// gives a score, so every score is infinite.
+/// setups that fail stop after a few, fewer still from `*start` on (the
+/// wrench that floored the last setup tends to floor the next, as in
+/// [`max_force_bounded`]; `*start` is left at it). Dependent wrenches: no
+/// fourth wrench gives a score, so every score is infinite.
 ///
 /// Most setups that pass are told without the loop: by Cauchy-Schwarz
 /// each `lambda0_i = -(r_i . p)` is at most `|r_i| |p|` (`r_i` a row of
@@ -284,6 +288,7 @@ pub fn max_force_floor_exceeds(
     applied: &[Vector3<f64>],
     max_norm: f64,
     bound: f64,
+    start: &mut usize,
 ) -> bool {
     let m = Matrix3::from_columns(w);
     let Some(inv) = m.try_inverse() else {
@@ -297,10 +302,16 @@ pub fn max_force_floor_exceeds(
     if rows * max_norm * (1.0 + 1e-12) <= bound {
         return false;
     }
-    applied.iter().any(|p| {
+    let first = if *start < applied.len() { *start } else { 0 };
+    let (tail, head) = applied.split_at(first);
+    let found = head.iter().chain(tail).position(|p| {
         let l0 = -(inv * p);
         l0[0] > bound || l0[1] > bound || l0[2] > bound
-    })
+    });
+    if let Some(i) = found {
+        *start = (first + i) % applied.len();
+    }
+    found.is_some()
 }
 
 #[cfg(test)]
@@ -380,8 +391,13 @@ mod tests {
                 rows * 1.01,
             ] {
                 let want = floor > bound;
-                let got = max_force_floor_exceeds(&w, &sphere, max_norm, bound);
-                assert_eq!(got, want, "floor {floor}, rows {rows}, bound {bound}");
+                // Any start gives the same answer (and a valid next start).
+                for first in [0, 97, 255, 300] {
+                    let mut start = first;
+                    let got = max_force_floor_exceeds(&w, &sphere, max_norm, bound, &mut start);
+                    assert_eq!(got, want, "floor {floor}, rows {rows}, bound {bound}");
+                    assert!(start < sphere.len() || start == first, "{start}");
+                }
                 decided_by_loop += usize::from(bound > floor && bound < rows);
             }
         }

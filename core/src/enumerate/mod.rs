@@ -3,6 +3,8 @@
 //! ([`shards`]) and give the result in the reported form ([`whole_part`]).
 
 pub(crate) mod budget;
+#[cfg(test)]
+mod clamp_filters;
 pub(crate) mod combinations;
 pub(crate) mod prepare;
 pub(crate) mod shards;

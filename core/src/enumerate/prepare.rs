@@ -7,7 +7,7 @@
 //! loop of [`Stages`]) the pieces that stage reads.
 
 use crate::checks::admissibility::{Obstacles, Scratch};
-use crate::clamp::{Accumulator, ClampSearch};
+use crate::clamp::{Accumulator, ArcPiece, ClampSearch, ClampWindow};
 use crate::enumerate::combinations::combination_count;
 use crate::enumerate::shards::{EnumerateOptions, Enumeration, PartialResult, Stages};
 use crate::geometry::polygon::validate_polygon;
@@ -65,6 +65,8 @@ pub struct PreparedPart {
     /// Each segment as the setup sweep uses it, so that choosing a
     /// combination's pivot costs no trig per combination.
     swept: Vec<SweptSegment>,
+    /// Each arc segment's piece of circle, for the clamp search.
+    arc_pieces: Vec<Option<ArcPiece>>,
     setting: Setting,
 }
 
@@ -83,6 +85,7 @@ pub fn prepare(
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
     let swept = segments.iter().map(SweptSegment::of).collect();
+    let arc_pieces = segments.iter().map(ArcPiece::of).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
         spacing: l,
@@ -96,6 +99,7 @@ pub fn prepare(
         metric,
         pairs: PairTable::default(),
         swept,
+        arc_pieces,
         setting,
     })
 }
@@ -320,7 +324,7 @@ impl PreparedPart {
     }
 
     /// The clamp search against this part, its setting and its metric.
-    fn clamp_search(&self) -> ClampSearch<'_> {
+    pub(crate) fn clamp_search(&self) -> ClampSearch<'_> {
         ClampSearch {
             segments: &self.segments,
             setting: &self.setting,
@@ -333,6 +337,8 @@ impl PreparedPart {
                 clamp: &self.setting.clamp,
                 min_clearance: self.setting.min_clearance,
             },
+            arc_pieces: &self.arc_pieces,
+            window: ClampWindow::new(self.setting.cos_max_angle),
         }
     }
 

@@ -1,6 +1,10 @@
 //! Clamp placement (SPEC section 4): candidate contacts where a plunger
 //! axis crosses a segment's form-closure interval, then the mount search by
-//! increasing extension with every admissibility test.
+//! increasing extension with every admissibility test. [`arc_reach`]
+//! narrows an arc segment's axis lines before the exact tests.
+
+mod arc_reach;
+pub(crate) use arc_reach::{ArcPiece, ClampWindow};
 
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, LocatorWrenches};
@@ -128,11 +132,11 @@ struct SetupContext<'a> {
 
 impl SetupContext<'_> {
     /// See `count_only`.
-    fn count_only(&self, search: &ClampSearch, acc: &mut Accumulator) -> bool {
+    fn count_only(&self, search: &ClampSearch, acc: &mut Accumulator, hint: &mut usize) -> bool {
         if let Some(weak) = self.count_only.get() {
             return weak;
         }
-        let weak = acc.prune && search.locators_too_weak(&self.part_locators, acc);
+        let weak = acc.prune && search.locators_too_weak(&self.part_locators, acc, hint);
         self.count_only.set(Some(weak));
         weak
     }
@@ -177,6 +181,11 @@ pub(crate) struct ClampSearch<'a> {
     pub(crate) metric: &'a dyn Metric,
     /// Part, access regions and locators, for the clearance checks.
     pub(crate) obstacles: Obstacles<'a>,
+    /// Each segment's [`ArcPiece`] (`None` for a line), numbered as
+    /// `segments`; empty, arcs try every axis line across their circle.
+    pub(crate) arc_pieces: &'a [Option<ArcPiece>],
+    /// The directions the setting's angle test can accept.
+    pub(crate) window: ClampWindow,
 }
 
 impl ClampSearch<'_> {
@@ -288,46 +297,79 @@ impl ClampSearch<'_> {
         }
         let q0 = pose.apply(line.origin);
         let dq = pose.rotate(line.u);
-        let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, seg.s0 + EPS, seg.s1 - EPS) else {
+        let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
+        // No axis line across the whole segment, none across its interval
+        // (within it, see `axis_span`): the interval need not be solved.
+        let crossed = (0..4u8).zip(angle_margins).any(|(k, m)| {
+            m.is_some() && {
+                let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
+                ceil_i64(gmin) as f64 <= gmax
+            }
+        });
+        if !crossed {
+            return;
+        }
+        let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, s_lo, s_hi) else {
             return;
         };
         for (k, angle_margin) in (0..4u8).zip(angle_margins) {
             let Some(angle_margin) = angle_margin else {
                 continue;
             };
-            let e = rot90(k, v2(0.0, 1.0));
-            let g0 = e.dot(&q0) - self.setting.clamp.y0;
-            let g1 = e.dot(&dq);
-            let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
-            let (gmin, gmax) = (ga.min(gb), ga.max(gb));
-            let mut line = gmin.ceil() as i64;
+            let (g0, g1, gmin, gmax) = self.axis_span(k, q0, dq, lo, hi);
+            let mut line = ceil_i64(gmin);
             while (line as f64) <= gmax {
                 let s = (line as f64 - g0) / g1;
                 if s > lo && s < hi {
-                    let q = q0 + dq * s;
-                    let lam = ctx.lw.lambda(&wrench(q, f));
-                    let cand = Candidate {
-                        segment: j,
-                        rotation: k,
-                        line,
-                        q,
-                        f,
-                        margin: ctx
-                            .base_margin
-                            .min(seg.inner_margin(s))
-                            .min(lam.min() - EPS)
-                            .min(angle_margin),
-                    };
-                    self.offer(ctx, &cand, acc, scratch);
+                    if ctx.count_only.get() == Some(true) {
+                        // What `offer` would do, without the candidate.
+                        acc.counts.candidates += 1;
+                    } else {
+                        let q = q0 + dq * s;
+                        let lam = ctx.lw.lambda(&wrench(q, f));
+                        let cand = Candidate {
+                            segment: j,
+                            rotation: k,
+                            line,
+                            q,
+                            f,
+                            margin: ctx
+                                .base_margin
+                                .min(seg.inner_margin(s))
+                                .min(lam.min() - EPS)
+                                .min(angle_margin),
+                        };
+                        self.offer(ctx, &cand, acc, scratch);
+                    }
                 }
                 line += 1;
             }
         }
     }
 
+    /// The axis lines of rotation `k` (`e . q - y0 = line`) along the
+    /// contacts `q0 + s dq`, `s` in `[lo, hi]`: `g(s) = g0 + g1 s` and
+    /// the range of `g` there. Each step rounds monotonically in `s`, so a
+    /// narrower `[lo, hi]` gives a range within this one, bit for bit.
+    #[inline(always)]
+    fn axis_span(&self, k: u8, q0: V2, dq: V2, lo: f64, hi: f64) -> (f64, f64, f64, f64) {
+        let e = rot90(k, v2(0.0, 1.0));
+        let g0 = e.dot(&q0) - self.setting.clamp.y0;
+        let g1 = e.dot(&dq);
+        let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
+        (g0, g1, ga.min(gb), ga.max(gb))
+    }
+
     /// Candidates on an arc segment (SPEC 8.5): the points where each
     /// plunger axis line crosses the posed grown circle, each tested for
-    /// span, angle and form closure on its own normal.
+    /// span, angle and form closure on its own normal. Only the lines
+    /// [`arc_reach`] keeps are tried, and on each only the side facing
+    /// the push: at the other point `q_d - C'_d` (along `d`, an axis) is
+    /// `fl(C'_d + side half) - C'_d`, of the sign of `side` or zero since
+    /// rounding is monotone, so `d . f <= 0 < eps` there (and at a
+    /// tangency, `half = 0`, on both). The tests that remain are those of
+    /// every point kept, the cheap form-closure test before the `atan2`
+    /// of the inner one: the candidates are the same, in the same order.
     fn arc_candidates(
         &self,
         ctx: &SetupContext,
@@ -340,6 +382,11 @@ impl ClampSearch<'_> {
         let pose = ctx.setup.pose;
         let centre = pose.apply(arc.center);
         let rho = arc.radius;
+        let convex = arc.is_convex();
+        // Posed at the first rotation with an axis line across the circle
+        // (small arcs often have none). Without pieces (a test's reference
+        // search) every line across the circle is tried.
+        let mut piece = None;
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;
@@ -348,41 +395,41 @@ impl ClampSearch<'_> {
             let e = rot90(k, v2(0.0, 1.0));
             // Axis line `line`: e . q - y0 = line.
             let gc = e.dot(&centre) - self.setting.clamp.y0;
-            let mut line = (gc - rho).ceil() as i64;
-            while (line as f64) <= gc + rho {
+            let first = ceil_i64(gc - rho);
+            if first as f64 > gc + rho {
+                continue;
+            }
+            let posed = *piece.get_or_insert_with(|| {
+                let piece = self.arc_pieces.get(j).copied().flatten();
+                piece.map(|p| p.posed(&pose, arc.center, rho))
+            });
+            // The window's centre: where the inward normal is `d`.
+            let n = if convex { -d } else { d };
+            let lines = match &posed {
+                Some(posed) => posed.axis_lines(&self.window, n, e, gc, rho),
+                None => Some((gc - rho, gc + rho)),
+            };
+            let Some((lo, hi)) = lines else {
+                continue;
+            };
+            let side = n.dot(&d);
+            let mut line = first.max(ceil_i64(lo));
+            while (line as f64) <= gc + rho && (line as f64) <= hi {
                 let h = line as f64 - gc;
                 let w2 = (rho - h.abs()) * (rho + h.abs());
-                if w2 >= 0.0 {
+                if w2 > 0.0 {
                     let half = w2.sqrt();
+                    let q = centre + e * h + d * (side * half);
                     // Near tangency the two points merge: borderline.
                     let tangency = rho - h.abs();
-                    let sides: &[f64] = if half == 0.0 { &[0.0] } else { &[-1.0, 1.0] };
-                    for &side in sides {
-                        let q = centre + e * h + d * (side * half);
-                        let f = arc_inward_normal(centre, rho, arc.is_convex(), q);
-                        let Some(angle_margin) = self.angle_margin(k, f) else {
-                            continue;
-                        };
-                        let inner = seg.inner_margin(seg.param_of(pose.inverse_apply(q)));
-                        if inner <= 0.0 {
-                            continue;
-                        }
-                        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
-                        if lam <= 0.0 {
-                            continue;
-                        }
+                    if let Some((f, margin)) = self.arc_point(ctx, seg, arc, k, centre, q) {
                         let cand = Candidate {
                             segment: j,
                             rotation: k,
                             line,
                             q,
                             f,
-                            margin: ctx
-                                .base_margin
-                                .min(inner)
-                                .min(lam)
-                                .min(angle_margin)
-                                .min(tangency),
+                            margin: margin.min(tangency),
                         };
                         self.offer(ctx, &cand, acc, scratch);
                     }
@@ -390,6 +437,32 @@ impl ClampSearch<'_> {
                 line += 1;
             }
         }
+    }
+
+    /// SPEC 8.5's tests of one point `q` of an arc segment posed with
+    /// its centre at `centre`: the inward normal there and the decision
+    /// margin of a candidate before tangency, `None` when a test fails.
+    #[inline(always)]
+    fn arc_point(
+        &self,
+        ctx: &SetupContext,
+        seg: &Segment,
+        arc: &GrownArc,
+        k: u8,
+        centre: V2,
+        q: V2,
+    ) -> Option<(V2, f64)> {
+        let f = arc_inward_normal(centre, arc.radius, arc.is_convex(), q);
+        let angle_margin = self.angle_margin(k, f)?;
+        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
+        if lam <= 0.0 {
+            return None;
+        }
+        let inner = seg.inner_margin(seg.param_of(ctx.setup.pose.inverse_apply(q)));
+        if inner <= 0.0 {
+            return None;
+        }
+        Some((f, ctx.base_margin.min(inner).min(lam).min(angle_margin)))
     }
 
     /// SPEC 4 (c): the push direction of rotation `k` against the inward
@@ -404,9 +477,14 @@ impl ClampSearch<'_> {
 
     /// Whether no candidate of a setup with these locators can enter the
     /// top-k held: the metric's floor for them is above the k-th score.
-    fn locators_too_weak(&self, locators: &[PartContact; 3], acc: &mut Accumulator) -> bool {
+    fn locators_too_weak(
+        &self,
+        locators: &[PartContact; 3],
+        acc: &mut Accumulator,
+        hint: &mut usize,
+    ) -> bool {
         let bound = acc.top.score_bound();
-        let weak = bound.is_finite() && self.metric.locators_exceed(locators, bound);
+        let weak = bound.is_finite() && self.metric.locators_exceed(locators, bound, hint);
         acc.work.setups_floored += weak as u64;
         weak
     }
@@ -421,7 +499,7 @@ impl ClampSearch<'_> {
         scratch: &mut Scratch,
     ) {
         acc.counts.candidates += 1;
-        if ctx.count_only(self, acc) {
+        if ctx.count_only(self, acc, &mut scratch.metric_hint) {
             return;
         }
         if acc.prune {
@@ -538,8 +616,8 @@ impl ClampSearch<'_> {
         let d = rot90(k, v2(1.0, 0.0));
         let dq = d.dot(&cand.q);
         let c = &self.setting.clamp;
-        let m_hi = (dq - c.t_min + EPS).floor() as i64;
-        let m_lo = (dq - c.t_max - EPS).ceil() as i64;
+        let m_hi = floor_i64(dq - c.t_min + EPS);
+        let m_lo = ceil_i64(dq - c.t_max - EPS);
         let di = rot90i(k, [1, 0]);
         let ei = rot90i(k, [0, 1]);
         let mut along = m_hi;
@@ -633,5 +711,66 @@ impl ClampSearch<'_> {
             tm.metric_ns += ns;
         }
         score
+    }
+}
+
+/// `x.ceil() as i64`, the same value for every `x` (NaN and out of range
+/// included) without a call to libm's `ceil` (no SSE4.1 in the baseline
+/// target): the loops over axis lines and mounts run it per setup.
+#[inline(always)]
+fn ceil_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// `x.floor() as i64`, see [`ceil_i64`].
+#[inline(always)]
+fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ceil_i64, floor_i64};
+
+    /// The integer ceil and floor against the libm ones cast, at the
+    /// places casts and rounding differ: halves, integers, signed zeros,
+    /// the edges of exact integers and of `i64`, infinities and NaN.
+    #[test]
+    fn integer_ceil_and_floor_match_the_cast_libm_ones() {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            i64::MAX as f64,
+            i64::MIN as f64,
+            2f64.powi(63) * 2.0,
+            2f64.powi(52) - 0.5,
+            2f64.powi(53) + 2.0,
+        ];
+        let mut rng = crate::test_rng::Xorshift::new(0x51_7cc1_b727_220a);
+        for i in 0..20_000 {
+            let x = rng.signed_unit() * 10f64.powi(i % 22 - 3);
+            xs.extend([x, x.round(), x.round() + 0.5, x.round() - 0.5]);
+        }
+        for x in xs {
+            assert_eq!(ceil_i64(x), x.ceil() as i64, "ceil {x:e}");
+            assert_eq!(floor_i64(x), x.floor() as i64, "floor {x:e}");
+        }
     }
 }
