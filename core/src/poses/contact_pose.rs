@@ -27,13 +27,18 @@
 //! or three circles congruent to the locator triangle (a continuum at one
 //! angle, whose fourfold root of `F` is handled in closed form).
 
+mod half_angle;
+mod limits;
 mod trig;
+mod two_lines;
 
 use crate::geometry::angle_set::{rem_tau, wrap_angle};
 use crate::geometry::{cross, rot, rot_t, v2, BORDERLINE, EPS, V2};
 use crate::poses::pose::{solve_poses, Line, Pose};
+use limits::{CONTINUUM_REL, DEGENERATE_REL, NEAR_MISS, NEAR_PARALLEL_REL, ROUNDING_REL};
 use nalgebra::{Matrix3, Vector3};
 use trig::{circ_dist, Angles, Trig, COS16, SAMPLES, SIN16};
+use two_lines::TwoLines;
 
 /// An arc segment's grown circle `|p - centre| = radius` in the part frame;
 /// the solver ignores the arc's span, which the caller checks afterwards as
@@ -250,6 +255,20 @@ pub fn solve_contact_poses_at_angles(
     if let [Some(a), Some(b), Some(c)] = lines {
         return line_poses(&[a, b, c], contacts, locs);
     }
+    if let Some(poses) =
+        two_lines_of(contacts, locs).and_then(|two| two_line_poses(&two, contacts, locs, within))
+    {
+        return poses;
+    }
+    eliminated_poses(contacts, locs, within)
+}
+
+/// The general elimination, for any triple with a circle (valid input).
+fn eliminated_poses(
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    within: &dyn Fn(f64, f64) -> bool,
+) -> ContactPoses {
     let Some(red) = Reduced::new(contacts, locs) else {
         return ContactPoses::new();
     };
@@ -267,6 +286,56 @@ fn valid(contacts: &[Contact; 3], locs: &[V2; 3]) -> bool {
             Contact::Line(l) => finite(l.n) && l.c.is_finite(),
             Contact::Circle(c) => finite(c.centre) && c.radius.is_finite() && c.radius > 0.0,
         })
+}
+
+/// The two lines and the circle of a setup with exactly one circle.
+fn two_lines_of(contacts: &[Contact; 3], locs: &[V2; 3]) -> Option<TwoLines> {
+    let mut lines = [(
+        Line {
+            n: V2::zeros(),
+            c: 0.0,
+        },
+        V2::zeros(),
+    ); 2];
+    let (mut count, mut circle) = (0, None);
+    for (contact, &locator) in contacts.iter().zip(locs) {
+        match contact {
+            Contact::Line(line) if count < 2 => {
+                lines[count] = (*line, locator);
+                count += 1;
+            }
+            Contact::Line(_) => return None,
+            Contact::Circle(c) => circle = Some(((c.centre, c.radius), locator)),
+        }
+    }
+    let (circle, locator) = circle.filter(|_| count == 2)?;
+    Some(TwoLines::new(lines, circle, locator))
+}
+
+/// The poses of two lines and a circle from the closed forms of
+/// [`two_lines`]: each start is polished by Newton's method like the
+/// general elimination's, except exact tangencies, which are checked as
+/// they are. `None` when the closed forms leave the setup to the general
+/// elimination (nearly parallel lines).
+fn two_line_poses(
+    two: &TwoLines,
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    within: &dyn Fn(f64, f64) -> bool,
+) -> Option<ContactPoses> {
+    let mut found = Found::new();
+    let handled = two.starts(within, |start| {
+        let got = if start.exact {
+            let iterate = Vector3::new(start.theta, start.w.x, start.w.y);
+            polished(contacts, locs, iterate, start.cs)
+        } else {
+            polish(contacts, locs, start.theta, start.cs, start.w)
+        };
+        if let Some((pose, res)) = got {
+            found.insert(pose, res);
+        }
+    });
+    handled.then(|| found.finish())
 }
 
 /// Three lines: SPEC 3's closed form, with `w` and the tangency flag added.
@@ -329,27 +398,6 @@ struct Sampled {
     /// Largest sum of the magnitudes of the terms of `N`.
     max_nhat: f64,
 }
-
-/// `F` within this fraction of `scale_f` of zero is a continuum (exact
-/// continua come out near 2e-16, random setups above 1e-3; see the unit
-/// tests).
-const CONTINUUM_REL: f64 = 1e-10;
-/// Bound on the rounding error of the sampled polynomials' coefficients,
-/// relative to their scales (at most 2e-16 is seen at known solutions; see
-/// the unit tests). Too large a bound would merge distinct close roots
-/// into one zero-within-rounding stretch.
-const ROUNDING_REL: f64 = 1e-14;
-/// Near misses up to this residual (lattice units, with margin over `eps`)
-/// are passed on as candidates so that a tangency is found whichever way
-/// rounding tips it; Newton and the `eps` test then decide.
-const NEAR_MISS: f64 = 1e-8;
-/// `|D| <= DEGENERATE_REL * |b1||b2|` everywhere: the rows are parallel at
-/// every angle (two parallel lines), `F = |N|^2` has only double roots and
-/// the angles come from `N = 0` instead.
-const DEGENERATE_REL: f64 = 1e-12;
-/// Below this, the rows are treated as nearly parallel and the two points
-/// where the line of solutions of one row meets the circle are also tried.
-const NEAR_PARALLEL_REL: f64 = 1e-4;
 
 fn perp(vector: V2) -> V2 {
     v2(vector.y, -vector.x)

@@ -216,3 +216,146 @@ fn tangency_measure_is_the_scaled_wrench_determinant() {
         );
     }
 }
+
+/// Whether `poses` has one within 1e-6 of `pose` in `theta` and `w` (the
+/// distance at which SPEC 8.4 merges tangential solutions; simple ones
+/// agree to rounding). A tangential pose may instead have a tangential one
+/// within 1e-3: where two tangencies coincide (a slot's end circle touching
+/// both walls, a locator at the joint), every residual stays below `eps`
+/// over a flat neighbourhood, and Newton's method stops anywhere in it
+/// (6e-4 off seen), while the closed form gives the exact double root.
+fn has_near(poses: &ContactPoses, pose: &ContactPose) -> bool {
+    let near = |p: &ContactPose, by: f64| {
+        circ_dist(p.pose.theta, pose.pose.theta) <= by && (p.w - pose.w).norm() <= by
+    };
+    poses
+        .iter()
+        .any(|p| near(p, BORDERLINE) || (p.tangential && pose.tangential && near(p, 1e-3)))
+}
+
+/// Two lines and a circle, the circle at position `at`.
+fn with_circle_at(at: usize, lines: [Line; 2], circle: Circle) -> [Contact; 3] {
+    let mut k = 0;
+    std::array::from_fn(|i| {
+        if i == at {
+            Contact::Circle(circle)
+        } else {
+            k += 1;
+            Contact::Line(lines[k - 1])
+        }
+    })
+}
+
+/// A slot of half-width `h` along a random lattice direction (quarter
+/// turns, so that the lattice setups below are exact): its walls `n . p =
+/// h` for `n = +-u_perp`, its end circle of radius `h` at the origin, and
+/// integer locators, some of them on the walls' continuation, where the
+/// third locator's line of motion touches the end circle (SPEC 8.4's
+/// tangential poses at the smooth joint).
+fn slot_case(state: &mut u64) -> ([Contact; 3], [V2; 3]) {
+    let h = [0.5, 1.0, 1.5, 2.0][(rnd(state) * 4.0) as usize];
+    let turn = (rnd(state) * 4.0) as u8;
+    let n = crate::geometry::rot90(turn, v2(0.0, 1.0));
+    let lines = [Line { n, c: h }, Line { n: -n, c: h }];
+    let circle = Circle {
+        centre: V2::zeros(),
+        radius: h,
+    };
+    let mut int = |lo: f64, hi: f64| (lo + (hi - lo + 1.0) * rnd(state)).floor();
+    let locs = std::array::from_fn(|_| v2(int(-4.0, 4.0), int(-4.0, 4.0)));
+    let at = (rnd(state) * 3.0) as usize;
+    (with_circle_at(at, lines, circle), locs)
+}
+
+/// Issue 32's property: the closed forms for two lines and a circle keep
+/// every pose the general elimination keeps and add none, on random
+/// setups (crossing lines), on random parallel lines, and on lattice
+/// slots full of exact tangencies, where both find the tangential pose
+/// (the closed form exactly, the elimination within about 1e-8).
+#[test]
+fn two_lines_keep_what_the_elimination_keeps() {
+    let mut state = 0x2b99_2ddf_a232_49d6u64;
+    let (mut compared, mut tangential) = (0, 0);
+    for case in 0..30000 {
+        let (contacts, locs) = match case % 3 {
+            0 => {
+                let (c, l) = random_contacts(&mut state, 1);
+                let at = (rnd(&mut state) * 3.0) as usize;
+                let lines = [0, 1].map(|k| match c[k] {
+                    Contact::Line(line) => line,
+                    Contact::Circle(_) => unreachable!("two lines first"),
+                });
+                let Contact::Circle(circle) = c[2] else {
+                    unreachable!("the circle last")
+                };
+                (with_circle_at(at, lines, circle), l)
+            }
+            1 => {
+                let (mut c, l) = random_contacts(&mut state, 1);
+                if let (Contact::Line(a), Contact::Line(b)) = (c[0], &mut c[1]) {
+                    b.n = if rnd(&mut state) < 0.5 { a.n } else { -a.n };
+                }
+                (c, l)
+            }
+            _ => slot_case(&mut state),
+        };
+        let two = two_lines_of(&contacts, &locs).expect("two lines and a circle");
+        let Some(mine) = two_line_poses(&two, &contacts, &locs, &|_, _| true) else {
+            continue; // nearly parallel: the elimination's
+        };
+        let general = eliminated_poses(&contacts, &locs, &|_, _| true);
+        for pose in general.iter() {
+            assert!(
+                has_near(&mine, pose),
+                "{case}: {contacts:?} {locs:?}\nmissed {pose:?}\nin {mine:?}"
+            );
+            compared += 1;
+            tangential += usize::from(pose.tangential);
+        }
+        for pose in mine.iter() {
+            assert!(
+                has_near(&general, pose),
+                "{case}: {contacts:?} {locs:?}\nextra {pose:?}\nnot in {general:?}"
+            );
+        }
+    }
+    println!("{compared} poses compared, {tangential} tangential");
+    assert!(
+        compared > 20000 && tangential > 0,
+        "{compared} {tangential}"
+    );
+}
+
+/// A locator on the continuation of a slot's wall touches the end circle
+/// at the smooth joint exactly: the closed form puts it there to within
+/// rounding (the elimination landed up to 4e-8 off, enough to count as
+/// inside the arc's segment), with the other two on the walls.
+#[test]
+fn slot_end_tangency_is_exact() {
+    let h = 0.25;
+    let lines = [
+        Line {
+            n: v2(0.0, -1.0),
+            c: h,
+        },
+        Line {
+            n: v2(0.0, 1.0),
+            c: h,
+        },
+    ];
+    let circle = Circle {
+        centre: v2(0.1, 0.0),
+        radius: h,
+    };
+    // Part turned by a quarter: the walls are vertical on the plate.
+    let locs = [v2(2.0, 3.0), v2(1.5, 1.0), v2(2.0, 7.0)];
+    let contacts = with_circle_at(2, lines, circle);
+    let poses = solve_contact_poses(&contacts, &locs);
+    let joint = poses
+        .iter()
+        .find(|p| p.tangential)
+        .expect("a tangential pose");
+    let p = rot_t(joint.pose.cos, joint.pose.sin, locs[2]) - joint.w;
+    let want = circle.centre + v2(0.0, if p.y > 0.0 { h } else { -h });
+    assert!((p - want).norm() <= 1e-14, "{p:?} vs {want:?}");
+}

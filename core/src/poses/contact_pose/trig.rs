@@ -375,7 +375,7 @@ pub(super) fn circ_dist(angle: f64, other: f64) -> f64 {
 /// Root of `value_slope` (value, derivative) in `[lo, hi]`, given that it changes
 /// sign there and `glo` is its value at `lo`: Newton steps, falling back to
 /// bisection whenever a step would leave the shrinking bracket.
-fn bracketed_root(
+pub(super) fn bracketed_root(
     value_slope: impl Fn(f64) -> (f64, f64),
     mut lo: f64,
     mut hi: f64,
