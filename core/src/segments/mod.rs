@@ -9,9 +9,11 @@
 //! its distance to the part or an access region crosses `r`.
 
 mod curved;
+mod cuts;
 mod line;
 mod pairs;
 mod segment;
+mod walls;
 
 pub use pairs::PairBounds;
 pub(crate) use pairs::PairTable;
