@@ -165,6 +165,11 @@ impl Outline {
         &self.edges
     }
 
+    /// The box of every edge of [`Self::edges`].
+    pub fn edge_boxes(&self) -> &[Aabb] {
+        &self.boxes
+    }
+
     /// The outline's own edges (the first ones of [`Self::edges`]).
     pub fn outline_edges(&self) -> &[Edge] {
         &self.edges[..self.vertices.len()]
@@ -211,10 +216,9 @@ impl Outline {
     /// The loop edge `i` belongs to: 0 for the outline, `k + 1` for hole
     /// `k` (SPEC 9.6's `segment_loops`).
     pub fn loop_of_edge(&self, i: usize) -> usize {
-        self.holes
-            .iter()
-            .position(|h| h.edges.contains(&i))
-            .map_or(0, |k| k + 1)
+        // Holes follow one another in the edge list: the loop is the
+        // number of holes starting at or before `i`.
+        self.holes.partition_point(|h| h.edges.start <= i)
     }
 
     /// The edges of the loop that edge `i` belongs to.

@@ -9,25 +9,27 @@
 //! midpoint with exact distances. No piece can be half in, half out: its
 //! distance function crosses `r - eps` only at cuts.
 //!
-//! Every piece is still cut at the crossings with every edge's curves, as
-//! it always was (a crossing of a far edge's line splits a piece without
-//! changing the answer, but dropping it could move a piece's end by a
-//! rounding); only the midpoint tests look at the edges whose boxes come
-//! near the grown edge, which gives the same answers since the others are
-//! farther than `r - eps`. A hole wall that its own hole covers is known
-//! to offer nothing without the full cut ([`super::walls`]).
+//! Only the edges whose boxes come near the grown edge can make a piece
+//! too close; midpoints are tested against them alone, which gives the
+//! same answers since the others are farther than `r - eps`. Their
+//! crossings still cut a grown arc, and cut a grown line where they can
+//! change a piece's ends ([`super::far`]), so pieces end where they always
+//! did, bit for bit. A hole wall that its own hole leaves no room for (but
+//! stretches shorter than the trims) is known to offer nothing without
+//! the full cut ([`super::walls`]).
 
-use super::cuts::edge_cuts;
+use super::cuts::{edge_cuts, far_edge_cuts};
+use super::far::NearZones;
 use super::line::complement;
 use super::segment::{Feature, LineFeature, Segment};
-use super::walls::covered_by_own_loop;
+use super::walls::{offers_nothing, Trim};
 use crate::geometry::{boundary_distance2, point_in_polygon, Aabb, EPS, V2};
 use crate::outline::{Edge, GrownEdge, Outline};
 
 /// Slack of the box tests that choose the edges a midpoint is tested
 /// against, relative to the coordinates' size: boxes and distances are
 /// rounded by far less.
-const NEAR_SLACK_REL: f64 = 1e-9;
+const NEAR_SLACK_REL: f64 = 1e-7;
 
 /// The segments of a part region with arcs or holes, lattice units.
 pub(super) fn outline_segments(
@@ -47,7 +49,14 @@ pub(super) fn outline_segments(
                 continue;
             };
             let len = feature_length(&feature, edge);
-            if k > 0 && covered_by_own_loop(&feature, len, i, edges, own.clone(), rho) {
+            let smooth_start = outline.smooth_joint(i);
+            let smooth_end = outline.smooth_joint(outline.next_in_loop(i));
+            let trims = Trim {
+                trim,
+                smooth_start,
+                smooth_end,
+            };
+            if k > 0 && offers_nothing(&feature, len, i, edges, own.clone(), rho, trims) {
                 continue;
             }
             // The grown edge lies within r of the edge: an edge farther
@@ -55,40 +64,35 @@ pub(super) fn outline_segments(
             let edge_box = edge.aabb();
             let slack = NEAR_SLACK_REL * (1.0 + size_of(&edge_box) + r);
             outline.edges_near(&edge_box, r + rho + slack, i, &mut near);
-            let mut removed = removed_pieces(&feature, len, i, edges, &near, access, rho);
-            let smooth = (
-                outline.smooth_joint(i),
-                outline.smooth_joint(outline.next_in_loop(i)),
-            );
-            push_pieces(
-                &mut out,
-                i,
-                &feature,
-                complement(&mut removed, 0.0, len),
-                len,
-                smooth,
-                trim,
-            );
+            let mut removed = removed_pieces(&feature, len, i, outline, &near, access, rho, slack);
+            let pieces = complement(&mut removed, 0.0, len);
+            push_pieces(&mut out, i, &feature, pieces, len, trims);
         }
     }
     out
 }
 
 /// The segments of edge `i` from the pieces its cut keeps: each trimmed
-/// at both ends, except (SPEC 8.2) where it runs into a smooth joint
-/// (`smooth`: at the edge's start, at its end).
+/// at both ends, except (SPEC 8.2) where it runs into a smooth joint.
 fn push_pieces(
     out: &mut Vec<Segment>,
     i: usize,
     feature: &Feature,
     pieces: Vec<(f64, f64)>,
     len: f64,
-    smooth: (bool, bool),
-    trim: f64,
+    trims: Trim,
 ) {
     for (lo, hi) in pieces {
-        let s0 = if lo == 0.0 && smooth.0 { lo } else { lo + trim };
-        let s1 = if hi == len && smooth.1 { hi } else { hi - trim };
+        let s0 = if lo == 0.0 && trims.smooth_start {
+            lo
+        } else {
+            lo + trims.trim
+        };
+        let s1 = if hi == len && trims.smooth_end {
+            hi
+        } else {
+            hi - trims.trim
+        };
         if s1 - s0 > EPS {
             out.push(Segment {
                 edge: i,
@@ -129,21 +133,47 @@ fn feature_length(f: &Feature, edge: &Edge) -> f64 {
 
 /// The open parameter intervals of the grown edge `i` that lie closer than
 /// `rho` to another edge or to a filled access region. Cut at the curves
-/// of every edge; `near` lists the edges a point of the grown edge can be
-/// closer than `rho` to.
+/// of every edge (on a grown line, those of far edges only where they can
+/// change the answer: [`super::far`]); `near` lists the edges a point of
+/// the grown edge can be closer than `rho` to, `slack` the rounding
+/// allowance of the box tests that chose them.
+#[allow(clippy::too_many_arguments)] // the cut's inputs, each used
 fn removed_pieces(
     f: &Feature,
     len: f64,
     i: usize,
-    edges: &[Edge],
+    outline: &Outline,
     near: &[usize],
     access: &[Vec<V2>],
     rho: f64,
+    slack: f64,
 ) -> Vec<(f64, f64)> {
+    let edges = outline.edges();
     let mut cuts = vec![0.0, len];
-    for (j, e) in edges.iter().enumerate() {
-        if j != i {
-            edge_cuts(f, e, rho, &mut cuts);
+    match f {
+        Feature::Line(line) => {
+            for &j in near {
+                edge_cuts(f, &edges[j], rho, &mut cuts);
+            }
+            let mut far = Vec::new();
+            let mut near_iter = near.iter().peekable();
+            for (j, e) in edges.iter().enumerate() {
+                if near_iter.next_if_eq(&&j).is_none() && j != i {
+                    far_edge_cuts(f, e, rho, &mut far);
+                }
+            }
+            let boxes = near
+                .iter()
+                .map(|&j| outline.edge_boxes()[j])
+                .chain(access.iter().map(|poly| Aabb::of(poly)));
+            NearZones::of(line, len, boxes, rho + slack, slack).add_far_cuts(&far, len, &mut cuts);
+        }
+        Feature::Arc(_) => {
+            for (j, e) in edges.iter().enumerate() {
+                if j != i {
+                    edge_cuts(f, e, rho, &mut cuts);
+                }
+            }
         }
     }
     for poly in access {

@@ -10,8 +10,19 @@ use crate::geometry::{cross, v2, V2};
 use crate::outline::Edge;
 
 /// Parameters where the grown edge `f` crosses the curves at distance
-/// `rho` from edge `edge`.
+/// `rho` from edge `edge` (in no particular order).
 pub(super) fn edge_cuts(f: &Feature, edge: &Edge, rho: f64, cuts: &mut Vec<f64>) {
+    far_edge_cuts(f, edge, rho, cuts);
+    circle_cuts(f, edge.start(), rho, cuts);
+    circle_cuts(f, edge.end(), rho, cuts);
+}
+
+/// The crossings of [`edge_cuts`] that can lie on a grown edge farther than
+/// `rho` from `edge`: those with the lines along a straight edge and the
+/// circles about an arc's centre, which run on past the edge. The circles
+/// about its end points cannot reach the grown edge; their crossings with
+/// its line or circle fall outside the grown edge and would be dropped.
+pub(super) fn far_edge_cuts(f: &Feature, edge: &Edge, rho: f64, cuts: &mut Vec<f64>) {
     match edge {
         Edge::Line { a, b } => {
             let d = b - a;
@@ -21,12 +32,8 @@ pub(super) fn edge_cuts(f: &Feature, edge: &Edge, rho: f64, cuts: &mut Vec<f64>)
                 line_cuts(f, a + m * rho, d, cuts);
                 line_cuts(f, a - m * rho, d, cuts);
             }
-            circle_cuts(f, *a, rho, cuts);
-            circle_cuts(f, *b, rho, cuts);
         }
         Edge::Arc(arc) => {
-            circle_cuts(f, arc.a, rho, cuts);
-            circle_cuts(f, arc.b, rho, cuts);
             circle_cuts(f, arc.center, arc.radius + rho, cuts);
             if arc.radius - rho > 0.0 {
                 circle_cuts(f, arc.center, arc.radius - rho, cuts);

@@ -10,10 +10,14 @@
 
 mod curved;
 mod cuts;
+mod far;
 mod line;
 mod pairs;
 mod segment;
 mod walls;
+
+#[cfg(test)]
+mod tests;
 
 pub use pairs::PairBounds;
 pub(crate) use pairs::PairTable;
