@@ -18,7 +18,7 @@ use super::edge::{ccw_of_cw_outline, edges_of, loop_contains, Edge};
 use super::mass::general;
 use super::validate::{sizes, validate_outline, OutlineError, TOUCH_REL};
 use super::vertex::Vertex;
-use crate::geometry::{cross, V2};
+use crate::geometry::{cross, Aabb, V2};
 use thiserror::Error;
 
 /// Points tried along each edge when deciding whether a loop that meets
@@ -112,9 +112,18 @@ pub fn fmt_g(x: f64) -> String {
     }
 }
 
+/// Two boxes farther apart than this many times the touching tolerance
+/// hold no two points that come within it (distances are rounded by far
+/// less), nor one loop inside the other: the pair is not looked at.
+const FAR_TOL: f64 = 2.0;
+
 /// One loop as read, and counter-clockwise, for the checks.
 struct Loop {
     edges: Vec<Edge>,
+    /// Every edge's box, and the loop's: a part's many small holes are
+    /// told apart by their boxes before their edges are compared.
+    boxes: Vec<Aabb>,
+    aabb: Aabb,
     ccw: Vec<Vertex>,
     ccw_points: Vec<V2>,
     ccw_edges: Vec<Edge>,
@@ -122,8 +131,17 @@ struct Loop {
 
 impl Loop {
     fn of(vertices: &[Vertex], ccw: Vec<Vertex>) -> Loop {
+        let edges = edges_of(vertices);
+        let boxes: Vec<Aabb> = edges.iter().map(Edge::aabb).collect();
+        let mut aabb = Aabb::of(&[]);
+        for b in &boxes {
+            aabb.min = aabb.min.inf(&b.min);
+            aabb.max = aabb.max.sup(&b.max);
+        }
         Loop {
-            edges: edges_of(vertices),
+            edges,
+            boxes,
+            aabb,
             ccw_points: ccw.iter().map(Vertex::point).collect(),
             ccw_edges: edges_of(&ccw),
             ccw,
@@ -157,7 +175,7 @@ pub fn validate_holes(
     let outer = Loop::of(outline, outline_ccw);
     let tol = TOUCH_REL * sizes(outline).1;
     for (index, hole) in loops.iter().enumerate() {
-        if let Some(p) = contact(&hole.edges, &outer.edges, tol) {
+        if let Some(p) = contact(hole, &outer, tol) {
             return Err(HoleError::MeetsOutline {
                 index,
                 crosses: crosses(&hole.edges, &outer, tol),
@@ -169,7 +187,11 @@ pub fn validate_holes(
             return Err(HoleError::Outside { index });
         }
         for (other, earlier) in loops[..index].iter().enumerate() {
-            if let Some(p) = contact(&hole.edges, &earlier.edges, tol) {
+            if hole.aabb.gap(&earlier.aabb) > FAR_TOL * tol {
+                // Neither meets nor holds the other.
+                continue;
+            }
+            if let Some(p) = contact(hole, earlier, tol) {
                 return Err(HoleError::MeetsHole {
                     index,
                     other,
@@ -199,10 +221,21 @@ pub fn validate_holes(
 }
 
 /// The first point (edges of `a` in order, then of `b`) where two loops
-/// come within `tol`, on `a`.
-fn contact(a: &[Edge], b: &[Edge], tol: f64) -> Option<V2> {
-    a.iter().find_map(|e| {
-        b.iter().find_map(|f| {
+/// come within `tol`, on `a`. Edges whose boxes lie far apart are not
+/// compared: they cannot be the first.
+fn contact(a: &Loop, b: &Loop, tol: f64) -> Option<V2> {
+    let far = |x: &Aabb, y: &Aabb| x.gap(y) > FAR_TOL * tol;
+    if far(&a.aabb, &b.aabb) {
+        return None;
+    }
+    a.edges.iter().zip(&a.boxes).find_map(|(e, eb)| {
+        if far(eb, &b.aabb) {
+            return None;
+        }
+        b.edges.iter().zip(&b.boxes).find_map(|(f, fb)| {
+            if far(eb, fb) {
+                return None;
+            }
             let c = e.closest(f);
             (c.distance <= tol).then_some(c.p)
         })

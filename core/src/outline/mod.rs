@@ -49,6 +49,9 @@ pub struct Outline {
     /// The vertex positions, kept because point location runs in the
     /// clearance tests of every candidate fixture.
     points: Vec<V2>,
+    /// The box of every edge, in edge order: the segment code asks which
+    /// edges come near a grown edge once per edge.
+    boxes: Vec<Aabb>,
     /// Whether an edge of the outline is an arc.
     has_arcs: bool,
     /// The holes, clockwise (SPEC 9.2).
@@ -107,11 +110,14 @@ impl Outline {
     pub fn with_holes(mut self, holes: Vec<Vec<Vertex>>) -> Outline {
         self.holes.clear();
         self.edges.truncate(self.vertices.len());
+        self.boxes.truncate(self.vertices.len());
         for vertices in holes {
             let start = self.edges.len();
             self.edges.extend(edges_of(&vertices));
             let edges = start..self.edges.len();
-            let aabb = loop_aabb(&self.edges[edges.clone()]);
+            self.boxes
+                .extend(self.edges[edges.clone()].iter().map(Edge::aabb));
+            let aabb = union_of(&self.boxes[edges.clone()]);
             let points = vertices.iter().map(Vertex::point).collect();
             self.holes.push(Hole {
                 vertices,
@@ -129,8 +135,10 @@ impl Outline {
         let edges = edges_of(&vertices);
         let points = vertices.iter().map(Vertex::point).collect();
         let has_arcs = edges.iter().any(Edge::is_arc);
+        let boxes = edges.iter().map(Edge::aabb).collect();
         Outline {
             vertices,
+            boxes,
             edges,
             points,
             has_arcs,
@@ -157,6 +165,11 @@ impl Outline {
         &self.edges
     }
 
+    /// The box of every edge of [`Self::edges`].
+    pub fn edge_boxes(&self) -> &[Aabb] {
+        &self.boxes
+    }
+
     /// The outline's own edges (the first ones of [`Self::edges`]).
     pub fn outline_edges(&self) -> &[Edge] {
         &self.edges[..self.vertices.len()]
@@ -172,13 +185,40 @@ impl Outline {
         !self.holes.is_empty()
     }
 
+    /// The edges of every loop: the outline's, then each hole's in input
+    /// order (SPEC 9.2's numbering).
+    pub fn loop_edges(&self) -> impl Iterator<Item = Range<usize>> + '_ {
+        std::iter::once(0..self.vertices.len()).chain(self.holes.iter().map(|h| h.edges.clone()))
+    }
+
+    /// Pushes onto `out`, in edge order, every edge but `skip` whose box
+    /// comes within `reach` of `near`: the outline's edges one by one, a
+    /// hole's only when the hole's box does, so that a part's many small
+    /// holes cost a box test each. Any edge that has a point within
+    /// `reach` of a point in `near` is listed.
+    pub fn edges_near(&self, near: &Aabb, reach: f64, skip: usize, out: &mut Vec<usize>) {
+        out.clear();
+        let mut consider = |range: Range<usize>| {
+            for j in range {
+                if j != skip && self.boxes[j].gap(near) <= reach {
+                    out.push(j);
+                }
+            }
+        };
+        consider(0..self.vertices.len());
+        for h in &self.holes {
+            if h.aabb.gap(near) <= reach {
+                consider(h.edges.clone());
+            }
+        }
+    }
+
     /// The loop edge `i` belongs to: 0 for the outline, `k + 1` for hole
     /// `k` (SPEC 9.6's `segment_loops`).
     pub fn loop_of_edge(&self, i: usize) -> usize {
-        self.holes
-            .iter()
-            .position(|h| h.edges.contains(&i))
-            .map_or(0, |k| k + 1)
+        // Holes follow one another in the edge list: the loop is the
+        // number of holes starting at or before `i`.
+        self.holes.partition_point(|h| h.edges.start <= i)
     }
 
     /// The edges of the loop that edge `i` belongs to.
@@ -306,11 +346,10 @@ impl Outline {
     }
 }
 
-/// Bounding box of a loop's curves.
-fn loop_aabb(edges: &[Edge]) -> Aabb {
+/// The box around `boxes` (a loop's edges').
+fn union_of(boxes: &[Aabb]) -> Aabb {
     let mut b = Aabb::of(&[]);
-    for e in edges {
-        let eb = e.aabb();
+    for eb in boxes {
         b.min = b.min.inf(&eb.min);
         b.max = b.max.sup(&eb.max);
     }

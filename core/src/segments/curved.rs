@@ -8,12 +8,28 @@
 //! piece between two cuts is kept or removed as a whole by testing its
 //! midpoint with exact distances. No piece can be half in, half out: its
 //! distance function crosses `r - eps` only at cuts.
+//!
+//! Only the edges whose boxes come near the grown edge can make a piece
+//! too close; midpoints are tested against them alone, which gives the
+//! same answers since the others are farther than `r - eps`. Their
+//! crossings still cut a grown arc, and cut a grown line where they can
+//! change a piece's ends ([`super::far`]), so pieces end where they always
+//! did, bit for bit. A hole wall that its own hole leaves no room for (but
+//! stretches shorter than the trims) is known to offer nothing without
+//! the full cut ([`super::walls`]).
 
+use super::cuts::{edge_cuts, far_edge_cuts};
+use super::far::NearZones;
 use super::line::complement;
 use super::segment::{Feature, LineFeature, Segment};
-use crate::geometry::arc::{circle_circle, GrownArc};
-use crate::geometry::{boundary_distance2, cross, point_in_polygon, v2, EPS, V2};
+use super::walls::{offers_nothing, Trim};
+use crate::geometry::{boundary_distance2, point_in_polygon, Aabb, EPS, V2};
 use crate::outline::{Edge, GrownEdge, Outline};
+
+/// Slack of the box tests that choose the edges a midpoint is tested
+/// against, relative to the coordinates' size: boxes and distances are
+/// rounded by far less.
+const NEAR_SLACK_REL: f64 = 1e-7;
 
 /// The segments of a part region with arcs or holes, lattice units.
 pub(super) fn outline_segments(
@@ -23,38 +39,76 @@ pub(super) fn outline_segments(
     trim: f64,
 ) -> Vec<Segment> {
     let edges = outline.edges();
+    let rho = r - EPS;
     let mut out = Vec::new();
-    for (i, edge) in edges.iter().enumerate() {
-        let Some(feature) = edge.grown(r, EPS).map(feature_of) else {
-            continue;
-        };
-        let len = feature_length(&feature, edge);
-        let mut removed = removed_pieces(&feature, len, i, edges, access, r - EPS);
-        let smooth_start = outline.smooth_joint(i);
-        let smooth_end = outline.smooth_joint(outline.next_in_loop(i));
-        for (lo, hi) in complement(&mut removed, 0.0, len) {
-            // SPEC 8.2: no trim where the piece runs into a smooth joint.
-            let s0 = if lo == 0.0 && smooth_start {
-                lo
-            } else {
-                lo + trim
+    let mut near = Vec::new();
+    for (k, own) in outline.loop_edges().enumerate() {
+        for i in own.clone() {
+            let edge = &edges[i];
+            let Some(feature) = edge.grown(r, EPS).map(feature_of) else {
+                continue;
             };
-            let s1 = if hi == len && smooth_end {
-                hi
-            } else {
-                hi - trim
+            let len = feature_length(&feature, edge);
+            let smooth_start = outline.smooth_joint(i);
+            let smooth_end = outline.smooth_joint(outline.next_in_loop(i));
+            let trims = Trim {
+                trim,
+                smooth_start,
+                smooth_end,
             };
-            if s1 - s0 > EPS {
-                out.push(Segment {
-                    edge: i,
-                    s0,
-                    s1,
-                    feature,
-                });
+            if k > 0 && offers_nothing(&feature, len, i, edges, own.clone(), rho, trims) {
+                continue;
             }
+            // The grown edge lies within r of the edge: an edge farther
+            // than r + rho from the edge's box is farther than rho from it.
+            let edge_box = edge.aabb();
+            let slack = NEAR_SLACK_REL * (1.0 + size_of(&edge_box) + r);
+            outline.edges_near(&edge_box, r + rho + slack, i, &mut near);
+            let mut removed = removed_pieces(&feature, len, i, outline, &near, access, rho, slack);
+            let pieces = complement(&mut removed, 0.0, len);
+            push_pieces(&mut out, i, &feature, pieces, len, trims);
         }
     }
     out
+}
+
+/// The segments of edge `i` from the pieces its cut keeps: each trimmed
+/// at both ends, except (SPEC 8.2) where it runs into a smooth joint.
+fn push_pieces(
+    out: &mut Vec<Segment>,
+    i: usize,
+    feature: &Feature,
+    pieces: Vec<(f64, f64)>,
+    len: f64,
+    trims: Trim,
+) {
+    for (lo, hi) in pieces {
+        let s0 = if lo == 0.0 && trims.smooth_start {
+            lo
+        } else {
+            lo + trims.trim
+        };
+        let s1 = if hi == len && trims.smooth_end {
+            hi
+        } else {
+            hi - trims.trim
+        };
+        if s1 - s0 > EPS {
+            out.push(Segment {
+                edge: i,
+                s0,
+                s1,
+                feature: *feature,
+            });
+        }
+    }
+}
+
+/// The largest coordinate of a box.
+fn size_of(b: &Aabb) -> f64 {
+    [b.min.x, b.min.y, b.max.x, b.max.y]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 /// The grown edge as a segment feature (the whole grown edge, `s` from 0).
@@ -78,19 +132,48 @@ fn feature_length(f: &Feature, edge: &Edge) -> f64 {
 }
 
 /// The open parameter intervals of the grown edge `i` that lie closer than
-/// `rho` to another edge or to a filled access region.
+/// `rho` to another edge or to a filled access region. Cut at the curves
+/// of every edge (on a grown line, those of far edges only where they can
+/// change the answer: [`super::far`]); `near` lists the edges a point of
+/// the grown edge can be closer than `rho` to, `slack` the rounding
+/// allowance of the box tests that chose them.
+#[allow(clippy::too_many_arguments)] // the cut's inputs, each used
 fn removed_pieces(
     f: &Feature,
     len: f64,
     i: usize,
-    edges: &[Edge],
+    outline: &Outline,
+    near: &[usize],
     access: &[Vec<V2>],
     rho: f64,
+    slack: f64,
 ) -> Vec<(f64, f64)> {
+    let edges = outline.edges();
     let mut cuts = vec![0.0, len];
-    for (j, e) in edges.iter().enumerate() {
-        if j != i {
-            edge_cuts(f, e, rho, &mut cuts);
+    match f {
+        Feature::Line(line) => {
+            for &j in near {
+                edge_cuts(f, &edges[j], rho, &mut cuts);
+            }
+            let mut far = Vec::new();
+            let mut near_iter = near.iter().peekable();
+            for (j, e) in edges.iter().enumerate() {
+                if near_iter.next_if_eq(&&j).is_none() && j != i {
+                    far_edge_cuts(f, e, rho, &mut far);
+                }
+            }
+            let boxes = near
+                .iter()
+                .map(|&j| outline.edge_boxes()[j])
+                .chain(access.iter().map(|poly| Aabb::of(poly)));
+            NearZones::of(line, len, boxes, rho + slack, slack).add_far_cuts(&far, len, &mut cuts);
+        }
+        Feature::Arc(_) => {
+            for (j, e) in edges.iter().enumerate() {
+                if j != i {
+                    edge_cuts(f, e, rho, &mut cuts);
+                }
+            }
         }
     }
     for poly in access {
@@ -106,10 +189,7 @@ fn removed_pieces(
     cuts.sort_by(f64::total_cmp);
     cuts.dedup();
     let too_close = |p: V2| {
-        edges
-            .iter()
-            .enumerate()
-            .any(|(j, e)| j != i && e.distance(p) < rho)
+        near.iter().any(|&j| edges[j].distance(p) < rho)
             || access
                 .iter()
                 .any(|poly| point_in_polygon(p, poly) || boundary_distance2(p, poly).sqrt() < rho)
@@ -118,81 +198,4 @@ fn removed_pieces(
         .filter(|w| w[1] > w[0] && too_close(f.point(0.5 * (w[0] + w[1]))))
         .map(|w| (w[0], w[1]))
         .collect()
-}
-
-/// Parameters where the grown edge `f` crosses the curves at distance
-/// `rho` from edge `edge`.
-fn edge_cuts(f: &Feature, edge: &Edge, rho: f64, cuts: &mut Vec<f64>) {
-    match edge {
-        Edge::Line { a, b } => {
-            let d = b - a;
-            let len = d.norm();
-            if len > 0.0 {
-                let m = v2(-d.y, d.x) / len;
-                line_cuts(f, a + m * rho, d, cuts);
-                line_cuts(f, a - m * rho, d, cuts);
-            }
-            circle_cuts(f, *a, rho, cuts);
-            circle_cuts(f, *b, rho, cuts);
-        }
-        Edge::Arc(arc) => {
-            circle_cuts(f, arc.a, rho, cuts);
-            circle_cuts(f, arc.b, rho, cuts);
-            circle_cuts(f, arc.center, arc.radius + rho, cuts);
-            if arc.radius - rho > 0.0 {
-                circle_cuts(f, arc.center, arc.radius - rho, cuts);
-            }
-        }
-    }
-}
-
-/// Parameters where `f` meets the circle `(c, rad)`.
-fn circle_cuts(f: &Feature, c: V2, rad: f64, cuts: &mut Vec<f64>) {
-    match f {
-        Feature::Line(l) => {
-            let w = l.origin - c;
-            let bh = l.u.dot(&w);
-            let disc = bh * bh - (w.norm_squared() - rad * rad);
-            if disc >= 0.0 {
-                let sq = disc.sqrt();
-                cuts.extend([-bh - sq, -bh + sq]);
-            }
-        }
-        Feature::Arc(a) => {
-            for &p in circle_circle(a.center, a.radius, c, rad, 0.0).as_slice() {
-                cuts.push(a.param_of(p));
-            }
-        }
-    }
-}
-
-/// Parameters where `f` meets the line through `p` along `d`.
-fn line_cuts(f: &Feature, p: V2, d: V2, cuts: &mut Vec<f64>) {
-    match f {
-        Feature::Line(l) => {
-            let den = cross(l.u, d);
-            if den != 0.0 {
-                cuts.push(cross(p - l.origin, d) / den);
-            }
-        }
-        Feature::Arc(a) => line_circle_cuts(a, p, d, cuts),
-    }
-}
-
-fn line_circle_cuts(a: &GrownArc, p: V2, d: V2, cuts: &mut Vec<f64>) {
-    let len2 = d.norm_squared();
-    if len2 == 0.0 {
-        return;
-    }
-    let t0 = (a.center - p).dot(&d) / len2;
-    let foot = p + d * t0;
-    let h2 = (foot - a.center).norm_squared();
-    let w2 = a.radius * a.radius - h2;
-    if w2 < 0.0 {
-        return;
-    }
-    let w = (w2 / len2).sqrt();
-    for t in [t0 - w, t0 + w] {
-        cuts.push(a.param_of(p + d * t));
-    }
 }

@@ -83,7 +83,7 @@ pub(super) fn capsule_interval(origin: V2, u: V2, a: V2, b: V2, rho: f64) -> Opt
 }
 
 /// `{ s : lo < p0 + s dp < hi }`.
-fn slab(p0: f64, dp: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
+pub(super) fn slab(p0: f64, dp: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
     if dp == 0.0 {
         return (p0 > lo && p0 < hi).then_some((f64::NEG_INFINITY, f64::INFINITY));
     }

@@ -9,9 +9,15 @@
 //! its distance to the part or an access region crosses `r`.
 
 mod curved;
+mod cuts;
+mod far;
 mod line;
 mod pairs;
 mod segment;
+mod walls;
+
+#[cfg(test)]
+mod tests;
 
 pub use pairs::PairBounds;
 pub(crate) use pairs::PairTable;

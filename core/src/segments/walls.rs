@@ -1,0 +1,109 @@
+//! Hole walls that offer no segment, recognised at the cost of their own
+//! loop (SPEC 9.3: most bolt holes are smaller than a locator).
+//!
+//! The cut of [`super::curved`] tests every piece of a grown edge between
+//! crossings with the level curves of every edge of the part, a cost that
+//! grows with the square of the edge count when a part has many holes.
+//! A grown hole wall whose every point lies well within `rho` of another
+//! edge of its own hole, but for stretches shorter than the trims, offers
+//! nothing whatever the other edges add: proving that needs only the
+//! hole's own edges. The proof is kept exact with a margin, so the answer is the full
+//! cut's answer bit for bit, and where the margin is not met the full cut
+//! decides.
+
+use super::cuts::edge_cuts;
+use super::segment::Feature;
+use crate::geometry::{Aabb, EPS};
+use crate::outline::Edge;
+use std::ops::Range;
+
+/// Margin of the proof, relative to the coordinates' size: far above the
+/// rounding of a distance (`1e-15` of it) and far below any hole's size.
+const MARGIN_REL: f64 = 1e-7;
+
+/// How the full cut trims a piece of edge `i` (SPEC 2 and 8.2): `trim`
+/// at both ends, none at an end of the edge that is a smooth joint.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Trim {
+    /// The edge trim, lattice units.
+    pub(super) trim: f64,
+    /// Whether the edge's start is a smooth joint.
+    pub(super) smooth_start: bool,
+    /// Whether its end is.
+    pub(super) smooth_end: bool,
+}
+
+/// Whether the grown edge `f` (parameters `0..=len`) of edge `i` offers
+/// no segment because of the other edges of its loop alone (`own`,
+/// indices into `edges`): every point lies closer than `rho` to one of
+/// them, with a margin rounding cannot eat, except on stretches too short
+/// to survive the trim. Then the full cut, which tests the same edges
+/// among others, finds no segment either.
+///
+/// Why it is exact: with `rho1 = rho - margin`, the distance from the
+/// grown edge to the loop crosses `rho1` only at the cuts computed here,
+/// so between two cuts it stays on one side of `rho1`; a piece whose
+/// middle lies closer than `rho1 - margin` is closer than `rho1` all
+/// along, up to rounding near its ends, so closer than `rho - margin / 2`,
+/// and the full cut removes every point of it. What the full cut keeps
+/// lies in the other pieces (its ends are where the distance reaches
+/// `rho`, inside them, up to rounding), so a run of them shorter than the
+/// trims, by a margin, holds no segment.
+pub(super) fn offers_nothing(
+    f: &Feature,
+    len: f64,
+    i: usize,
+    edges: &[Edge],
+    own: Range<usize>,
+    rho: f64,
+    trim: Trim,
+) -> bool {
+    let margin = MARGIN_REL * (1.0 + size_of(f, len));
+    let rho1 = rho - margin;
+    if rho1 - margin <= 0.0 {
+        return false;
+    }
+    let others = || own.clone().filter(move |&j| j != i).map(|j| &edges[j]);
+    let mut cuts = vec![0.0, len];
+    for e in others() {
+        edge_cuts(f, e, rho1, &mut cuts);
+    }
+    cuts.retain(|s| *s >= 0.0 && *s <= len);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    // A run of pieces not shown covered, as (start, end).
+    let mut run: Option<(f64, f64)> = None;
+    let too_short = |(a, b): (f64, f64)| {
+        let t0 = if a <= margin && trim.smooth_start {
+            0.0
+        } else {
+            trim.trim
+        };
+        let t1 = if b >= len - margin && trim.smooth_end {
+            0.0
+        } else {
+            trim.trim
+        };
+        (b - a) + 3.0 * margin - t0 - t1 <= EPS
+    };
+    for w in cuts.windows(2) {
+        let p = f.point(0.5 * (w[0] + w[1]));
+        if others().any(|e| e.distance(p) < rho1 - margin) {
+            if !run.take().is_none_or(too_short) {
+                return false;
+            }
+        } else {
+            run = Some(run.map_or((w[0], w[1]), |(a, _)| (a, w[1])));
+        }
+    }
+    run.is_none_or(too_short)
+}
+
+/// The largest coordinate of the grown edge's ends and middle, for the
+/// margin's scale.
+fn size_of(f: &Feature, len: f64) -> f64 {
+    let b = Aabb::of(&[f.point(0.0), f.point(0.5 * len), f.point(len)]);
+    [b.min.x, b.min.y, b.max.x, b.max.y]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+}
