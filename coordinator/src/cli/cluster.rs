@@ -169,7 +169,8 @@ pub struct WorkerArgs {
     #[arg(long, hide = true, default_value_t = PROTOCOL_VERSION)]
     pub protocol_version: u16,
     /// Misbehave (tests of the coordinator's checks): corrupt-score,
-    /// forge-finished, slow:MS (every shard MS longer).
+    /// forge-finished, slow:MS (every shard MS longer),
+    /// abort-on-vertices:N (die on a part of N outline vertices).
     #[arg(long, hide = true)]
     pub fault: Option<Fault>,
 }
@@ -302,7 +303,7 @@ pub fn worker_main(a: &WorkerArgs) -> Result<()> {
         stay: a.stay,
         name: a.name.clone(),
         protocol_version: a.protocol_version,
-        runner: match a.fault {
+        runner: match a.fault.clone() {
             Some(fault) => Arc::new(fault) as Arc<dyn Runner>,
             None => Arc::new(Plain),
         },

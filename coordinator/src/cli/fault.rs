@@ -2,6 +2,8 @@
 //! tests of the coordinator's checks. A fault is a [`Runner`] around the
 //! worker's plain one ([`fixplan_worker::task::run`]), the one seam
 //! between a worker and its tasks; the honest code knows nothing of it.
+//! `fixplan run --fault abort-on:ID` is the one fault of a run in this
+//! process: it dies on a part as a part that kills it would.
 
 use fixplan_worker::finish::{FinishInputs, Finisher};
 use fixplan_worker::protocol::{Answer, Assign, FinishError, Outcome, Task};
@@ -10,7 +12,7 @@ use std::time::Duration;
 use thiserror::Error;
 
 /// Misbehaviours for tests of the coordinator's checks.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Fault {
     /// Halve the score of the best fixture of every enumeration (and
     /// finish parts from the halved result).
@@ -22,15 +24,21 @@ pub enum Fault {
     /// run lasts as long whatever the size of its assignments, which tests
     /// that upset a worker mid-run rely on).
     SlowMs(u64),
+    /// `fixplan run`: abort the process when this part's solve starts
+    /// (not a panic, which the run catches).
+    AbortOn(String),
+    /// A worker: abort the process on any task of a part whose outline
+    /// has this many vertices (a worker knows no part ids).
+    AbortOnVertices(usize),
 }
 
 /// A `--fault` value that names no [`Fault`].
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum FaultError {
-    /// None of `corrupt-score`, `forge-finished`, `slow:MS`.
-    #[error("unknown fault {0:?} (corrupt-score, forge-finished, slow:MS)")]
+    /// None of the faults.
+    #[error("unknown fault {0:?} (corrupt-score, forge-finished, slow:MS, abort-on:ID, abort-on-vertices:N)")]
     Unknown(String),
-    /// `slow:` without a number of milliseconds.
+    /// `slow:` or `abort-on-vertices:` without a number.
     #[error("{text}: {source}")]
     SlowMs {
         /// The value given.
@@ -49,14 +57,20 @@ impl std::str::FromStr for Fault {
         if s == "forge-finished" {
             return Ok(Fault::ForgeFinished);
         }
+        let number = |text: &str| {
+            text.parse::<u64>().map_err(|source| FaultError::SlowMs {
+                text: s.to_string(),
+                source,
+            })
+        };
         if let Some(ms) = s.strip_prefix("slow:") {
-            return ms
-                .parse()
-                .map(Fault::SlowMs)
-                .map_err(|source| FaultError::SlowMs {
-                    text: s.to_string(),
-                    source,
-                });
+            return number(ms).map(Fault::SlowMs);
+        }
+        if let Some(n) = s.strip_prefix("abort-on-vertices:") {
+            return number(n).map(|n| Fault::AbortOnVertices(n as usize));
+        }
+        if let Some(id) = s.strip_prefix("abort-on:") {
+            return Ok(Fault::AbortOn(id.to_string()));
         }
         Err(FaultError::Unknown(s.to_string()))
     }
@@ -116,6 +130,14 @@ impl Runner for Fault {
         // touches it.
         let enumerates = !matches!(a.task, Task::Finish { .. });
         let tamper = match *self {
+            Fault::AbortOnVertices(n) => {
+                let prepared = part.get();
+                if matches!(prepared.as_ref(), Ok((input, _)) if input.part.outline.len() == n) {
+                    std::process::abort();
+                }
+                None
+            }
+            Fault::AbortOn(_) => None,
             Fault::SlowMs(ms) => {
                 if enumerates {
                     std::thread::sleep(Duration::from_millis(ms));
@@ -153,6 +175,8 @@ mod tests {
         assert_eq!("corrupt-score".parse(), Ok(Fault::CorruptScore));
         assert_eq!("forge-finished".parse(), Ok(Fault::ForgeFinished));
         assert_eq!("slow:150".parse(), Ok(Fault::SlowMs(150)));
+        assert_eq!("abort-on:a b".parse(), Ok(Fault::AbortOn("a b".into())));
+        assert_eq!("abort-on-vertices:7".parse(), Ok(Fault::AbortOnVertices(7)));
         assert!(matches!(
             "slow:x".parse::<Fault>(),
             Err(FaultError::SlowMs { .. })

@@ -130,6 +130,10 @@ enum Cmd {
         cluster: cluster::RunClusterArgs,
         #[command(flatten)]
         search: study::SearchArgs,
+        /// Die on purpose (tests of the journal): abort-on:ID aborts the
+        /// process when part ID's solve starts.
+        #[arg(long, hide = true, value_name = "abort-on:ID")]
+        fault: Option<fault::Fault>,
     },
     /// Compare kits on a catalogue: which kit to buy, which clamp to add.
     #[command(long_about = study::STUDY_HELP)]
@@ -329,6 +333,20 @@ fn run_load(sheet: bool, holes: Option<HoleMode>) -> LoadOptions {
     }
 }
 
+/// `fixplan run --fault`: only the fault of a run in this process.
+fn run_fault(fault: Option<fault::Fault>) -> Result<()> {
+    match fault {
+        None => Ok(()),
+        Some(fault::Fault::AbortOn(id)) => {
+            crate::run::journal::fault::abort_on(&id);
+            Ok(())
+        }
+        Some(other) => {
+            anyhow::bail!("--fault {other:?} is a worker's fault (fixplan worker --fault)")
+        }
+    }
+}
+
 fn real_main() -> Result<()> {
     let cli = Cli::parse();
     // Once per process, before any work: library code only emits events.
@@ -354,7 +372,9 @@ fn real_main() -> Result<()> {
             holes,
             cluster,
             search,
+            fault,
         } => {
+            run_fault(fault)?;
             let backend = run_backend(&cluster, threads, shard_size);
             load_and_run(
                 &RunOptions {

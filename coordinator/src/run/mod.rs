@@ -13,6 +13,7 @@
 pub(crate) mod backend;
 pub(crate) mod cluster_jobs;
 pub(crate) mod finish;
+pub(crate) mod journal;
 pub(crate) mod ordered;
 pub(crate) mod outcome;
 pub(crate) mod progress;
@@ -159,6 +160,17 @@ pub fn run_parts(
     };
     let (mut writer, start) =
         resume::open_output(&opts.output, opts.resume, &run_parts, &mut progress)?;
+    // The parts in flight, for the next resume: in this process only (a
+    // cluster's workers solve elsewhere).
+    let journal = match opts.backend {
+        Backend::Embedded { .. } => {
+            let mut j =
+                journal::Journal::open(&opts.output, &run_msg, &run_parts.ids, opts.resume)?;
+            j.set_first(start);
+            Some(j)
+        }
+        Backend::Cluster(_) => None,
+    };
     let ctx = JobContext {
         kit: &spec.kit,
         params: &params,
@@ -198,6 +210,7 @@ pub fn run_parts(
         &jobs,
         &opts.backend,
         Some(&remote),
+        journal.as_ref().map(|j| j as &dyn journal::Watch),
         |i, s| part_outcome(&ctx, start + i, jobs[i].part, s),
         |_, out: Result<PartOutcome, OutcomeError>| {
             let o = out.with_context(|| format!("writing {}", partial.display()))?;
@@ -214,6 +227,9 @@ pub fn run_parts(
     progress.finish();
     solved?;
     resume::close_output(writer, &opts.output)?;
+    if let Some(j) = journal {
+        j.remove();
+    }
     let totals = progress.totals.clone();
     if !opts.quiet {
         // `?`, not `print!`: a closed stdout (`| head`) is an error the

@@ -6,6 +6,7 @@
 
 use super::backend::{Backend, PartJob, RemoteFinish};
 use super::cluster_jobs::Sink;
+use super::journal::Watch;
 use super::ordered::Reorder;
 use crate::job::{solve_guarded, Solved};
 use anyhow::{Context, Result};
@@ -23,17 +24,20 @@ pub fn solve_in_order<T: Send>(
     finish: impl Fn(usize, Solved) -> T + Sync,
     deliver: impl FnMut(usize, T) -> Result<()>,
 ) -> Result<()> {
-    solve_in_order_finishing(jobs, backend, None, finish, deliver)
+    solve_in_order_finishing(jobs, backend, None, None, finish, deliver)
 }
 
 /// [`solve_in_order`] where the cluster's workers may finish jobs
 /// themselves: `remote` says what a worker needs to finish job `i`, and
 /// such jobs are kept by `remote.keep` instead of `finish` (not always: a
-/// job whose result was re-derived here comes solved).
+/// job whose result was re-derived here comes solved). On the embedded
+/// backend, `watch` is told of every job's solve and may answer a job
+/// without solving it or have it solved alone (the run's journal).
 pub fn solve_in_order_finishing<T: Send>(
     jobs: &[PartJob],
     backend: &Backend,
     remote: Option<&RemoteFinish<T>>,
+    watch: Option<&dyn Watch>,
     finish: impl Fn(usize, Solved) -> T + Sync,
     mut deliver: impl FnMut(usize, T) -> Result<()>,
 ) -> Result<()> {
@@ -54,6 +58,7 @@ pub fn solve_in_order_finishing<T: Send>(
                 next: AtomicUsize::new(0),
                 abort: &abort,
                 gate: &gate,
+                watch,
             };
             (None, Some(drivers))
         }
@@ -121,6 +126,7 @@ struct Drivers<'a, 'j> {
     next: AtomicUsize,
     abort: &'a AtomicBool,
     gate: &'a (Mutex<usize>, Condvar),
+    watch: Option<&'a dyn Watch>,
 }
 
 impl Drivers<'_, '_> {
@@ -131,11 +137,25 @@ impl Drivers<'_, '_> {
         2 * self.pool.current_num_threads().max(1) + 2
     }
 
-    /// Waits until job `i` is within the window of the delivered ones;
-    /// false if the run is aborting.
+    /// Whether job `job` must wait, `delivered` jobs being delivered: it
+    /// is beyond the window, or a job before it must be solved alone and
+    /// is not delivered yet, or it must be solved alone and jobs before it
+    /// are not delivered yet.
+    fn must_wait(&self, job: usize, delivered: usize) -> bool {
+        if job >= delivered + self.window() {
+            return true;
+        }
+        let Some(w) = self.watch else {
+            return false;
+        };
+        (delivered..job).any(|j| w.alone(j)) || (w.alone(job) && delivered < job)
+    }
+
+    /// Waits until job `i` may start (within the window of the delivered
+    /// ones, alone if it must be); false if the run is aborting.
     fn wait_for_room(&self, job: usize) -> bool {
         let mut delivered = self.gate.0.lock().unwrap_or_else(|e| e.into_inner());
-        while job >= *delivered + self.window() && !self.abort.load(Ordering::SeqCst) {
+        while self.must_wait(job, *delivered) && !self.abort.load(Ordering::SeqCst) {
             delivered = self
                 .gate
                 .1
@@ -156,10 +176,23 @@ impl Drivers<'_, '_> {
                 break;
             }
             let job = &self.jobs[i];
-            let out = self.pool.install(|| {
-                let solved = solve_guarded(job.ctx, job.part, job.preparation);
-                finish(i, solved)
-            });
+            let answered = self.watch.and_then(|w| w.verdict(i));
+            let out = match answered {
+                Some(solved) => finish(i, solved),
+                None => {
+                    if let Some(w) = self.watch {
+                        w.started(i);
+                    }
+                    let out = self.pool.install(|| {
+                        let solved = solve_guarded(job.ctx, job.part, job.preparation);
+                        finish(i, solved)
+                    });
+                    if let Some(w) = self.watch {
+                        w.finished(i);
+                    }
+                    out
+                }
+            };
             if tx.send((i, out)).is_err() {
                 break;
             }
