@@ -383,7 +383,7 @@ impl Watch for Journal {
 /// part ID's solve starts, as a part that overflows its stack or is
 /// killed by the OOM killer ends it; not a panic, which
 /// [`crate::job::solve_guarded`] would catch.
-pub mod fault {
+pub(crate) mod fault {
     use std::sync::OnceLock;
 
     static ABORT_ON: OnceLock<String> = OnceLock::new();

@@ -65,7 +65,7 @@ impl ClampWindow {
 /// An arc segment's piece of its circle as directions from the centre,
 /// part frame: computed once per part so that a setup only rotates it.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ArcPiece {
+pub(crate) struct ArcReach {
     /// The piece's middle.
     mid: V2,
     /// Cosine of the piece's half-angle (-1: the whole circle).
@@ -76,9 +76,9 @@ pub(crate) struct ArcPiece {
     inv_rho: f64,
 }
 
-impl ArcPiece {
+impl ArcReach {
     /// The piece of an arc segment, `None` for a line.
-    pub(crate) fn of(seg: &Segment) -> Option<ArcPiece> {
+    pub(crate) fn of(seg: &Segment) -> Option<ArcReach> {
         let Feature::Arc(arc) = &seg.feature else {
             return None;
         };
@@ -87,7 +87,7 @@ impl ArcPiece {
             v2(cs, sn)
         };
         let half = 0.5 * (seg.s1 - seg.s0) / arc.radius;
-        Some(ArcPiece {
+        Some(ArcReach {
             mid: dir(0.5 * (seg.s0 + seg.s1)),
             cos_half: if half >= PI { -1.0 } else { half.cos() },
             ends: [dir(seg.s0), dir(seg.s1)],
@@ -117,7 +117,7 @@ impl ArcPiece {
     }
 }
 
-/// An [`ArcPiece`] posed for one setup.
+/// An [`ArcReach`] posed for one setup.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PosedPiece {
     mid: V2,
@@ -247,7 +247,7 @@ mod tests {
             };
             let limit = f64::to_radians(degrees).cos();
             let window = ClampWindow::new(limit);
-            let piece = ArcPiece::of(&seg)
+            let piece = ArcReach::of(&seg)
                 .expect("an arc")
                 .posed(&pose, arc.center, arc.radius);
             let (centre, rho, convex) = (pose.apply(arc.center), arc.radius, arc.is_convex());

@@ -4,7 +4,7 @@
 //! narrows an arc segment's axis lines before the exact tests.
 
 mod arc_reach;
-pub(crate) use arc_reach::{ArcPiece, ClampWindow};
+pub(crate) use arc_reach::{ArcReach, ClampWindow};
 
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, LocatorWrenches};
@@ -181,9 +181,9 @@ pub(crate) struct ClampSearch<'a> {
     pub(crate) metric: &'a dyn Metric,
     /// Part, access regions and locators, for the clearance checks.
     pub(crate) obstacles: Obstacles<'a>,
-    /// Each segment's [`ArcPiece`] (`None` for a line), numbered as
+    /// Each segment's [`ArcReach`] (`None` for a line), numbered as
     /// `segments`; empty, arcs try every axis line across their circle.
-    pub(crate) arc_pieces: &'a [Option<ArcPiece>],
+    pub(crate) arc_pieces: &'a [Option<ArcReach>],
     /// The directions the setting's angle test can accept.
     pub(crate) window: ClampWindow,
 }

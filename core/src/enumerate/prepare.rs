@@ -7,7 +7,7 @@
 //! loop of [`Stages`]) the pieces that stage reads.
 
 use crate::checks::admissibility::{Obstacles, Scratch};
-use crate::clamp::{Accumulator, ArcPiece, ClampSearch, ClampWindow};
+use crate::clamp::{Accumulator, ArcReach, ClampSearch, ClampWindow};
 use crate::enumerate::combinations::combination_count;
 use crate::enumerate::shards::{EnumerateOptions, Enumeration, PartialResult, Stages};
 use crate::geometry::polygon::validate_polygon;
@@ -66,7 +66,7 @@ pub struct PreparedPart {
     /// combination's pivot costs no trig per combination.
     swept: Vec<SweptSegment>,
     /// Each arc segment's piece of circle, for the clamp search.
-    arc_pieces: Vec<Option<ArcPiece>>,
+    arc_pieces: Vec<Option<ArcReach>>,
     setting: Setting,
 }
 
@@ -85,7 +85,7 @@ pub fn prepare(
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
     let swept = segments.iter().map(SweptSegment::of).collect();
-    let arc_pieces = segments.iter().map(ArcPiece::of).collect();
+    let arc_pieces = segments.iter().map(ArcReach::of).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
         spacing: l,
