@@ -759,3 +759,77 @@ fn a_cut_part_waiting_to_be_finished_is_merged_again_if_a_worker_of_it_is_banned
         }
     }
 }
+
+/// The honest outcome of each task of `batch`, whatever its part.
+fn honest_any(scheduler: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+    batch
+        .iter()
+        .map(|a| {
+            let prep = {
+                let st = scheduler.lock();
+                let part = st.shards[a.shard_id as usize].part;
+                st.parts[part].prep.clone().expect("prepared")
+            };
+            done(a, prep.enumerate_range(range_of(a)), None)
+        })
+        .collect()
+}
+
+/// Workers lost holding a batch: every part in it is suspected once and
+/// its shards go out alone; the part whose lone shard is with the next
+/// worker lost is failed and never handed out again; the others are
+/// merged as usual.
+#[test]
+fn a_part_whose_shards_were_with_two_lost_workers_is_failed() {
+    let (mut c, rx) = core_rx(3, 8, VerifyPolicy::All);
+    c.settings.batch_cost = u64::MAX;
+    join(&c, "w1");
+    let first = ids(&c.next_work("w1"));
+    let part_of = |id: u64| c.lock().shards[id as usize].part;
+    let parts: std::collections::BTreeSet<usize> = first.iter().map(|&id| part_of(id)).collect();
+    assert!(parts.len() >= 2, "{first:?}");
+    c.worker_lost("w1");
+    join(&c, "w2");
+    let lone = ids(&c.next_work("w2"));
+    assert_eq!(lone.len(), 1, "a suspect's shard goes alone: {lone:?}");
+    let killer = part_of(lone[0]);
+    c.worker_lost("w2");
+    join(&c, "w3");
+    let mut next = c.next_work("w3");
+    loop {
+        match next {
+            Next::Work(batch) => {
+                assert!(batch.iter().all(|a| part_of(a.shard_id) != killer));
+                // A suspect holds its worker alone.
+                let suspects = batch
+                    .iter()
+                    .filter(|a| parts.contains(&part_of(a.shard_id)))
+                    .count();
+                assert!(suspects == 0 || batch.len() == 1, "{}", batch.len());
+                let outcomes = honest_any(&c, &batch);
+                let Frame::Msg(Msg::Reply { next: n, .. }) = report(&c, "w3", outcomes) else {
+                    panic!("no reply")
+                };
+                next = n;
+            }
+            Next::Idle { .. } => next = c.next_work("w3"),
+            Next::Done => break,
+            other => panic!("{other:?}"),
+        }
+    }
+    let delivered: Vec<Delivery> = rx.try_iter().flatten().collect();
+    assert_eq!(delivered.len(), 3);
+    for (i, d) in delivered {
+        match d {
+            Err(PartFailure::Killed { workers, alone }) => {
+                assert_eq!((i, workers, alone), (killer, 2, 1));
+                assert_eq!(
+                    PartFailure::Killed { workers, alone }.status(),
+                    fixplan_core::Status::Failed
+                );
+            }
+            Ok(_) => assert_ne!(i, killer),
+            Err(e) => panic!("part #{i}: {e}"),
+        }
+    }
+}
