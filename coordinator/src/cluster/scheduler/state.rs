@@ -113,8 +113,20 @@ pub(super) struct Deaths {
     pub(super) suspected: bool,
 }
 
-/// Deaths at which a part is failed and handed out no more.
+/// Deaths at which a part is failed and handed out no more (one of them
+/// its own: [`Deaths::condemned`]).
 pub(super) const DEATHS_TO_FAIL: u32 = 2;
+
+impl Deaths {
+    /// Whether the part is to be failed: [`DEATHS_TO_FAIL`] workers, one
+    /// of them holding nothing but its shards. Workers that die at once
+    /// with batches handed out before either loss was seen can share an
+    /// innocent part: deaths in batches alone only make it a suspect,
+    /// whose shards then go out alone, so that a next death is its own.
+    pub(super) fn condemned(&self) -> bool {
+        self.workers >= DEATHS_TO_FAIL && self.alone >= 1
+    }
+}
 
 impl PartSlot {
     pub(super) fn top_k(&self) -> usize {
@@ -416,8 +428,8 @@ pub(super) enum Gone {
 /// that one shard (a batch runs shard after shard, so a slow batch
 /// outlives its leases without anything being wrong), which only makes
 /// its parts suspects: their shards then go out alone, and a timeout of
-/// a shard alone counts. Returns the parts that reached
-/// [`DEATHS_TO_FAIL`].
+/// a shard alone counts. Returns the parts now condemned
+/// ([`Deaths::condemned`]).
 pub(super) fn strike(
     st: &mut State,
     worker: &str,
@@ -425,7 +437,12 @@ pub(super) fn strike(
     how: Gone,
 ) -> Vec<usize> {
     let parts = open_parts_of(st, held);
-    let alone = open_parts_of(st, holding).len() <= 1 && parts.len() == 1;
+    // Of all parts it held, failed ones included: a worker that died
+    // holding the killer's shards too (the killer failed by a death seen
+    // just before) did not die holding nothing else.
+    let mut all = holding.iter().filter_map(|&id| st.shards.get(id as usize));
+    let first = all.next().map(|sh| sh.part);
+    let alone = parts.len() == 1 && all.all(|sh| Some(sh.part) == first);
     let counts = how == Gone::Died || holding.len() == 1;
     let mut condemned = Vec::new();
     for p in parts {
@@ -436,7 +453,7 @@ pub(super) fn strike(
         }
         d.workers += 1;
         d.alone += u32::from(alone);
-        if d.workers >= DEATHS_TO_FAIL {
+        if d.condemned() {
             condemned.push(p);
         }
     }

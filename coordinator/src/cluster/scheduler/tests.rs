@@ -833,3 +833,75 @@ fn a_part_whose_shards_were_with_two_lost_workers_is_failed() {
         }
     }
 }
+
+/// Leases `held` to `worker` as a reply would have.
+fn lease_to(c: &Scheduler, worker: &str, held: &[u64]) {
+    let mut st = c.lock();
+    st.queue.retain(|id| !held.contains(id));
+    for &id in held {
+        st.shards[id as usize].status = ShardStatus::Leased {
+            worker: worker.into(),
+            until: Instant::now() + Duration::from_secs(3600),
+        };
+    }
+    let w = st.workers.get_mut(worker).expect("joined");
+    w.leased.extend(held.iter().copied());
+}
+
+/// Two workers lost at once, each holding a batch with shards of the same
+/// two parts (handed out before either loss was seen): neither death is a
+/// part's own, so neither part is failed, only suspected; the next worker
+/// lost holding one part's shard alone fails that part, and one lost
+/// holding shards of the failed part and of the other does not fail it.
+#[test]
+fn deaths_only_in_batches_fail_no_part() {
+    let (c, _rx) = core_rx(2, 2, VerifyPolicy::All);
+    for w in ["w1", "w2", "w3", "w4"] {
+        join(&c, w);
+    }
+    let (a, b) = {
+        let st = c.lock();
+        (st.parts[0].shard_ids.clone(), st.parts[1].shard_ids.clone())
+    };
+    assert!(a.end - a.start >= 4 && b.end - b.start >= 3, "{a:?} {b:?}");
+    lease_to(&c, "w1", &[a.start, b.start]);
+    lease_to(&c, "w2", &[a.start + 1, b.start + 1]);
+    c.worker_lost("w1");
+    c.worker_lost("w2");
+    assert!(c.lock().done.is_empty(), "no part failed");
+    {
+        let st = c.lock();
+        for p in &st.parts[..2] {
+            assert_eq!((p.deaths.workers, p.deaths.alone), (2, 0));
+            assert!(p.suspect() && !p.closed);
+        }
+    }
+    lease_to(&c, "w3", &[a.start + 2]);
+    c.worker_lost("w3");
+    let failed = |c: &Scheduler| {
+        let st = c.lock();
+        let done: Vec<_> = st
+            .done
+            .iter()
+            .map(|(i, d)| (*i, d.as_ref().err().cloned()))
+            .collect();
+        done
+    };
+    match failed(&c).as_slice() {
+        [(0, Some(PartFailure::Killed { workers, alone }))] => {
+            assert_eq!((*workers, *alone), (3, 1))
+        }
+        other => panic!("{other:?}"),
+    }
+    // A worker that dies holding the failed part's shard too did not die
+    // holding the other alone.
+    lease_to(&c, "w4", &[a.start + 3, b.start + 2]);
+    c.worker_lost("w4");
+    assert_eq!(failed(&c).len(), 1, "part 1 not failed");
+    let st = c.lock();
+    assert_eq!(
+        (st.parts[1].deaths.workers, st.parts[1].deaths.alone),
+        (3, 0)
+    );
+    assert!(!st.parts[1].closed);
+}

@@ -135,9 +135,10 @@ pub(super) fn expire_leases(st: &mut State, now: Instant) {
 
 /// A worker is gone (lost, restarted) or timed out with the shards
 /// `shards.0` (of all it held, `shards.1`): they go back to the queue, and
-/// the parts among them count it ([`strike`]); a part at its second is
-/// failed and handed out no more (its shards went out alone after the
-/// first, so the second is its own). Returns the shards put back.
+/// the parts among them count it ([`strike`]); a part at its second,
+/// one of them its own (a worker holding nothing else: its shards go out
+/// alone after the first), is failed and handed out no more. Returns the
+/// shards put back.
 fn gone_holding(st: &mut State, worker: &str, shards: (&[u64], &[u64]), how: Gone) -> usize {
     let condemned = strike(st, worker, shards, how);
     let n = requeue(st, shards.0.iter().copied());
