@@ -67,6 +67,17 @@ fn aborted(w: &mut Proc) -> bool {
     c.wait().is_ok_and(|s| s.signal() == Some(libc::SIGABRT))
 }
 
+/// The coordinator's unix socket and its lock file, removed on drop: a
+/// run that panics leaves them behind.
+struct SocketFiles(std::path::PathBuf);
+
+impl Drop for SocketFiles {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+        let _ = std::fs::remove_file(self.0.with_extension("sock.lock"));
+    }
+}
+
 #[test]
 fn a_part_that_kills_two_workers_is_failed_and_the_rest_goes_on() {
     let _g = serial();
@@ -89,6 +100,7 @@ fn a_part_that_kills_two_workers_is_failed_and_the_rest_goes_on() {
     let embedded = dir.path().join("embedded.mcap");
     run_catalog(&cat, &spec, &run_opts(&embedded, 5, None)).unwrap();
     let net = Net::new("killer");
+    let _socket = SocketFiles(net.endpoint.trim_start_matches("unixsock-stream/").into());
     let mut options = net.options(TransportChoice::Zenoh);
     options.min_workers = 3;
     let out = dir.path().join("cluster.mcap");
