@@ -133,7 +133,7 @@ impl Runner for Fault {
             Fault::AbortOnVertices(n) => {
                 let prepared = part.get();
                 if matches!(prepared.as_ref(), Ok((input, _)) if input.part.outline.len() == n) {
-                    std::process::abort();
+                    crate::run::journal::fault::die();
                 }
                 None
             }

@@ -154,9 +154,9 @@ fn from_steps(job: &PartJob, steps: Vec<StepOut>, ms: f64) -> Solved {
 fn step_out(job: &PartJob, returned: Result<MergedPart, PartFailure>, ms: f64) -> StepOut {
     match returned {
         Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
-        Err(msg) => {
-            let msg = format!("{}: {msg}", job.part.id);
-            (SolveResult::invalid(msg), None, ms)
+        Err(failure) => {
+            let msg = format!("{}: {failure}", job.part.id);
+            (SolveResult::gave_up(failure.status(), msg), None, ms)
         }
     }
 }

@@ -395,8 +395,22 @@ pub(crate) mod fault {
 
     pub(super) fn maybe_abort(id: &str) {
         if ABORT_ON.get().is_some_and(|a| a == id) {
-            std::process::abort();
+            die();
         }
+    }
+
+    /// Aborts the process, without leaving a core file behind in the
+    /// tests' directories.
+    pub fn die() -> ! {
+        let none = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: setrlimit reads the struct it is given; nothing else.
+        unsafe {
+            libc::setrlimit(libc::RLIMIT_CORE, &none);
+        }
+        std::process::abort()
     }
 }
 

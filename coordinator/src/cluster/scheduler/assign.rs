@@ -78,6 +78,9 @@ fn lease_batch(
 ) -> Option<Vec<Assign>> {
     let mut batch = Vec::new();
     let mut cost = 0;
+    // Suspects' shards this worker may not take now, back in front after.
+    let mut deferred = Vec::new();
+    let holds_nothing = st.workers.get(worker)?.leased.is_empty();
     while cost < limit.0 && batch.len() < limit.1 {
         let Some(id) = st.queue.pop_front() else {
             break;
@@ -87,6 +90,12 @@ fn lease_batch(
             continue;
         }
         let part = &st.parts[sh.part];
+        // A suspect's shard goes alone, to a worker holding nothing.
+        let suspect = part.suspect() && !part.closed;
+        if suspect && !(holds_nothing && batch.is_empty()) {
+            deferred.push(id);
+            continue;
+        }
         let needed = !part.closed && !sh.past(part.stop);
         let Some(task) = needed.then(|| tasks::task(part, sh, settings)).flatten() else {
             // Past a `--good-enough` hit, or of a part delivered: not
@@ -111,6 +120,12 @@ fn lease_batch(
             input,
             task,
         });
+        if suspect {
+            break;
+        }
+    }
+    for id in deferred.into_iter().rev() {
+        st.queue.push_front(id);
     }
     Some(batch)
 }

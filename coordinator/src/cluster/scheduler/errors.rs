@@ -55,4 +55,24 @@ pub enum PartFailure {
     /// ...`): its error as it came over the wire.
     #[error(transparent)]
     Worker(#[from] TaskError),
+    /// Workers died (or their lease ran out) holding its shards twice: it
+    /// is not handed out again.
+    #[error("killed or timed out {workers} workers while being solved ({alone} of them holding nothing else); not handed out again")]
+    Killed {
+        /// Workers lost or timed out holding one of its shards.
+        workers: u32,
+        /// Of those, workers that held nothing but that shard.
+        alone: u32,
+    },
+}
+
+impl PartFailure {
+    /// The part's status: `invalid` when the input cannot be prepared (the
+    /// embedded run's verdict), `failed` when the solving failed.
+    pub fn status(&self) -> fixplan_core::Status {
+        match self {
+            PartFailure::Prepare(_) => fixplan_core::Status::Invalid,
+            PartFailure::Worker(_) | PartFailure::Killed { .. } => fixplan_core::Status::Failed,
+        }
+    }
 }

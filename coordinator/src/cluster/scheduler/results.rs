@@ -4,8 +4,8 @@
 
 use super::errors::{NotTaken, PartFailure};
 use super::state::{
-    queue_finishing, MergedShards, PartSlot, Settings, ShardResult, ShardStatus, ShardWork, State,
-    ROLE, WHOLE,
+    fail_part, queue_finishing, MergedShards, PartSlot, Settings, ShardResult, ShardStatus,
+    ShardWork, State, ROLE, WHOLE,
 };
 use super::{tasks, workers};
 use crate::cluster::verify::{self, CheckError};
@@ -507,14 +507,6 @@ pub(super) fn take_failure(
             PartFailure::Worker(failure.error)
         }
     };
-    for sh in st.shards.iter_mut().filter(|s| s.part == p) {
-        sh.status = ShardStatus::Done;
-    }
-    let part = &mut st.parts[p];
-    if !part.closed {
-        part.closed = true;
-        st.open_parts -= 1;
-        st.done.push((idx, Err(error)));
-    }
+    fail_part(st, p, error);
     Ok(())
 }

@@ -93,6 +93,39 @@ pub(super) struct PartSlot {
     /// finish it: the finishing task's id (the merged result is in that
     /// task's [`ShardWork::Finishing`]).
     pub(super) finishing: Option<u64>,
+    /// Workers lost or timed out holding one of its shards ([`strike`]).
+    pub(super) deaths: Deaths,
+}
+
+/// How often a part's shards were with a worker that was lost or whose
+/// lease ran out.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Deaths {
+    pub(super) workers: u32,
+    /// Of those, workers that held nothing but shards of this part.
+    pub(super) alone: u32,
+    /// Their names: a worker counts once per part (its shards' leases
+    /// may run out one request after another).
+    pub(super) names: HashSet<String>,
+    /// Its shards were with a worker whose lease ran out while it held
+    /// other parts' too: not counted (a slow batch), but its shards now
+    /// go out alone so that a next timeout tells.
+    pub(super) suspected: bool,
+}
+
+/// Deaths at which a part is failed and handed out no more (one of them
+/// its own: [`Deaths::condemned`]).
+pub(super) const DEATHS_TO_FAIL: u32 = 2;
+
+impl Deaths {
+    /// Whether the part is to be failed: [`DEATHS_TO_FAIL`] workers, one
+    /// of them holding nothing but its shards. Workers that die at once
+    /// with batches handed out before either loss was seen can share an
+    /// innocent part: deaths in batches alone only make it a suspect,
+    /// whose shards then go out alone, so that a next death is its own.
+    pub(super) fn condemned(&self) -> bool {
+        self.workers >= DEATHS_TO_FAIL && self.alone >= 1
+    }
 }
 
 impl PartSlot {
@@ -336,6 +369,7 @@ impl State {
             closed: false,
             finish: part.finish.map(Bytes::from),
             finishing: None,
+            deaths: Deaths::default(),
         });
         self.part_index.push(part.index);
         self.open_parts += 1;
@@ -358,6 +392,89 @@ pub(super) fn queue_finishing(st: &mut State, slot: usize, merged: MergedCut) {
     st.queue.push_front(id);
     st.parts[slot].finishing = Some(id);
     st.stats.finishings += 1;
+}
+
+impl PartSlot {
+    /// A suspect: its shards were with a worker that was lost once; each
+    /// goes out alone, to a worker that holds nothing else, so a second
+    /// loss is its own.
+    pub(super) fn suspect(&self) -> bool {
+        self.deaths.workers > 0 || self.deaths.suspected
+    }
+}
+
+/// The open parts of the shards `ids`.
+fn open_parts_of(st: &State, ids: &[u64]) -> HashSet<usize> {
+    ids.iter()
+        .filter_map(|&id| st.shards.get(id as usize))
+        .filter(|sh| sh.status != ShardStatus::Done)
+        .map(|sh| sh.part)
+        .filter(|&p| !st.parts[p].closed)
+        .collect()
+}
+
+/// How a worker left its shards.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Gone {
+    /// Lost or restarted: it died holding them.
+    Died,
+    /// Their lease ran out: it may only be slow with a big batch.
+    TimedOut,
+}
+
+/// `worker` left shards `held` (of all it held, `holding`): every open
+/// part among them counts it once (the coordinator cannot tell which
+/// shard killed it), except a timeout of a worker that held more than
+/// that one shard (a batch runs shard after shard, so a slow batch
+/// outlives its leases without anything being wrong), which only makes
+/// its parts suspects: their shards then go out alone, and a timeout of
+/// a shard alone counts. Returns the parts now condemned
+/// ([`Deaths::condemned`]).
+pub(super) fn strike(
+    st: &mut State,
+    worker: &str,
+    (held, holding): (&[u64], &[u64]),
+    how: Gone,
+) -> Vec<usize> {
+    let parts = open_parts_of(st, held);
+    // Of all parts it held, failed ones included: a worker that died
+    // holding the killer's shards too (the killer failed by a death seen
+    // just before) did not die holding nothing else.
+    let mut all = holding.iter().filter_map(|&id| st.shards.get(id as usize));
+    let first = all.next().map(|sh| sh.part);
+    let alone = parts.len() == 1 && all.all(|sh| Some(sh.part) == first);
+    let counts = how == Gone::Died || holding.len() == 1;
+    let mut condemned = Vec::new();
+    for p in parts {
+        let d = &mut st.parts[p].deaths;
+        d.suspected = true;
+        if !counts || !d.names.insert(worker.to_string()) {
+            continue;
+        }
+        d.workers += 1;
+        d.alone += u32::from(alone);
+        if d.condemned() {
+            condemned.push(p);
+        }
+    }
+    condemned.sort_unstable();
+    condemned
+}
+
+/// Part `p` has no result: none of its shards goes out again, and the
+/// consumer gets `error` for it (once).
+pub(super) fn fail_part(st: &mut State, p: usize, error: PartFailure) {
+    for sh in st.shards.iter_mut().filter(|s| s.part == p) {
+        sh.status = ShardStatus::Done;
+    }
+    let idx = st.part_index.get(p).copied().unwrap_or(p);
+    let part = &mut st.parts[p];
+    if !part.closed {
+        part.closed = true;
+        part.finishing = None;
+        st.open_parts -= 1;
+        st.done.push((idx, Err(error)));
+    }
 }
 
 /// Puts one shard back at the front of the queue, whatever became of it.

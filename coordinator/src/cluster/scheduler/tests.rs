@@ -759,3 +759,149 @@ fn a_cut_part_waiting_to_be_finished_is_merged_again_if_a_worker_of_it_is_banned
         }
     }
 }
+
+/// The honest outcome of each task of `batch`, whatever its part.
+fn honest_any(scheduler: &Scheduler, batch: &[Assign]) -> Vec<Outcome> {
+    batch
+        .iter()
+        .map(|a| {
+            let prep = {
+                let st = scheduler.lock();
+                let part = st.shards[a.shard_id as usize].part;
+                st.parts[part].prep.clone().expect("prepared")
+            };
+            done(a, prep.enumerate_range(range_of(a)), None)
+        })
+        .collect()
+}
+
+/// Workers lost holding a batch: every part in it is suspected once and
+/// its shards go out alone; the part whose lone shard is with the next
+/// worker lost is failed and never handed out again; the others are
+/// merged as usual.
+#[test]
+fn a_part_whose_shards_were_with_two_lost_workers_is_failed() {
+    let (mut c, rx) = core_rx(3, 8, VerifyPolicy::All);
+    c.settings.batch_cost = u64::MAX;
+    join(&c, "w1");
+    let first = ids(&c.next_work("w1"));
+    let part_of = |id: u64| c.lock().shards[id as usize].part;
+    let parts: std::collections::BTreeSet<usize> = first.iter().map(|&id| part_of(id)).collect();
+    assert!(parts.len() >= 2, "{first:?}");
+    c.worker_lost("w1");
+    join(&c, "w2");
+    let lone = ids(&c.next_work("w2"));
+    assert_eq!(lone.len(), 1, "a suspect's shard goes alone: {lone:?}");
+    let killer = part_of(lone[0]);
+    c.worker_lost("w2");
+    join(&c, "w3");
+    let mut next = c.next_work("w3");
+    loop {
+        match next {
+            Next::Work(batch) => {
+                assert!(batch.iter().all(|a| part_of(a.shard_id) != killer));
+                // A suspect holds its worker alone.
+                let suspects = batch
+                    .iter()
+                    .filter(|a| parts.contains(&part_of(a.shard_id)))
+                    .count();
+                assert!(suspects == 0 || batch.len() == 1, "{}", batch.len());
+                let outcomes = honest_any(&c, &batch);
+                let Frame::Msg(Msg::Reply { next: n, .. }) = report(&c, "w3", outcomes) else {
+                    panic!("no reply")
+                };
+                next = n;
+            }
+            Next::Idle { .. } => next = c.next_work("w3"),
+            Next::Done => break,
+            other => panic!("{other:?}"),
+        }
+    }
+    let delivered: Vec<Delivery> = rx.try_iter().flatten().collect();
+    assert_eq!(delivered.len(), 3);
+    for (i, d) in delivered {
+        match d {
+            Err(PartFailure::Killed { workers, alone }) => {
+                assert_eq!((i, workers, alone), (killer, 2, 1));
+                assert_eq!(
+                    PartFailure::Killed { workers, alone }.status(),
+                    fixplan_core::Status::Failed
+                );
+            }
+            Ok(_) => assert_ne!(i, killer),
+            Err(e) => panic!("part #{i}: {e}"),
+        }
+    }
+}
+
+/// Leases `held` to `worker` as a reply would have.
+fn lease_to(c: &Scheduler, worker: &str, held: &[u64]) {
+    let mut st = c.lock();
+    st.queue.retain(|id| !held.contains(id));
+    for &id in held {
+        st.shards[id as usize].status = ShardStatus::Leased {
+            worker: worker.into(),
+            until: Instant::now() + Duration::from_secs(3600),
+        };
+    }
+    let w = st.workers.get_mut(worker).expect("joined");
+    w.leased.extend(held.iter().copied());
+}
+
+/// Two workers lost at once, each holding a batch with shards of the same
+/// two parts (handed out before either loss was seen): neither death is a
+/// part's own, so neither part is failed, only suspected; the next worker
+/// lost holding one part's shard alone fails that part, and one lost
+/// holding shards of the failed part and of the other does not fail it.
+#[test]
+fn deaths_only_in_batches_fail_no_part() {
+    let (c, _rx) = core_rx(2, 2, VerifyPolicy::All);
+    for w in ["w1", "w2", "w3", "w4"] {
+        join(&c, w);
+    }
+    let (a, b) = {
+        let st = c.lock();
+        (st.parts[0].shard_ids.clone(), st.parts[1].shard_ids.clone())
+    };
+    assert!(a.end - a.start >= 4 && b.end - b.start >= 3, "{a:?} {b:?}");
+    lease_to(&c, "w1", &[a.start, b.start]);
+    lease_to(&c, "w2", &[a.start + 1, b.start + 1]);
+    c.worker_lost("w1");
+    c.worker_lost("w2");
+    assert!(c.lock().done.is_empty(), "no part failed");
+    {
+        let st = c.lock();
+        for p in &st.parts[..2] {
+            assert_eq!((p.deaths.workers, p.deaths.alone), (2, 0));
+            assert!(p.suspect() && !p.closed);
+        }
+    }
+    lease_to(&c, "w3", &[a.start + 2]);
+    c.worker_lost("w3");
+    let failed = |c: &Scheduler| {
+        let st = c.lock();
+        let done: Vec<_> = st
+            .done
+            .iter()
+            .map(|(i, d)| (*i, d.as_ref().err().cloned()))
+            .collect();
+        done
+    };
+    match failed(&c).as_slice() {
+        [(0, Some(PartFailure::Killed { workers, alone }))] => {
+            assert_eq!((*workers, *alone), (3, 1))
+        }
+        other => panic!("{other:?}"),
+    }
+    // A worker that dies holding the failed part's shard too did not die
+    // holding the other alone.
+    lease_to(&c, "w4", &[a.start + 3, b.start + 2]);
+    c.worker_lost("w4");
+    assert_eq!(failed(&c).len(), 1, "part 1 not failed");
+    let st = c.lock();
+    assert_eq!(
+        (st.parts[1].deaths.workers, st.parts[1].deaths.alone),
+        (3, 0)
+    );
+    assert!(!st.parts[1].closed);
+}

@@ -2,9 +2,10 @@
 //! leases run out, and what becomes of the work of a worker caught
 //! sending a bad result.
 
-use super::errors::Refusal;
+use super::errors::{PartFailure, Refusal};
 use super::state::{
-    back_in_queue, requeue, Settings, ShardSlot, ShardStatus, ShardWork, State, WorkerSlot, ROLE,
+    back_in_queue, fail_part, requeue, strike, Gone, Settings, ShardSlot, ShardStatus, ShardWork,
+    State, WorkerSlot, ROLE,
 };
 use fixplan_worker::protocol::{DataPath, Join, Msg, Next, TransportChoice, Welcome};
 use std::collections::HashSet;
@@ -70,7 +71,9 @@ pub(super) fn join(st: &mut State, settings: &Settings, joining: Join, data: Dat
         },
     );
     if let Some(old) = old {
-        requeue(st, old.leased.into_iter());
+        // Restarted: it died holding them.
+        let held: Vec<u64> = old.leased.into_iter().collect();
+        gone_holding(st, &joining.worker, (&held, &held), Gone::Died);
     }
     Msg::Welcome(Welcome {
         run_id: settings.run_id.clone(),
@@ -83,7 +86,8 @@ pub(super) fn join(st: &mut State, settings: &Settings, joining: Join, data: Dat
 pub(super) fn lost(st: &mut State, worker: &str) {
     if let Some(w) = st.workers.remove(worker) {
         st.stats.workers_lost += 1;
-        let n = requeue(st, w.leased.into_iter());
+        let held: Vec<u64> = w.leased.into_iter().collect();
+        let n = gone_holding(st, worker, (&held, &held), Gone::Died);
         if st.open_parts > 0 {
             info!(
                 role = ROLE,
@@ -107,16 +111,56 @@ pub(super) fn expire_leases(st: &mut State, now: Instant) {
             _ => None,
         })
         .collect();
+    let mut by_worker: std::collections::BTreeMap<String, Vec<u64>> = Default::default();
     for (id, worker) in expired {
         warn!(
             role = ROLE,
             "shard {id}: lease of worker {worker} ran out; back in the queue"
         );
-        if let Some(w) = st.workers.get_mut(&worker) {
-            w.leased.remove(&id);
-        }
-        requeue(st, std::iter::once(id));
+        by_worker.entry(worker).or_default().push(id);
     }
+    for (worker, held) in by_worker {
+        // All it held, the expired ones included.
+        let holding: Vec<u64> = st
+            .workers
+            .get(&worker)
+            .map(|w| w.leased.iter().copied().collect())
+            .unwrap_or_else(|| held.clone());
+        if let Some(w) = st.workers.get_mut(&worker) {
+            w.leased.retain(|id| !held.contains(id));
+        }
+        gone_holding(st, &worker, (&held, &holding), Gone::TimedOut);
+    }
+}
+
+/// A worker is gone (lost, restarted) or timed out with the shards
+/// `shards.0` (of all it held, `shards.1`): they go back to the queue, and
+/// the parts among them count it ([`strike`]); a part at its second,
+/// one of them its own (a worker holding nothing else: its shards go out
+/// alone after the first), is failed and handed out no more. Returns the
+/// shards put back.
+fn gone_holding(st: &mut State, worker: &str, shards: (&[u64], &[u64]), how: Gone) -> usize {
+    let condemned = strike(st, worker, shards, how);
+    let n = requeue(st, shards.0.iter().copied());
+    for p in condemned {
+        let d = st.parts[p].deaths.clone();
+        let idx = st.part_index.get(p).copied().unwrap_or(p);
+        warn!(
+            role = ROLE,
+            "part #{idx}: {} workers were lost or timed out holding its shards ({} of them holding nothing else); failed, not handed out again",
+            d.workers,
+            d.alone
+        );
+        fail_part(
+            st,
+            p,
+            PartFailure::Killed {
+                workers: d.workers,
+                alone: d.alone,
+            },
+        );
+    }
+    n
 }
 
 /// A worker sent a bad result for shard `id`: it gets no more work, what
