@@ -38,7 +38,7 @@ impl Outline {
     /// matters: the same `None`, the same distance when
     /// [`Self::polygon_clearance`]'s is at most `cap`, otherwise some
     /// distance above `cap`. An edge whose box lies farther than `cap`
-    /// (plus [`CAP_SLACK`]) from the polygon's is then skipped, a box test
+    /// (plus a slack of 1e-6) from the polygon's is then skipped, a box test
     /// instead of one distance per polygon side: the clamp checks of a
     /// straight outline with holes cost what a polygon's do.
     ///
