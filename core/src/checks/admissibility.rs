@@ -204,7 +204,11 @@ fn curved_part_clearance(
     if gap - need > BORDERLINE {
         return Some(gap - need);
     }
-    let d = obstacles.outline.polygon_clearance(local)?;
+    // Only a clearance up to the borderline band above `need` changes a
+    // decision (rejection, borderline flag): farther edges cost a box test.
+    let d = obstacles
+        .outline
+        .polygon_clearance_below(local, need + BORDERLINE)?;
     if d < need - EPS {
         return None;
     }
