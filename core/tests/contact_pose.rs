@@ -11,9 +11,9 @@ use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
 /// xorshift64: a fixed, dependency-free stream so that failures replay.
-struct Rng(u64);
+struct CaseRng(u64);
 
-impl Rng {
+impl CaseRng {
     fn f(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
@@ -98,14 +98,14 @@ fn assert_distinct(poses: &[ContactPose]) -> f64 {
 /// A random setup of the given kinds (`true` = circle) with a known pose:
 /// a random point on each feature is its contact, and the locators are
 /// those points carried to the plate.
-fn with_truth(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3], f64, V2) {
+fn with_truth(rng: &mut CaseRng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3], f64, V2) {
     let theta = rng.angle();
     with_truth_at(rng, circles, theta)
 }
 
 /// [`with_truth`] with the pose's angle given.
 fn with_truth_at(
-    rng: &mut Rng,
+    rng: &mut CaseRng,
     circles: [bool; 3],
     theta: f64,
 ) -> ([Contact; 3], [V2; 3], f64, V2) {
@@ -128,7 +128,7 @@ fn with_truth_at(
 }
 
 /// A random setup with no built-in solution (often none, sometimes many).
-fn random_setup(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
+fn random_setup(rng: &mut CaseRng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
     let contacts = circles.map(|is_circle| {
         if is_circle {
             circle(rng.point(3.0), rng.range(0.2, 5.0))
@@ -143,7 +143,7 @@ fn random_setup(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
 /// Small-integer geometry (axis and diagonal normals, lattice and
 /// half-lattice centres, round radii): exact tangencies, parallel lines,
 /// shared centres and symmetric setups happen here by themselves.
-fn lattice_setup(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
+fn lattice_setup(rng: &mut CaseRng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
     let normals = [
         v2(1.0, 0.0),
         v2(0.0, 1.0),
@@ -153,7 +153,7 @@ fn lattice_setup(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
         v2(-1.0, 1.0) / 2f64.sqrt(),
     ];
     let contacts = circles.map(|is_circle| {
-        let half = |rng: &mut Rng| rng.int(-4, 4) as f64 * 0.5;
+        let half = |rng: &mut CaseRng| rng.int(-4, 4) as f64 * 0.5;
         if is_circle {
             circle(v2(half(rng), half(rng)), rng.int(1, 10) as f64 * 0.25)
         } else {
@@ -176,7 +176,7 @@ fn lattice_setup(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3]) {
 
 /// Three circles, centres, locators and radii all of one size: the
 /// arrangement where six poses (the most three circles allow) are common.
-fn crowded_setup(rng: &mut Rng) -> ([Contact; 3], [V2; 3]) {
+fn crowded_setup(rng: &mut CaseRng) -> ([Contact; 3], [V2; 3]) {
     let s = rng.range(0.5, 3.0);
     let contacts = [0, 1, 2].map(|_| circle(rng.point(s), rng.range(0.5 * s, 2.0 * s)));
     let locs = [rng.point(s), rng.point(s), rng.point(s)];
@@ -291,7 +291,7 @@ fn assert_truth_found(
 /// well determined), and every root satisfies every equation to 1e-9.
 #[test]
 fn known_pose_is_found() {
-    let mut rng = Rng(0x0dd_ba11_c0ff_ee11);
+    let mut rng = CaseRng(0x0dd_ba11_c0ff_ee11);
     let cases = 30_000;
     let (mut worst_res, mut worst_err, mut near_tangent, mut total) = (0.0f64, 0.0f64, 0, 0);
     for case in 0..cases {
@@ -320,7 +320,7 @@ fn known_pose_is_found() {
 /// circle, the case that showed it, are among the kinds.
 #[test]
 fn quarter_turn_poses_are_found() {
-    let mut rng = Rng(0x0000_0a11_9ed0_0001);
+    let mut rng = CaseRng(0x0000_0a11_9ed0_0001);
     let quarter = [0.0, PI / 2.0, PI, 1.5 * PI];
     for case in 0..8_000 {
         let theta = quarter[case % 4];
@@ -570,7 +570,7 @@ fn report(name: &str, t: &Tally) {
 /// samples per branch.
 #[test]
 fn dense_sampling_finds_every_root() {
-    let mut rng = Rng(0x5a3b_1e5a_3b1e_5a3b);
+    let mut rng = CaseRng(0x5a3b_1e5a_3b1e_5a3b);
     let mut tally = Tally::default();
     for case in 0..240 {
         let k = kinds(case);
@@ -615,7 +615,7 @@ fn shares_centre_or_direction(contacts: &[Contact; 3]) -> bool {
 /// sampling (the generic ones are covered above), until 200 such are seen.
 #[test]
 fn lattice_setups_against_sampling() {
-    let mut rng = Rng(0x1a77_1ce5_0dd5_eed5);
+    let mut rng = CaseRng(0x1a77_1ce5_0dd5_eed5);
     let (mut tally, mut looked) = (Tally::default(), 0);
     while tally.cases < 200 && looked < 200_000 {
         looked += 1;
@@ -649,7 +649,7 @@ fn lattice_setups_against_sampling() {
 /// A setup whose known pose is singular: the contact normals at the pose
 /// meet in one point (an instantaneous centre of rotation), so the pose
 /// is a double root, a fold between two poses and none.
-fn tangent_setup(rng: &mut Rng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3], f64, V2) {
+fn tangent_setup(rng: &mut CaseRng, circles: [bool; 3]) -> ([Contact; 3], [V2; 3], f64, V2) {
     loop {
         let theta = rng.angle();
         let w = rng.point(3.0);
@@ -701,7 +701,7 @@ fn perturbed(contacts: &[Contact; 3], k: usize, delta: f64) -> [Contact; 3] {
 /// 1e-8 of each other (nor two that SPEC 8.4 calls one).
 #[test]
 fn near_tangent_counts_are_consistent() {
-    let mut rng = Rng(0x7a46_e471_a1c0_ffee);
+    let mut rng = CaseRng(0x7a46_e471_a1c0_ffee);
     let (mut cases, mut skipped, mut outcomes) = (0, 0, std::collections::BTreeMap::new());
     let closest = std::cell::Cell::new(f64::INFINITY);
     for case in 0..600 {
@@ -781,8 +781,8 @@ fn near_tangent_counts_are_consistent() {
 
 /// Plate point `x` and part point `centre` are the centre of a rotation
 /// that keeps every locator on its feature.
-fn rotation_continuum(rng: &mut Rng, lattice: bool) -> (V2, V2, [V2; 3]) {
-    let pick = |rng: &mut Rng| {
+fn rotation_continuum(rng: &mut CaseRng, lattice: bool) -> (V2, V2, [V2; 3]) {
+    let pick = |rng: &mut CaseRng| {
         if lattice {
             v2(rng.int(-4, 4) as f64, rng.int(-4, 4) as f64)
         } else {
@@ -806,7 +806,7 @@ fn rotation_continuum(rng: &mut Rng, lattice: bool) -> (V2, V2, [V2; 3]) {
 /// circumcentre (a trammel); three parallel lines.
 #[test]
 fn continua_give_no_pose() {
-    let mut rng = Rng(0x000c_0471_4a0b);
+    let mut rng = CaseRng(0x000c_0471_4a0b);
     for case in 0..400 {
         let (x, centre, locs) = rotation_continuum(&mut rng, case % 2 == 0);
         let rho = locs.map(|l| (l - x).norm());
@@ -862,7 +862,7 @@ fn continua_give_no_pose() {
 /// through the circumcentre of (crossing, contact 1, contact 2): as the
 /// two contacts slide along their lines, that circumcentre (fixed in the
 /// part, Cardan's circle) stays on the circle.
-fn trammel(rng: &mut Rng) -> ([Contact; 3], [V2; 3]) {
+fn trammel(rng: &mut CaseRng) -> ([Contact; 3], [V2; 3]) {
     loop {
         let (n1, n2) = (rng.unit(), rng.unit());
         let sin = n1.x * n2.y - n1.y * n2.x;
@@ -905,7 +905,7 @@ fn circumcentre(a: V2, b: V2, c: V2) -> Option<V2> {
 /// radius). Reported: the two isolated ones, nothing near `theta0`.
 #[test]
 fn congruent_circles_keep_only_isolated_poses() {
-    let mut rng = Rng(0xc04e_5ea7);
+    let mut rng = CaseRng(0xc04e_5ea7);
     let (mut with_two, mut with_none) = (0, 0);
     for case in 0..300 {
         let locs = [rng.point(4.0), rng.point(4.0), rng.point(4.0)];
@@ -977,7 +977,7 @@ fn congruent_circles_keep_only_isolated_poses() {
 /// are found (compared with sampling too).
 #[test]
 fn parallel_lines_and_circle_share_theta() {
-    let mut rng = Rng(0x5a4e_d7e7a);
+    let mut rng = CaseRng(0x5a4e_d7e7a);
     let (mut pairs, mut tally) = (0, Tally::default());
     for case in 0..300 {
         let (mut contacts, mut locs, theta, w) = with_truth(&mut rng, [false, false, true]);
@@ -1044,7 +1044,7 @@ fn parallel_lines_and_circle_share_theta() {
 /// touches: permuting contacts and locators together gives the same poses.
 #[test]
 fn contact_order_does_not_matter() {
-    let mut rng = Rng(0x0bde_4011);
+    let mut rng = CaseRng(0x0bde_4011);
     const PERMS: [[usize; 3]; 6] = [
         [0, 1, 2],
         [0, 2, 1],
@@ -1096,7 +1096,7 @@ fn contact_order_does_not_matter() {
 /// angles. Checked against a known pose and sampling.
 #[test]
 fn collinear_circles_share_theta() {
-    let mut rng = Rng(0xc011_14ea_5a3e);
+    let mut rng = CaseRng(0xc011_14ea_5a3e);
     let (mut tally, mut twins) = (Tally::default(), 0);
     for case in 0..200 {
         let (l0, d) = (rng.point(3.0), rng.unit() * rng.range(0.5, 2.0));

@@ -29,9 +29,9 @@ fn scaled(n: usize) -> usize {
 
 /// A small deterministic generator (xorshift64*): the same cases on every
 /// machine.
-struct Rng(u64);
+struct FuzzRng(u64);
 
-impl Rng {
+impl FuzzRng {
     fn next(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
@@ -80,7 +80,7 @@ fn read(
 }
 
 /// One damaged copy of `sound`.
-fn damage(sound: &[u8], rng: &mut Rng) -> (String, Vec<u8>) {
+fn damage(sound: &[u8], rng: &mut FuzzRng) -> (String, Vec<u8>) {
     let mut b = sound.to_vec();
     let at = 8 + rng.below(b.len() - 8);
     let what = match rng.below(5) {
@@ -130,7 +130,7 @@ fn damaged_results_files_never_read_as_sound() {
         .0
         .unwrap_err()
         .contains("not a fixplan results file"));
-    let mut rng = Rng(31);
+    let mut rng = FuzzRng(31);
     let mut told = 0;
     for case in 0..scaled(600) {
         let (what, bytes) = damage(&sound, &mut rng);
@@ -225,7 +225,7 @@ fn resume_keeps_no_damaged_part() {
     run_catalog(&cat, &spec, &opts(&whole, None)).unwrap();
     let want = fixtures_channel(&whole);
     let sound = std::fs::read(&whole).unwrap();
-    let mut rng = Rng(7);
+    let mut rng = FuzzRng(7);
     for case in 0..scaled(12) {
         let (what, bytes) = damage(&sound, &mut rng);
         let out = dir.path().join(format!("r{case}.mcap"));
@@ -394,7 +394,7 @@ fn hostile_parts_end_in_a_status_and_spare_the_good_ones() {
     assert_eq!(ring.1, Status::OverBudget);
     // Mutated numbers in the sample parts.
     let parts = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/catalog/parts");
-    let mut rng = Rng(42);
+    let mut rng = FuzzRng(42);
     let mut sources: Vec<PathBuf> = std::fs::read_dir(&parts)
         .unwrap()
         .map(|e| e.unwrap().path())

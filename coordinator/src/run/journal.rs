@@ -53,8 +53,8 @@ pub fn journal_path(output: &Path) -> PathBuf {
 
 /// How often a part was in flight when the run died.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Deaths {
-    /// Deaths it was in flight at.
+pub struct RunDeaths {
+    /// RunDeaths it was in flight at.
     pub times: u32,
     /// Of those, deaths at which it was the only part in flight.
     pub alone: u32,
@@ -64,7 +64,7 @@ pub struct Deaths {
 #[derive(Debug, Default, PartialEq, Eq)]
 pub struct History {
     /// Per catalogue index, the deaths its part was in flight at.
-    pub deaths: BTreeMap<usize, Deaths>,
+    pub deaths: BTreeMap<usize, RunDeaths>,
     /// Sessions that died (did not end in order).
     pub died: usize,
     /// Lines ignored: damaged, or of another run, or naming another part.
@@ -192,7 +192,7 @@ fn apply(s: &mut Session, text: &str, ids: &[&str]) -> bool {
 }
 
 /// A part's [`Status::Failed`] result after it killed the run twice.
-fn condemned(id: &str, d: Deaths) -> SolveResult {
+fn condemned(id: &str, d: RunDeaths) -> SolveResult {
     SolveResult::gave_up(
         Status::Failed,
         format!(
@@ -311,7 +311,7 @@ impl Journal {
         }
     }
 
-    fn deaths(&self, job: usize) -> Deaths {
+    fn deaths(&self, job: usize) -> RunDeaths {
         self.history
             .deaths
             .get(&(self.first + job))

@@ -25,7 +25,7 @@ struct OutcomeHead {
 }
 
 /// A shard's enumeration as a worker reported it.
-struct Enumeration {
+struct ShardReport {
     result: PartialResult,
     hit: Option<u64>,
     /// The part finished by the worker, if it was asked to and could.
@@ -35,7 +35,7 @@ struct Enumeration {
 /// An outcome read against the task it answers.
 enum Taken {
     /// A shard's enumeration, and the shard's combinations.
-    Enumeration(Enumeration, Range<u64>),
+    Enumeration(ShardReport, Range<u64>),
     /// A cut part's finishing: the finished part, if the worker could.
     Finishing(Option<Bytes>),
 }
@@ -46,7 +46,7 @@ fn read(work: &ShardWork, answer: Answer) -> Option<Taken> {
     match (work, answer) {
         (ShardWork::Combinations(range), Answer::Enumerated { result, hit }) => {
             Some(Taken::Enumeration(
-                Enumeration {
+                ShardReport {
                     result,
                     hit,
                     finished: None,
@@ -56,7 +56,7 @@ fn read(work: &ShardWork, answer: Answer) -> Option<Taken> {
         }
         (ShardWork::Combinations(range), Answer::EnumeratedAndFinished { result, finished }) => {
             Some(Taken::Enumeration(
-                Enumeration {
+                ShardReport {
                     result,
                     hit: None,
                     finished: finished.ok(),
@@ -116,7 +116,7 @@ fn take_enumeration(
     st: &mut State,
     settings: &Settings,
     head: &OutcomeHead,
-    mut enumeration: Enumeration,
+    mut enumeration: ShardReport,
     worker: &str,
     (p, shard_range): (usize, Range<u64>),
 ) -> Result<(), NotTaken> {
@@ -263,7 +263,7 @@ fn check(
     part: &mut PartSlot,
     settings: &Settings,
     head: &OutcomeHead,
-    enumeration: &Enumeration,
+    enumeration: &ShardReport,
     (shard_range, range): (&Range<u64>, &Range<u64>),
     deep: bool,
 ) -> Result<usize, CheckError> {
@@ -346,7 +346,7 @@ fn hold(
     settings: &Settings,
     slot: usize,
     head: &OutcomeHead,
-    enumeration: Enumeration,
+    enumeration: ShardReport,
     shard_range: &Range<u64>,
 ) {
     let part = &mut st.parts[slot];

@@ -94,13 +94,13 @@ pub(super) struct PartSlot {
     /// task's [`ShardWork::Finishing`]).
     pub(super) finishing: Option<u64>,
     /// Workers lost or timed out holding one of its shards ([`strike`]).
-    pub(super) deaths: Deaths,
+    pub(super) deaths: WorkerLosses,
 }
 
 /// How often a part's shards were with a worker that was lost or whose
 /// lease ran out.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Deaths {
+pub(super) struct WorkerLosses {
     pub(super) workers: u32,
     /// Of those, workers that held nothing but shards of this part.
     pub(super) alone: u32,
@@ -113,11 +113,11 @@ pub(super) struct Deaths {
     pub(super) suspected: bool,
 }
 
-/// Deaths at which a part is failed and handed out no more (one of them
-/// its own: [`Deaths::condemned`]).
+/// WorkerLosses at which a part is failed and handed out no more (one of them
+/// its own: [`WorkerLosses::condemned`]).
 pub(super) const DEATHS_TO_FAIL: u32 = 2;
 
-impl Deaths {
+impl WorkerLosses {
     /// Whether the part is to be failed: [`DEATHS_TO_FAIL`] workers, one
     /// of them holding nothing but its shards. Workers that die at once
     /// with batches handed out before either loss was seen can share an
@@ -369,7 +369,7 @@ impl State {
             closed: false,
             finish: part.finish.map(Bytes::from),
             finishing: None,
-            deaths: Deaths::default(),
+            deaths: WorkerLosses::default(),
         });
         self.part_index.push(part.index);
         self.open_parts += 1;
@@ -429,7 +429,7 @@ pub(super) enum Gone {
 /// outlives its leases without anything being wrong), which only makes
 /// its parts suspects: their shards then go out alone, and a timeout of
 /// a shard alone counts. Returns the parts now condemned
-/// ([`Deaths::condemned`]).
+/// ([`WorkerLosses::condemned`]).
 pub(super) fn strike(
     st: &mut State,
     worker: &str,
