@@ -14,7 +14,9 @@ use crate::output::messages::{
 };
 use crate::output::reader::PartRecord;
 use crate::output::scene::{scene_update, PartScene};
-use fixplan_core::{solve, Params, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex};
+use fixplan_core::{
+    solve, FixtureReport, Params, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex,
+};
 use serde_json::Value;
 
 const CENTRE: Point = [60.0, 20.0];
@@ -477,6 +479,29 @@ fn holed_plate(run: &RunMsg) -> PartRecord {
     holed_record(run, "holed", square.to_vec(), holes)
 }
 
+/// The Foxglove scene of [`holed_plate`]'s record, as JSON, with the given
+/// segment loops and best fixture.
+fn holed_scene(
+    run: &RunMsg,
+    rec: &PartRecord,
+    segment_loops: &[usize],
+    best: Result<&FixtureReport, &str>,
+) -> Value {
+    let (kit, outline, holes) = (run.kit(), rec.part.outline(), rec.part.holes());
+    serde_json::to_value(scene_update(PartScene {
+        index: 0,
+        id: "holed",
+        units: Units::Mm,
+        kit: &kit,
+        outline: &outline,
+        holes: &holes,
+        access: &[],
+        segment_loops,
+        best,
+    }))
+    .unwrap()
+}
+
 #[test]
 fn pictures_show_and_the_scene_draw_the_holes() {
     let run = run_msg();
@@ -503,21 +528,8 @@ fn pictures_show_and_the_scene_draw_the_holes() {
         text.contains("holes: 2 (edges of hole 0, 1, ...: 2, 4)"),
         "{text}"
     );
-    let kit = run.kit();
-    let (outline, holes) = (rec.part.outline(), rec.part.holes());
     for best in [Ok(f), Err("none")] {
-        let scene = serde_json::to_value(scene_update(PartScene {
-            index: 0,
-            id: "holed",
-            units: Units::Mm,
-            kit: &kit,
-            outline: &outline,
-            holes: &holes,
-            access: &[],
-            segment_loops: &result.segment_loops,
-            best,
-        }))
-        .unwrap();
+        let scene = holed_scene(&run, &rec, &result.segment_loops, best);
         let lines = scene_part(&scene)["lines"].as_array().unwrap();
         assert_eq!(lines.len(), 3, "outline and two holes");
         // The window is a line loop of its four corners.
@@ -550,19 +562,7 @@ fn contacts_on_a_hole_wall_are_labelled_with_the_hole() {
     print_part(&rec, 1, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
     assert!(text.contains("L2 in hole 3"), "{text}");
-    let (kit, outline, holes) = (run.kit(), rec.part.outline(), rec.part.holes());
-    let scene = serde_json::to_value(scene_update(PartScene {
-        index: 0,
-        id: "holed",
-        units: Units::Mm,
-        kit: &kit,
-        outline: &outline,
-        holes: &holes,
-        access: &[],
-        segment_loops: &moved,
-        best: Ok(&f),
-    }))
-    .unwrap();
+    let scene = holed_scene(&run, &rec, &moved, Ok(&f));
     let label = scene_part(&scene)["texts"][0]["text"].as_str().unwrap();
     assert!(label.contains("L2 in hole 3"), "{label}");
     // No label for a fixture all on the outline.
