@@ -123,6 +123,30 @@ pub struct RunMsg {
     pub budgets: Option<BudgetsField>,
 }
 
+/// A run of the built-in `metric-25` kit with default parameters over an
+/// in-memory catalogue, for tests that need a run message and no files.
+#[cfg(test)]
+pub(crate) fn test_run_msg(catalog_name: &str, parts: usize, digest: &str) -> RunMsg {
+    let (kit, _) = fixplan_catalog::kit::builtin_kit("metric-25").unwrap();
+    RunMsg {
+        tool: "fixplan".into(),
+        version: "test".into(),
+        catalog: CatalogInfo {
+            name: catalog_name.into(),
+            source: "mem".into(),
+            units: UnitsName::Mm,
+            parts,
+            digest: digest.into(),
+        },
+        kit_name: "metric-25".into(),
+        kit: (&kit).into(),
+        params: (&Params::default()).into(),
+        grid_steps: None,
+        good_enough: None,
+        budgets: None,
+    }
+}
+
 /// The budgets of a run (`/fixplan/run` field `budgets`); absent ones
 /// are not limited.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]

@@ -10,12 +10,12 @@ use crate::drawing::hole_contacts::hole_contact_label;
 use crate::drawing::outline::extent_points;
 use crate::output::fields::{CountsField, HoleLoopField, UnitsName, VertexField};
 use crate::output::messages::{
-    CatalogInfo, FixturesMsg, PartMsg, RunMsg, SolveTiming, TimingField,
+    test_run_msg, FixturesMsg, PartMsg, RunMsg, SolveTiming, TimingField,
 };
 use crate::output::reader::PartRecord;
 use crate::output::scene::{scene_update, PartScene};
 use fixplan_core::{
-    solve, FixtureReport, Params, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex,
+    solve, FixtureReport, Part, Point, SegmentKind, SolveResult, Status, Units, Vertex,
 };
 use serde_json::Value;
 
@@ -34,24 +34,7 @@ fn arc_plate() -> Vec<Vertex> {
 }
 
 fn run_msg() -> RunMsg {
-    let (kit, _) = fixplan_catalog::kit::builtin_kit("metric-25").unwrap();
-    RunMsg {
-        tool: "fixplan".into(),
-        version: "test".into(),
-        catalog: CatalogInfo {
-            name: "arcs".into(),
-            source: "mem".into(),
-            units: UnitsName::Mm,
-            parts: 1,
-            digest: String::new(),
-        },
-        kit_name: "metric-25".into(),
-        kit: (&kit).into(),
-        params: (&Params::default()).into(),
-        grid_steps: None,
-        good_enough: None,
-        budgets: None,
-    }
+    test_run_msg("arcs", 1, "")
 }
 
 /// The record a run writes for `outline`, solved with the run's kit.

@@ -3,29 +3,10 @@
 //! without a panic.
 
 use super::*;
-use crate::output::fields::UnitsName;
-use crate::output::messages::CatalogInfo;
-use fixplan_core::Params;
+use crate::output::messages::test_run_msg;
 
 fn run_msg(digest: &str) -> RunMsg {
-    let (kit, _) = fixplan_catalog::kit::builtin_kit("metric-25").unwrap();
-    RunMsg {
-        tool: "fixplan".into(),
-        version: "test".into(),
-        catalog: CatalogInfo {
-            name: "j".into(),
-            source: "mem".into(),
-            units: UnitsName::Mm,
-            parts: 3,
-            digest: digest.into(),
-        },
-        kit_name: "metric-25".into(),
-        kit: (&kit).into(),
-        params: (&Params::default()).into(),
-        grid_steps: None,
-        good_enough: None,
-        budgets: None,
-    }
+    test_run_msg("j", 3, digest)
 }
 
 const IDS: [&str; 3] = ["a", "b c", "d"];
