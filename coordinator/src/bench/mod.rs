@@ -2,12 +2,14 @@
 //! spends its time, on one thread) and `fixplan bench-cluster` (catalogue
 //! throughput and the coordinator's share with local workers), `fixplan
 //! bench-coordinator` (the coordinator's ceiling, with replayed results);
-//! `fixplan bench --compare-flatten` (exact arcs against flattened ones).
+//! `fixplan bench --compare-flatten` (exact arcs against flattened ones),
+//! `fixplan bench --markdown` (the README's speed table).
 //! Uses `job`, `cluster` and `run`.
 
 pub(crate) mod ceiling;
 pub(crate) mod cluster;
 pub(crate) mod flatten;
+pub(crate) mod markdown;
 pub(crate) mod parts;
 pub(crate) mod replay;
 pub(crate) mod replay_workers;
@@ -47,6 +49,15 @@ pub struct PartsBenchArgs {
     /// examples/real/catalog.toml.
     #[arg(long)]
     pub compare_flatten: bool,
+    /// Print the README's speed table (counts, full-count and top-k
+    /// times) as Markdown rows instead of the time split;
+    /// `scripts/speed_table.py` writes it into the README.
+    #[arg(long, conflicts_with = "compare_flatten")]
+    pub markdown: bool,
+    /// Measure the top-k mode only, not the full counts: for the big
+    /// cases (examples/cases/large), whose full enumeration takes minutes.
+    #[arg(long, conflicts_with = "compare_flatten")]
+    pub top_k_only: bool,
 }
 
 /// `fixplan bench`: the time split per part, or with `--compare-flatten`
@@ -56,13 +67,23 @@ pub fn bench_main(args: &PartsBenchArgs) -> Result<()> {
     if args.compare_flatten {
         flatten::bench_main(&args.cases, catalog, &args.kit, args.repeat, args.top_k)
     } else {
-        parts::bench_main(
-            &args.cases,
-            catalog,
-            args.arcs,
-            &args.kit,
-            args.repeat,
-            args.top_k,
-        )
+        if args.top_k_only && args.top_k == 0 {
+            anyhow::bail!("--top-k-only measures the top-k mode: give --top-k 1 or more");
+        }
+        let plan = parts::BenchPlan {
+            repeat: args.repeat,
+            top_k: args.top_k,
+            top_k_only: args.top_k_only,
+        };
+        let (cases, arcs, kit) = (&args.cases, args.arcs, &args.kit);
+        if args.markdown {
+            markdown::print_header(args.top_k);
+            parts::bench_main(cases, catalog, arcs, kit, plan, markdown::print_part)
+        } else {
+            parts::print_split_header();
+            parts::bench_main(cases, catalog, arcs, kit, plan, |measured| {
+                parts::print_split(measured, args.top_k)
+            })
+        }
     }
 }

@@ -223,11 +223,78 @@ fn row(id: &str, mode: &str, measured: &Measured) -> Vec<String> {
     ]
 }
 
-/// Runs the measurements and prints the table: per part, all fixtures
-/// with full counts, then (when `top_k > 0`) the top-k mode, checked to
-/// find the first `top_k` fixtures of the full run bit for bit.
-pub fn run(parts: &[BenchPart], repeat: usize, top_k: usize) -> Result<()> {
+/// One part's two measurements: full counts (unless skipped) and top-k
+/// mode (unless `top_k` is 0).
+pub struct PartMeasured {
+    /// The part's row name.
+    pub id: String,
+    /// Outline and hole edges of the prepared part.
+    pub edges: usize,
+    /// Every fixture counted, or `None` when skipped (`--top-k-only`).
+    pub full: Option<Measured>,
+    /// The top-k mode, or `None` when `top_k` is 0.
+    pub fast: Option<Measured>,
+}
+
+/// What `run` measures and how it prints it.
+#[derive(Debug, Clone, Copy)]
+pub struct BenchPlan {
+    /// Runs per mode; the fastest counts.
+    pub repeat: usize,
+    /// The top-k mode's k (0: full counts only).
+    pub top_k: usize,
+    /// Skip the full enumeration: parts whose full counts take minutes.
+    pub top_k_only: bool,
+}
+
+/// Measures one prepared part in both modes; the top-k mode must find the
+/// full run's first `top_k` fixtures bit for bit, since a faster mode that
+/// finds other fixtures is a bug, not a speed-up.
+fn measure_part(id: &str, prep: &PreparedPart, plan: BenchPlan) -> Result<PartMeasured> {
+    let full = (!plan.top_k_only).then(|| measure(&prep.with_top_k(plan.top_k, true), plan.repeat));
+    let fast = (plan.top_k > 0).then(|| measure(&prep.with_top_k(plan.top_k, false), plan.repeat));
+    if let (Some(full), Some(fast)) = (&full, &fast) {
+        if fast.result.fixtures != full.result.fixtures {
+            anyhow::bail!("{id}: the top-{} mode found other fixtures", plan.top_k);
+        }
+    }
+    Ok(PartMeasured {
+        id: id.to_string(),
+        edges: prep.outline().edges().len(),
+        full,
+        fast,
+    })
+}
+
+/// The time split table's header.
+pub fn print_split_header() {
     print_row(&HEADER.map(String::from));
+}
+
+/// The time split table: per part, full counts then top-k mode and the
+/// speed-up between them.
+pub fn print_split(measured: &PartMeasured, top_k: usize) {
+    if let Some(full) = &measured.full {
+        print_row(&row(&measured.id, "full", full));
+    }
+    if let Some(fast) = &measured.fast {
+        print_row(&row(&measured.id, &format!("top-{top_k}"), fast));
+    }
+    if let (Some(full), Some(fast)) = (&measured.full, &measured.fast) {
+        let speedup = full.wall as f64 / fast.wall.max(1) as f64;
+        println!("{:<22} {:<8} {:>8.1}x", "", "speed-up", speedup);
+    }
+}
+
+/// Runs the measurements and hands each part to `print` as soon as it is
+/// measured (a long bench shows its rows as it goes): per part, all
+/// fixtures with full counts, then (when `top_k > 0`) the top-k mode,
+/// checked to find the first `top_k` fixtures of the full run bit for bit.
+pub fn run(
+    parts: &[BenchPart],
+    plan: BenchPlan,
+    mut print: impl FnMut(&PartMeasured),
+) -> Result<()> {
     for p in parts {
         let prep = match &p.prep {
             Ok(prep) => prep,
@@ -236,38 +303,26 @@ pub fn run(parts: &[BenchPart], repeat: usize, top_k: usize) -> Result<()> {
                 continue;
             }
         };
-        let full = measure(&prep.with_top_k(top_k, true), repeat);
-        print_row(&row(&p.id, "full", &full));
-        if top_k == 0 {
-            continue;
-        }
-        let fast = measure(&prep.with_top_k(top_k, false), repeat);
-        if fast.result.fixtures != full.result.fixtures {
-            anyhow::bail!("{}: the top-{top_k} mode found other fixtures", p.id);
-        }
-        let mode = format!("top-{top_k}");
-        print_row(&row(&p.id, &mode, &fast));
-        let speedup = full.wall as f64 / fast.wall.max(1) as f64;
-        println!("{:<22} {:<8} {:>8.1}x", "", "speed-up", speedup);
+        print(&measure_part(&p.id, prep, plan)?);
     }
     Ok(())
 }
 
 /// `fixplan bench`: the parts of `catalog` with `kit`, or the case files
 /// `cases` (the bundled bench cases when none), measured on one thread,
-/// with full counts and in top-`top_k` mode.
+/// as `plan` says, each part given to `print`.
 pub fn bench_main(
     cases: &[PathBuf],
     catalog: Option<&Path>,
     arcs: Option<fixplan_catalog::ArcMode>,
     kit: &str,
-    repeat: usize,
-    top_k: usize,
+    plan: BenchPlan,
+    print: impl FnMut(&PartMeasured),
 ) -> Result<()> {
     let parts = match catalog {
         Some(c) => parts_from_catalog_file(c, arcs, kit)?,
         None if cases.is_empty() => parts_from_cases(&default_cases())?,
         None => parts_from_cases(cases)?,
     };
-    run(&parts, repeat, top_k)
+    run(&parts, plan, print)
 }
