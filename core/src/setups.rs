@@ -448,7 +448,7 @@ pub struct SetupScratch {
 /// needs of it.
 type LatticePivot = ([i64; 2], PivotPoint);
 
-/// Most pivot points kept per thread (about 180 bytes each, 6 MB in all;
+/// Most pivot points kept per thread (about 360 bytes each, 12 MB in all;
 /// `housing-57` keeps 1,043, scaled 3x 13,677): beyond, the cache starts
 /// over, so a huge part costs time, never unbounded memory.
 const PIVOT_CACHE_POINTS: usize = 1 << 15;

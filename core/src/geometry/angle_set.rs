@@ -7,7 +7,7 @@ use std::f64::consts::{PI, TAU};
 
 /// Most intervals a set holds: a sinusoid band is at most three pieces of
 /// `[0, 2 pi]`, the intersection of two at most five.
-const CAPACITY: usize = 6;
+pub(crate) const CAPACITY: usize = 6;
 
 /// A finite union of closed angle intervals in `[0, 2 pi]`, sorted and
 /// disjoint. An interval that crosses `0` is stored as two pieces. Held

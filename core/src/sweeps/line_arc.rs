@@ -79,10 +79,12 @@ struct Sinusoid {
 }
 
 impl Sinusoid {
-    /// Bounds over `[t0, t1]` (`t1 - t0 <= 2 pi`), widened by rounding.
-    fn range(&self, t0: f64, t1: f64) -> (f64, f64) {
-        let v0 = self.alpha + self.amp * (t0 - self.phi).cos();
-        let v1 = self.alpha + self.amp * (t1 - self.phi).cos();
+    /// Bounds over `[t0, t1]` (`t1 - t0 <= 2 pi`), widened by rounding;
+    /// `cos0`, `cos1` are `cos(t0 - phi)`, `cos(t1 - phi)`, which a piece
+    /// shares with its neighbours and its halves ([`PieceEnd`]).
+    fn range(&self, t0: f64, t1: f64, cos0: f64, cos1: f64) -> (f64, f64) {
+        let v0 = self.alpha + self.amp * cos0;
+        let v1 = self.alpha + self.amp * cos1;
         let (mut lo, mut hi) = (v0.min(v1), v0.max(v1));
         let inside = |x: f64| rem_tau(x - t0) <= t1 - t0;
         if inside(self.phi) {
@@ -137,9 +139,68 @@ pub struct ArcPoint {
     pub(super) angles: AngleSet,
     g: Sinusoid,
     h: Sinusoid,
+    /// The ends of the first [`KEPT_INTERVALS`] intervals of the branches
+    /// (in the order [`LineArcSweep::region`] covers them) with their trig:
+    /// every third segment swept for this point starts from them.
+    ends: [[PieceEnd; 2]; KEPT_INTERVALS],
+}
+
+/// Intervals of a pivot point whose ends keep their trig (most points have
+/// one or two): each point serves about fifteen third segments on
+/// `voron0_motor_panel`, and a region is mostly a single piece, whose trig
+/// was all at these ends.
+const KEPT_INTERVALS: usize = 4;
+
+/// An end of an angle piece with the phases' cosines of `g` and `h` there
+/// (and `(sin, cos)` of `t`, at an interval's end): a piece and its
+/// halves, or two neighbouring pieces, share ends, so each is worked out
+/// once where every piece used to work out both of its own.
+#[derive(Debug, Clone, Copy)]
+struct PieceEnd {
+    t: f64,
+    g_cos: f64,
+    h_cos: f64,
+    sc: Option<(f64, f64)>,
+}
+
+/// What covering one pivot point's angles carries from piece to piece: the
+/// pieces left, where the quadrilaterals go, and the `(sin, cos)` of the
+/// last piece kept's far end (the near end of the next, when they touch).
+struct CoverState<'o> {
+    budget: usize,
+    out: &'o mut Vec<Quad>,
+    last: Option<(u64, (f64, f64))>,
+}
+
+impl CoverState<'_> {
+    /// `t.sin_cos()`, reused when `t` is (to the bit) the last piece's end.
+    fn sin_cos(&self, t: f64) -> (f64, f64) {
+        match self.last {
+            Some((bits, sc)) if bits == t.to_bits() => sc,
+            _ => t.sin_cos(),
+        }
+    }
 }
 
 impl ArcPoint {
+    /// The end `t` of a piece.
+    fn end(&self, t: f64) -> PieceEnd {
+        PieceEnd {
+            t,
+            g_cos: (t - self.g.phi).cos(),
+            h_cos: (t - self.h.phi).cos(),
+            sc: None,
+        }
+    }
+
+    /// The ends of an interval, with their `(sin, cos)`.
+    fn interval_ends(&self, [t0, t1]: [f64; 2]) -> [PieceEnd; 2] {
+        [t0, t1].map(|t| PieceEnd {
+            sc: Some(t.sin_cos()),
+            ..self.end(t)
+        })
+    }
+
     /// Whether some branch allows `theta` (soundness tests).
     #[cfg(test)]
     pub(super) fn contains_angle(&self, theta: f64) -> bool {
@@ -198,6 +259,12 @@ impl<'s> LineArcSweep<'s> {
             angles: AngleSet::empty(),
             g,
             h,
+            ends: [[PieceEnd {
+                t: 0.0,
+                g_cos: 1.0,
+                h_cos: 1.0,
+                sc: None,
+            }; 2]; KEPT_INTERVALS],
         };
         for sigma in [1.0, -1.0] {
             for [m0, m1] in self.mu_ranges(sigma).into_iter().flatten() {
@@ -210,6 +277,12 @@ impl<'s> LineArcSweep<'s> {
                     pt.len += 1;
                 }
             }
+        }
+        let intervals = pt.branches[..pt.len]
+            .iter()
+            .flat_map(|br| br.angles.intervals());
+        for (k, &interval) in intervals.take(KEPT_INTERVALS).enumerate() {
+            pt.ends[k] = pt.interval_ends(interval);
         }
         (pt.len > 0).then_some(pt)
     }
@@ -252,10 +325,21 @@ impl<'s> LineArcSweep<'s> {
     /// The region of `L3` for one pivot point, as quadrilaterals grown by
     /// their margins; `false` when it needs too many pieces.
     pub fn region(&self, pt: &ArcPoint, out: &mut Vec<Quad>) -> bool {
-        let mut budget = MAX_PIECES;
+        let mut state = CoverState {
+            budget: MAX_PIECES,
+            out,
+            last: None,
+        };
+        let mut k = 0;
         for br in &pt.branches[..pt.len] {
-            for &[t0, t1] in br.angles.intervals() {
-                if !self.cover(pt, br.sigma, t0, t1, &mut budget, out) {
+            for &interval in br.angles.intervals() {
+                let ends = pt
+                    .ends
+                    .get(k)
+                    .copied()
+                    .unwrap_or_else(|| pt.interval_ends(interval));
+                k += 1;
+                if !self.cover(pt, br.sigma, ends, &mut state) {
                     return false;
                 }
             }
@@ -267,48 +351,57 @@ impl<'s> LineArcSweep<'s> {
     /// while its margin (half the range of `s`, plus the turn's) is above
     /// [`ARC_TARGET_MARGIN`]: `s` changes fastest near the branch points, so
     /// pieces are narrow only there. Pieces where `s` misses the segment
-    /// are dropped whole. `false` once `budget` pieces are spent.
+    /// are dropped whole. `false` once the budget of pieces is spent.
     fn cover(
         &self,
         pt: &ArcPoint,
         sigma: f64,
-        t0: f64,
-        t1: f64,
-        budget: &mut usize,
-        out: &mut Vec<Quad>,
+        [e0, e1]: [PieceEnd; 2],
+        state: &mut CoverState<'_>,
     ) -> bool {
-        if *budget == 0 {
+        if state.budget == 0 {
             return false;
         }
-        *budget -= 1;
-        let Some((lo, hi)) = self.contact_range(pt, sigma, t0, t1) else {
+        state.budget -= 1;
+        let Some((lo, hi)) = self.contact_range(pt, sigma, e0, e1) else {
             return true;
         };
+        let (t0, t1) = (e0.t, e1.t);
         let w = t1 - t0;
         let margin = 0.5 * (hi - lo) + self.rmax * w * w / 8.0;
         if margin > ARC_TARGET_MARGIN && w > MIN_PIECE {
-            let m = 0.5 * (t0 + t1);
-            return self.cover(pt, sigma, t0, m, budget, out)
-                && self.cover(pt, sigma, m, t1, budget, out);
+            let mid = pt.end(0.5 * (t0 + t1));
+            return self.cover(pt, sigma, [e0, mid], state)
+                && self.cover(pt, sigma, [mid, e1], state);
         }
         let x1 = self.line.point(0.5 * (lo + hi));
+        let ends_sc = [
+            e0.sc.unwrap_or_else(|| state.sin_cos(t0)),
+            e1.sc.unwrap_or_else(|| t1.sin_cos()),
+        ];
+        state.last = Some((t1.to_bits(), ends_sc[1]));
         let mut ends = [[V2::zeros(); MAX_CHORDS + 1]; 2];
-        for (e, t) in ends.iter_mut().zip([t0, t1]) {
-            let (sin, cos) = t.sin_cos();
+        for (e, (sin, cos)) in ends.iter_mut().zip(ends_sc) {
             self.third.map_into(|y| rot(cos, sin, y - x1), e);
         }
         self.third
-            .push_quads(&ends[0], &ends[1], margin + QUAD_SLACK, out);
+            .push_quads(&ends[0], &ends[1], margin + QUAD_SLACK, state.out);
         true
     }
 
     /// The range of the line contact `s` over the angles `[t0, t1]` of
     /// branch `sigma`, within the segment (with slack); `None` when it
     /// misses the segment.
-    fn contact_range(&self, pt: &ArcPoint, sigma: f64, t0: f64, t1: f64) -> Option<(f64, f64)> {
+    fn contact_range(
+        &self,
+        pt: &ArcPoint,
+        sigma: f64,
+        e0: PieceEnd,
+        e1: PieceEnd,
+    ) -> Option<(f64, f64)> {
         let rho = self.arc.radius;
-        let (g_lo, g_hi) = pt.g.range(t0, t1);
-        let (h_lo, h_hi) = pt.h.range(t0, t1);
+        let (g_lo, g_hi) = pt.g.range(e0.t, e1.t, e0.g_cos, e1.g_cos);
+        let (h_lo, h_hi) = pt.h.range(e0.t, e1.t, e0.h_cos, e1.h_cos);
         let g2_max = (g_lo * g_lo).max(g_hi * g_hi);
         let g2_min = if g_lo <= 0.0 && g_hi >= 0.0 {
             0.0

@@ -17,7 +17,7 @@
 //! So no setup is lost; the pose solver and the segment test still decide.
 
 use super::pieces::{LinePiece, Quad, ThirdPiece, MAX_CHORDS, QUAD_SLACK, S_SLACK};
-use crate::geometry::angle_set::AngleSet;
+use crate::geometry::angle_set::{AngleSet, CAPACITY as ANGLE_SET_CAPACITY};
 use crate::geometry::{cross, rot, EPS, V2};
 
 /// Angle slack of the angle sets, radians.
@@ -42,8 +42,9 @@ const NEAR_PARALLEL: f64 = 1e-4;
 
 /// What the sweep of one combination needs (`a`, `b` lines, `c` a line or
 /// an arc), worked out once per combination: per `L2` only the part that
-/// depends on `L2` is left (one `atan2`, at most four `acos` and two
-/// `sin_cos`).
+/// depends on `L2` is left (one `atan2`, at most four `acos` and the
+/// `sin_cos` of the angles' ends), and that once per pivot pair
+/// ([`LinesPoint`]).
 #[derive(Debug, Clone, Copy)]
 pub struct LineSweep<'s> {
     a: &'s LinePiece,
@@ -77,17 +78,39 @@ enum Mode {
 }
 
 /// What the region of `L3` needs of `L2` beyond the third segment: the
-/// angles that keep contacts 1 and 2 on their segments and, when the part
-/// turns, the sinusoid of `s_a`. It depends only on the pivot pair and
-/// `L2`, so combinations that pivot on the same pair share it.
+/// angles that keep contacts 1 and 2 on their segments and how the part
+/// moves through them. It depends only on the pivot pair and `L2`, so
+/// combinations that pivot on the same pair share it, trig included.
 #[derive(Debug, Clone, Copy)]
 pub struct LinesPoint {
-    l2: V2,
     pub(super) angles: AngleSet,
-    /// `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)` (turning only).
-    sa: [f64; 2],
-    /// `(sin, cos)` of `phi_a`.
-    phi_a_sc: (f64, f64),
+    motion: Motion,
+}
+
+/// How the part moves through a [`LinesPoint`]'s angles, with the trig
+/// every third segment's region would otherwise redo.
+#[derive(Debug, Clone, Copy)]
+enum Motion {
+    /// The part turns: `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)`.
+    Turning {
+        sa: [f64; 2],
+        /// `(sin, cos)` of `phi_a`.
+        phi_a_sc: (f64, f64),
+        /// `(sin, cos)` of the ends of each interval of the angles.
+        ends_sc: [[(f64, f64); 2]; ANGLE_SET_CAPACITY],
+    },
+    /// The part slides at one or two angles ([`Slide`]); `len` of them.
+    Sliding { slides: [Slide; 2], len: usize },
+}
+
+/// One angle at which the part slides along parallel lines `a` and `b`:
+/// its `(sin, cos)` and the range `[lo, hi]` of `s_a` keeping both
+/// contacts on their segments.
+#[derive(Debug, Clone, Copy)]
+struct Slide {
+    sc: (f64, f64),
+    lo: f64,
+    hi: f64,
 }
 
 impl<'s> LineSweep<'s> {
@@ -151,10 +174,8 @@ impl<'s> LineSweep<'s> {
         let v = l2;
         match self.mode {
             Mode::Sliding => Some(LinesPoint {
-                l2,
                 angles: AngleSet::full(),
-                sa: [0.0; 2],
-                phi_a_sc: (0.0, 1.0),
+                motion: slides(self.a, self.b, self.same_ab, l2),
             }),
             Mode::Turning {
                 alpha,
@@ -186,11 +207,17 @@ impl<'s> LineSweep<'s> {
                 // direction.
                 let (sk, ck) = kappa_a_sc;
                 let (sl, cl) = (v.y / v.norm(), v.x / v.norm());
+                let mut ends_sc = [[(0.0, 1.0); 2]; ANGLE_SET_CAPACITY];
+                for (sc, &[t0, t1]) in ends_sc.iter_mut().zip(angles.intervals()) {
+                    *sc = [t0.sin_cos(), t1.sin_cos()];
+                }
                 Some(LinesPoint {
-                    l2,
                     angles,
-                    sa: [alpha[0], amp],
-                    phi_a_sc: (sl * ck + cl * sk, cl * ck - sl * sk),
+                    motion: Motion::Turning {
+                        sa: [alpha[0], amp],
+                        phi_a_sc: (sl * ck + cl * sk, cl * ck - sl * sk),
+                        ends_sc,
+                    },
                 })
             }
         }
@@ -203,20 +230,31 @@ impl<'s> LineSweep<'s> {
         if self.degenerate {
             return true;
         }
-        match self.mode {
-            Mode::Sliding => {
-                sliding_region(self.a, self.b, self.c, self.same_ab, pt.l2, out);
+        match pt.motion {
+            Motion::Sliding { slides, len } => {
+                sliding_region(self.a, self.c, &slides[..len], out);
                 true
             }
-            Mode::Turning { .. } => turning_region(self, pt, out),
+            Motion::Turning {
+                sa,
+                phi_a_sc,
+                ref ends_sc,
+            } => turning_region(self, &pt.angles, (sa, phi_a_sc), ends_sc, out),
         }
     }
 }
 
-/// Lines `a` and `b` not parallel: the part turns through the point's
-/// angles, with `s_a(theta) = sa[0] + sa[1] cos(theta - phi_a)`.
-fn turning_region(sweep: &LineSweep, pt: &LinesPoint, out: &mut Vec<Quad>) -> bool {
-    let (angles, sa, phi_a_sc, dmax_ac) = (&pt.angles, pt.sa, pt.phi_a_sc, sweep.dmax_ac);
+/// Lines `a` and `b` not parallel: the part turns through `angles`
+/// (`ends_sc`: the `(sin, cos)` of their ends), with `s_a(theta) = sa[0] +
+/// sa[1] cos(theta - phi_a)`.
+fn turning_region(
+    sweep: &LineSweep,
+    angles: &AngleSet,
+    (sa, phi_a_sc): ([f64; 2], (f64, f64)),
+    ends_sc: &[[(f64, f64); 2]; ANGLE_SET_CAPACITY],
+    out: &mut Vec<Quad>,
+) -> bool {
+    let dmax_ac = sweep.dmax_ac;
     let (a, c) = (sweep.a, sweep.c);
     let h = sa[1];
     // |F''| <= |p - p1| + 2 |p1'| + |p1''| for F = R (p - p1); the widened
@@ -225,7 +263,7 @@ fn turning_region(sweep: &LineSweep, pt: &LinesPoint, out: &mut Vec<Quad>) -> bo
     let step = (8.0 * TARGET_MARGIN / k2).sqrt();
     let (sin_p, cos_p) = phi_a_sc;
     let mut pieces = 0;
-    for &[t0, t1] in angles.intervals() {
+    for (&[t0, t1], &[sc0, sc1]) in angles.intervals().iter().zip(ends_sc) {
         let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
         pieces += n;
         if pieces > MAX_PIECES {
@@ -238,7 +276,7 @@ fn turning_region(sweep: &LineSweep, pt: &LinesPoint, out: &mut Vec<Quad>) -> bo
             let p1 = a.point(sa[0] + sa[1] * (cos * cos_p + sin * sin_p));
             c.map_into(|p| rot(cos, sin, p - p1), out);
         };
-        let mut sc = t0.sin_cos();
+        let mut sc = sc0;
         let mut prev = [V2::zeros(); MAX_CHORDS + 1];
         let mut next = prev;
         posed(sc, &mut prev);
@@ -247,7 +285,7 @@ fn turning_region(sweep: &LineSweep, pt: &LinesPoint, out: &mut Vec<Quad>) -> bo
         let step_sc = if n > 1 { w.sin_cos() } else { (0.0, 1.0) };
         for k in 1..=n {
             sc = if k == n {
-                t1.sin_cos()
+                sc1
             } else {
                 (
                     sc.0 * step_sc.1 + sc.1 * step_sc.0,
@@ -264,15 +302,32 @@ fn turning_region(sweep: &LineSweep, pt: &LinesPoint, out: &mut Vec<Quad>) -> bo
 
 /// Lines `a` and `b` parallel (or one segment twice): the ladder `L1 L2`
 /// spans the gap between them at one or two angles, and the part slides
-/// along them. Each angle gives a parallelogram.
-fn sliding_region(
-    a: &LinePiece,
-    b: &LinePiece,
-    c: &ThirdPiece,
-    same_ab: bool,
-    l2: V2,
-    out: &mut Vec<Quad>,
-) {
+/// along them. Each angle gives a parallelogram per chord of `c`.
+fn sliding_region(a: &LinePiece, c: &ThirdPiece, slides: &[Slide], out: &mut Vec<Quad>) {
+    for &Slide {
+        sc: (sin, cos),
+        lo,
+        hi,
+    } in slides
+    {
+        let mut ends = [[V2::zeros(); MAX_CHORDS + 1]; 2];
+        for (e, s1) in ends.iter_mut().zip([lo, hi]) {
+            c.map_into(|p| rot(cos, sin, p - a.point(s1)), e);
+        }
+        c.push_quads(&ends[0], &ends[1], QUAD_SLACK, out);
+    }
+}
+
+/// The angles at which the part slides along parallel lines `a` and `b`
+/// with `L2 = l2`, and the range of `s_a` at each that keeps both contacts
+/// on their segments.
+fn slides(a: &LinePiece, b: &LinePiece, same_ab: bool, l2: V2) -> Motion {
+    let none = Slide {
+        sc: (0.0, 1.0),
+        lo: 0.0,
+        hi: 0.0,
+    };
+    let (mut slides, mut len) = ([none; 2], 0);
     let (ua, na) = (a.line.u, a.line.n);
     let sigma = if na.dot(&b.line.n) >= 0.0 { 1.0 } else { -1.0 };
     // n_a . (p2 - p1) is the signed gap; the rest of R^T L2 runs along a.
@@ -280,7 +335,7 @@ fn sliding_region(
     // A ladder a hair shorter than the gap may still be a tangent pose
     // for the solver: keep it, at tau = 0.
     if l2.norm() < gap.abs() - 1e-6 {
-        return;
+        return Motion::Sliding { slides, len };
     }
     let tau = (l2.norm_squared() - gap * gap).max(0.0).sqrt();
     // On one segment, locator 2 comes after locator 1 along it.
@@ -289,7 +344,6 @@ fn sliding_region(
         let tau = sign * tau;
         let v = na * gap + ua * tau;
         let theta = l2.y.atan2(l2.x) - v.y.atan2(v.x);
-        let (sin, cos) = theta.sin_cos();
         // s_b = sigma (s_a + k): the range of s_a keeping both on.
         let k = ua.dot(&(a.line.origin - b.line.origin)) + tau;
         let (b_lo, b_hi) = if sigma > 0.0 {
@@ -302,10 +356,12 @@ fn sliding_region(
         if lo > hi {
             continue;
         }
-        let mut ends = [[V2::zeros(); MAX_CHORDS + 1]; 2];
-        for (e, s1) in ends.iter_mut().zip([lo, hi]) {
-            c.map_into(|p| rot(cos, sin, p - a.point(s1)), e);
-        }
-        c.push_quads(&ends[0], &ends[1], QUAD_SLACK, out);
+        slides[len] = Slide {
+            sc: theta.sin_cos(),
+            lo,
+            hi,
+        };
+        len += 1;
     }
+    Motion::Sliding { slides, len }
 }

@@ -140,10 +140,14 @@ pub enum LocatorSweep<'s> {
 /// What the region of `L3` needs of `L2` beyond the third segment, by the
 /// kind of sweep; shared by every combination with the same pivot pair.
 #[derive(Debug, Clone)]
+// The pivot cache keeps points by value in one vector: boxing the lines'
+// points (the common kind, which carry their angles' trig) would cost an
+// allocation per point.
+#[allow(clippy::large_enum_variant)]
 pub enum PivotPoint {
     /// See [`LinesPoint`].
     Lines(LinesPoint),
-    /// See [`ArcPoint`] (boxed: five times the size of the other).
+    /// See [`ArcPoint`] (boxed: more than twice the size of the other).
     LineArc(Box<ArcPoint>),
 }
 
