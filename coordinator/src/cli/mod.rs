@@ -379,7 +379,7 @@ fn real_main() -> Result<()> {
             fault,
         } => {
             run_fault(fault)?;
-            crate::run::interrupt::catch()?;
+            crate::interrupt::catch()?;
             let backend = run_backend(&cluster, threads, shard_size);
             load_and_run(
                 &RunOptions {
@@ -402,7 +402,7 @@ fn real_main() -> Result<()> {
             study::study_cli_main(&a, default_catalog())?;
         }
         Cmd::Coordinator(a) => {
-            crate::run::interrupt::catch()?;
+            crate::interrupt::catch()?;
             cluster::coordinator_main(&a, default_catalog())?;
         }
         Cmd::Worker(a) => cluster::worker_main(&a)?,

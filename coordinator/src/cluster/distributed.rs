@@ -333,6 +333,7 @@ fn zenoh_options(opts: &ClusterOptions) -> ZenohOptions {
             fixplan_worker::host::unique_name("fixplan")
         ));
         zopts.listen = vec![format!("unixsock-stream/{}", sock.display())];
+        crate::interrupt::remove_on_signal(sock);
     }
     zopts
 }

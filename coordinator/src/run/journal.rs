@@ -11,7 +11,7 @@
 //! `start <index> <id as JSON>` before a part's solve starts,
 //! `done <index>` when its solve and messages are made,
 //! `end` when the process stops in order (an error it reports),
-//! `end interrupted` when SIGINT or SIGTERM stops it ([`super::interrupt`]).
+//! `end interrupted` when SIGINT or SIGTERM stops it ([`crate::interrupt`]).
 //! A session that does not end with `end` died; the parts started and not
 //! done in it were in flight at that death.
 //!
@@ -398,7 +398,7 @@ impl Watch for Journal {
 /// killed by the OOM killer ends it; not a panic, which
 /// [`crate::job::solve_guarded`] would catch. `--fault stall-on:ID`: part
 /// ID's solve never ends, as a part too slow to wait for (the tests of
-/// [`super::interrupt`]).
+/// [`crate::interrupt`]).
 pub(crate) mod fault {
     use std::sync::OnceLock;
 

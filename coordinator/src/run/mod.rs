@@ -13,7 +13,6 @@
 pub(crate) mod backend;
 pub(crate) mod cluster_jobs;
 pub(crate) mod finish;
-pub mod interrupt;
 pub(crate) mod journal;
 pub(crate) mod ordered;
 pub(crate) mod outcome;
@@ -181,7 +180,7 @@ pub fn run_parts(
     // Held while a chunk is written: a signal's last words wait for it.
     let writing = std::sync::Arc::new(std::sync::Mutex::new(()));
     let _last_words =
-        interrupt::LastWords::say(interrupted_words(journal.as_ref(), &writing, &partial));
+        crate::interrupt::LastWords::say(interrupted_words(journal.as_ref(), &writing, &partial));
     let context = |i: usize| finish::context(start + i, jobs[i].part);
     let keep = |i: usize, bytes| {
         finish::outcome(bytes, start + i, jobs[i].part).or_else(|e| {
@@ -262,7 +261,7 @@ fn open_journal(
     })
 }
 
-/// What a run says when a signal stops it ([`interrupt`]): the journal's
+/// What a run says when a signal stops it ([`crate::interrupt`]): the journal's
 /// `end interrupted`, no chunk cut in half (the lock on `writing` is kept
 /// until the process ends), and how to go on.
 fn interrupted_words(

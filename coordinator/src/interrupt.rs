@@ -63,6 +63,16 @@ impl Drop for LastWords {
     }
 }
 
+/// Removes `path` if a signal ends the process: a unix socket this
+/// process listens on, which zenoh removes only when its session closes.
+/// Its name is unique to the process, so the words stay said until the
+/// process ends.
+pub fn remove_on_signal(path: std::path::PathBuf) {
+    std::mem::forget(LastWords::say(move || {
+        let _ = std::fs::remove_file(&path);
+    }));
+}
+
 fn lock_speakers() -> std::sync::MutexGuard<'static, Vec<(u64, Words)>> {
     SPEAKERS.lock().unwrap_or_else(|e| e.into_inner())
 }
