@@ -24,6 +24,7 @@ mod bench;
 mod cli;
 mod cluster;
 mod drawing;
+mod interrupt;
 mod job;
 mod output;
 mod run;

@@ -56,15 +56,20 @@ fn manifest(dir: &Path) -> PathBuf {
     path
 }
 
-fn run(catalog: &Path, out: &Path, extra: &[&str]) -> Output {
-    fixplan()
+/// `fixplan run` of `catalog` into `out` with `extra`, to be started.
+fn run_command(catalog: &Path, out: &Path, extra: &[&str]) -> Command {
+    let mut command = fixplan();
+    command
         .args(["run", "--kit", "metric-25", "--threads", "2", "--catalog"])
         .arg(catalog)
         .arg("-o")
         .arg(out)
-        .args(extra)
-        .output()
-        .unwrap()
+        .args(extra);
+    command
+}
+
+fn run(catalog: &Path, out: &Path, extra: &[&str]) -> Output {
+    run_command(catalog, out, extra).output().unwrap()
 }
 
 /// The part lines of `fixplan export --json`.
@@ -148,5 +153,75 @@ fn a_damaged_journal_changes_no_result() {
     let resumed = ok(run(&catalog, &out, &["-q", "--resume"]));
     let told = String::from_utf8_lossy(&resumed.stderr);
     assert!(told.contains("lines ignored"), "{told}");
+    assert_eq!(fixtures_channel(&out), fixtures_channel(&clean));
+}
+
+/// Starts a resumable run of `catalog` into `out` with `extra`, waits
+/// until its journal's session `session` (0 for the first run) shows part
+/// #2 (glue) started, sends it `signal` (`-INT`, `-TERM`) and returns
+/// what it did.
+fn signalled_at_glue(
+    (catalog, out): (&Path, &Path),
+    extra: &[&str],
+    session: usize,
+    signal: &str,
+) -> Output {
+    let mut child = run_command(catalog, out, extra)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let journal = out.with_extension("mcap.journal");
+    loop {
+        let text = std::fs::read_to_string(&journal).unwrap_or_default();
+        let ours = text.split("session ").nth(session + 1).unwrap_or_default();
+        if ours.lines().any(|l| l.starts_with("start 2 ")) {
+            break;
+        }
+        assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let sent = Command::new("kill")
+        .arg(signal)
+        .arg(child.id().to_string())
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    child.wait_with_output().unwrap()
+}
+
+/// Ctrl-C (or SIGTERM) is not a death: the run stops with 130 (143), its
+/// journal ends `end interrupted`, and a part interrupted twice is solved
+/// at the third go like any other, byte-identical to an uninterrupted run.
+#[test]
+fn a_part_interrupted_twice_is_not_failed() {
+    let dir = tempfile::tempdir().unwrap();
+    let catalog = manifest(dir.path());
+    let clean = dir.path().join("clean.mcap");
+    ok(run(&catalog, &clean, &["-q"]));
+    let out = dir.path().join("s.mcap");
+    let stall = ["-q", "--fault", "stall-on:glue"];
+    let first = signalled_at_glue((&catalog, &out), &stall, 0, "-INT");
+    let told = String::from_utf8_lossy(&first.stderr);
+    assert_eq!(first.status.code(), Some(130), "{told}");
+    assert!(told.contains("resume with"), "{told}");
+    let journal = std::fs::read_to_string(dir.path().join("s.mcap.journal")).unwrap();
+    assert!(journal.ends_with("\nend interrupted\n"), "{journal}");
+    assert!(!out.exists() && dir.path().join("s.mcap.partial").exists());
+    let resumed = [&stall[..], &["--resume"]].concat();
+    let second = signalled_at_glue((&catalog, &out), &resumed, 1, "-TERM");
+    let told = String::from_utf8_lossy(&second.stderr);
+    assert_eq!(second.status.code(), Some(143), "{told}");
+    assert!(
+        !told.contains("died"),
+        "an interrupt read as a death: {told}"
+    );
+    let third = ok(run(&catalog, &out, &["-q", "--resume"]));
+    let told = String::from_utf8_lossy(&third.stderr);
+    assert!(
+        !told.contains("died"),
+        "an interrupt read as a death: {told}"
+    );
+    assert!(export(&out).iter().all(|p| p["status"] != "failed"));
     assert_eq!(fixtures_channel(&out), fixtures_channel(&clean));
 }

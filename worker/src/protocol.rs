@@ -15,7 +15,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 9;
+pub const PROTOCOL_VERSION: u16 = 10;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -128,6 +128,52 @@ pub struct Assign {
     pub input: Option<Bytes>,
     /// What to do with the part.
     pub task: Task,
+    /// What the task may spend (protocol 10): a part beyond it is
+    /// answered [`TaskError::OverBudget`].
+    pub budget: TaskBudget,
+}
+
+/// A task's work budget (protocol 10): `--part-setups`, the same on every
+/// worker, and what is left of the part's `--part-seconds` by the
+/// coordinator's clock when the task is handed out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct TaskBudget {
+    /// Setups at most (SPEC's `setups` count): a task that sees more
+    /// stops, and so does its part, since a task's setups are at most its
+    /// part's.
+    pub setups: Option<u64>,
+    /// Milliseconds the task may still run.
+    pub millis: Option<u64>,
+}
+
+/// Which budget stopped a task's enumeration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Error, Serialize, Deserialize)]
+pub enum BudgetStop {
+    /// More setups than [`TaskBudget::setups`]: the same verdict whatever
+    /// the worker or the shard.
+    #[error("more than {0} setups")]
+    Setups(u64),
+    /// Past [`TaskBudget::millis`] (wall clock).
+    #[error("past its time")]
+    Deadline,
+}
+
+impl From<fixplan_core::BudgetHalt> for BudgetStop {
+    fn from(halt: fixplan_core::BudgetHalt) -> BudgetStop {
+        match halt {
+            fixplan_core::BudgetHalt::Setups(n) => BudgetStop::Setups(n),
+            fixplan_core::BudgetHalt::Deadline => BudgetStop::Deadline,
+        }
+    }
+}
+
+impl From<BudgetStop> for fixplan_core::BudgetHalt {
+    fn from(stop: BudgetStop) -> fixplan_core::BudgetHalt {
+        match stop {
+            BudgetStop::Setups(n) => fixplan_core::BudgetHalt::Setups(n),
+            BudgetStop::Deadline => fixplan_core::BudgetHalt::Deadline,
+        }
+    }
 }
 
 /// What a worker is asked to do with a part (protocol 8). The
@@ -252,6 +298,10 @@ pub enum TaskError {
     /// The task panicked (a bug in the part's enumeration): the message.
     #[error("internal error in the enumeration: {0}")]
     Panicked(String),
+    /// The task's budget ([`Assign::budget`]) stopped it: the part is
+    /// `over_budget` (the coordinator words it as `fixplan run` does).
+    #[error("over its work budget: {0}")]
+    OverBudget(BudgetStop),
     /// The worker's thread panicked outside the task's own guard.
     #[error("internal error: {0}")]
     Crashed(String),
@@ -587,6 +637,10 @@ mod tests {
                 digest: [5; 32],
                 input: None,
                 task,
+                budget: TaskBudget {
+                    setups: Some(i as u64 + 1),
+                    millis: (i == 0).then_some(900),
+                },
             })
             .collect();
         let m = Msg::Reply {
@@ -617,6 +671,7 @@ mod tests {
             #[serde(with = "serde_bytes")]
             input: Option<Vec<u8>>,
             task: TaskAsVectors,
+            budget: TaskBudget,
         }
         for (input, context) in [(Some(vec![1u8, 2, 250]), vec![]), (None, vec![9u8; 300])] {
             let a = Assign {
@@ -627,6 +682,7 @@ mod tests {
                     range: 0..40,
                     context: Bytes::from(context.clone()),
                 },
+                budget: TaskBudget::default(),
             };
             let v = AsVectors {
                 shard_id: 7,
@@ -636,6 +692,7 @@ mod tests {
                     range: 0..40,
                     context,
                 },
+                budget: TaskBudget::default(),
             };
             let wire = postcard::to_allocvec(&a).unwrap();
             assert_eq!(wire, postcard::to_allocvec(&v).unwrap());

@@ -7,13 +7,13 @@
 use crate::finish::{FinishInputs, Finisher};
 use crate::part_input::{PartInput, WireInputError};
 use crate::protocol::{
-    Answer, Assign, Digest, FinishError, Outcome, Task, TaskDone, TaskError, TaskFailed,
+    Answer, Assign, Digest, FinishError, Outcome, Task, TaskBudget, TaskDone, TaskError, TaskFailed,
 };
 use bytes::Bytes;
-use fixplan_core::{PartialResult, PreparedPart};
+use fixplan_core::{EnumerateOptions, PartialResult, PreparedPart, WorkBudget};
 use std::ops::Range;
 use std::sync::{Arc, OnceLock};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 use tracing::warn;
 
 /// A part's input and the part prepared, or why there is none.
@@ -130,17 +130,21 @@ pub fn run(assign: &Assign, part: &CachedPart, finisher: Option<&dyn Finisher>) 
         )
     };
     match &assign.task {
-        Task::Enumerate { range, good_enough } => match enumerate(prep, range, *good_enough) {
-            Ok((result, hit, micros)) => done(micros, Answer::Enumerated { result, hit }),
-            Err(e) => failed(e),
-        },
-        Task::EnumerateAndFinish { range, context } => match enumerate(prep, range, None) {
-            Ok((result, _, micros)) => {
-                let finished = finish(&result, micros, context);
-                done(micros, Answer::EnumeratedAndFinished { result, finished })
+        Task::Enumerate { range, good_enough } => {
+            match enumerate(prep, range, *good_enough, assign.budget) {
+                Ok((result, hit, micros)) => done(micros, Answer::Enumerated { result, hit }),
+                Err(e) => failed(e),
             }
-            Err(e) => failed(e),
-        },
+        }
+        Task::EnumerateAndFinish { range, context } => {
+            match enumerate(prep, range, None, assign.budget) {
+                Ok((result, _, micros)) => {
+                    let finished = finish(&result, micros, context);
+                    done(micros, Answer::EnumeratedAndFinished { result, finished })
+                }
+                Err(e) => failed(e),
+            }
+        }
         Task::Finish { merged, context } => {
             let t0 = Instant::now();
             let finished = finish(&merged.result, merged.micros, context);
@@ -156,18 +160,30 @@ fn micros_since(start: Instant) -> u64 {
 
 /// The enumeration of `range`, or with `good_enough` of its shortest
 /// prefix that admits a fixture scoring that or better (with the hit
-/// index), and its time; a panic is the task's failure.
+/// index), and its time; a panic, or going beyond `budget`, is the
+/// task's failure.
 fn enumerate(
     prep: &PreparedPart,
     range: &Range<u64>,
     good_enough: Option<f64>,
+    budget: TaskBudget,
 ) -> Result<(PartialResult, Option<u64>, u64), TaskError> {
     let t0 = Instant::now();
+    let deadline = budget.millis.map(|ms| t0 + Duration::from_millis(ms));
+    let work = WorkBudget::new(budget.setups, deadline);
     let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        crate::run_shard_until(prep, range.clone(), good_enough)
+        let options = EnumerateOptions {
+            good_enough,
+            budget: work.is_limited().then_some(&work),
+            ..EnumerateOptions::default()
+        };
+        prep.enumerate(range.clone(), options)
     }));
     match out {
-        Ok((result, hit)) => Ok((result, hit, micros_since(t0))),
+        Ok(done) => match work.verdict(done.halted, done.result.counts.setups) {
+            Some(halt) => Err(TaskError::OverBudget(halt.into())),
+            None => Ok((done.result, done.stopped_at, micros_since(t0))),
+        },
         Err(p) => Err(TaskError::Panicked(crate::panic_text(p))),
     }
 }
@@ -199,6 +215,7 @@ mod tests {
             digest: digest(part),
             input: None,
             task,
+            budget: TaskBudget::default(),
         }
     }
 

@@ -141,6 +141,17 @@ pub struct CoordinatorArgs {
     /// Worker processes to start on this host as well.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub workers: usize,
+    /// Stop a part (each grid step of it) once it has more than N setups,
+    /// as `fixplan run --part-setups`: its status is `over_budget`, and
+    /// the run goes on. Deterministic: the same parts as `fixplan run`,
+    /// whatever the workers, shard size or threads. Default: no limit.
+    #[arg(long, value_name = "N")]
+    pub part_setups: Option<u64>,
+    /// Stop a part still enumerating S seconds (the coordinator's clock)
+    /// after its first shard went out: its status is `over_budget`, its
+    /// shards not handed out again. NOT deterministic. Default: no limit.
+    #[arg(long, value_name = "S")]
+    pub part_seconds: Option<f64>,
     /// No progress display, summary table or info logs.
     #[arg(short, long)]
     pub quiet: bool,
@@ -282,7 +293,11 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         resume: a.resume,
         shard_size: a.shard_size,
         quiet: a.quiet,
-        search: SearchOptions::default(),
+        search: SearchOptions {
+            part_setups: a.part_setups,
+            part_seconds: a.part_seconds,
+            ..SearchOptions::default()
+        },
         backend: Backend::Cluster(copts),
         arcs: a.arcs,
     };

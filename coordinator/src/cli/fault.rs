@@ -2,8 +2,9 @@
 //! tests of the coordinator's checks. A fault is a [`Runner`] around the
 //! worker's plain one ([`fixplan_worker::task::run`]), the one seam
 //! between a worker and its tasks; the honest code knows nothing of it.
-//! `fixplan run --fault abort-on:ID` is the one fault of a run in this
-//! process: it dies on a part as a part that kills it would.
+//! `fixplan run --fault abort-on:ID` and `stall-on:ID` are the faults of
+//! a run in this process: it dies on a part as a part that kills it
+//! would, or never ends a part's solve.
 
 use fixplan_worker::finish::{FinishInputs, Finisher};
 use fixplan_worker::protocol::{Answer, Assign, FinishError, Outcome, Task};
@@ -27,6 +28,9 @@ pub enum Fault {
     /// `fixplan run`: abort the process when this part's solve starts
     /// (not a panic, which the run catches).
     AbortOn(String),
+    /// `fixplan run`: never finish this part's solve (a part too slow to
+    /// wait for, which only a signal stops).
+    StallOn(String),
     /// A worker: abort the process on any task of a part whose outline
     /// has this many vertices (a worker knows no part ids).
     AbortOnVertices(usize),
@@ -36,7 +40,7 @@ pub enum Fault {
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum FaultError {
     /// None of the faults.
-    #[error("unknown fault {0:?} (corrupt-score, forge-finished, slow:MS, abort-on:ID, abort-on-vertices:N)")]
+    #[error("unknown fault {0:?} (corrupt-score, forge-finished, slow:MS, abort-on:ID, stall-on:ID, abort-on-vertices:N)")]
     Unknown(String),
     /// `slow:` or `abort-on-vertices:` without a number.
     #[error("{text}: {source}")]
@@ -71,6 +75,9 @@ impl std::str::FromStr for Fault {
         }
         if let Some(id) = s.strip_prefix("abort-on:") {
             return Ok(Fault::AbortOn(id.to_string()));
+        }
+        if let Some(id) = s.strip_prefix("stall-on:") {
+            return Ok(Fault::StallOn(id.to_string()));
         }
         Err(FaultError::Unknown(s.to_string()))
     }
@@ -137,7 +144,7 @@ impl Runner for Fault {
                 }
                 None
             }
-            Fault::AbortOn(_) => None,
+            Fault::AbortOn(_) | Fault::StallOn(_) => None,
             Fault::SlowMs(ms) => {
                 if enumerates {
                     std::thread::sleep(Duration::from_millis(ms));
@@ -176,6 +183,7 @@ mod tests {
         assert_eq!("forge-finished".parse(), Ok(Fault::ForgeFinished));
         assert_eq!("slow:150".parse(), Ok(Fault::SlowMs(150)));
         assert_eq!("abort-on:a b".parse(), Ok(Fault::AbortOn("a b".into())));
+        assert_eq!("stall-on:x".parse(), Ok(Fault::StallOn("x".into())));
         assert_eq!("abort-on-vertices:7".parse(), Ok(Fault::AbortOnVertices(7)));
         assert!(matches!(
             "slow:x".parse::<Fault>(),

@@ -341,6 +341,10 @@ fn run_fault(fault: Option<fault::Fault>) -> Result<()> {
             crate::run::journal::fault::abort_on(&id);
             Ok(())
         }
+        Some(fault::Fault::StallOn(id)) => {
+            crate::run::journal::fault::stall_on(&id);
+            Ok(())
+        }
         Some(other) => {
             anyhow::bail!("--fault {other:?} is a worker's fault (fixplan worker --fault)")
         }
@@ -375,6 +379,7 @@ fn real_main() -> Result<()> {
             fault,
         } => {
             run_fault(fault)?;
+            crate::interrupt::catch()?;
             let backend = run_backend(&cluster, threads, shard_size);
             load_and_run(
                 &RunOptions {
@@ -397,6 +402,7 @@ fn real_main() -> Result<()> {
             study::study_cli_main(&a, default_catalog())?;
         }
         Cmd::Coordinator(a) => {
+            crate::interrupt::catch()?;
             cluster::coordinator_main(&a, default_catalog())?;
         }
         Cmd::Worker(a) => cluster::worker_main(&a)?,

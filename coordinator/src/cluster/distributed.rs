@@ -293,6 +293,8 @@ fn settings(opts: &ClusterOptions, batch_cost: u64) -> Settings {
         min_workers: opts.min_workers,
         verify: opts.verify,
         good_enough: opts.good_enough,
+        part_setups: opts.part_setups,
+        part_seconds: opts.part_seconds,
         batch_cost,
         finisher: None,
     }
@@ -331,6 +333,7 @@ fn zenoh_options(opts: &ClusterOptions) -> ZenohOptions {
             fixplan_worker::host::unique_name("fixplan")
         ));
         zopts.listen = vec![format!("unixsock-stream/{}", sock.display())];
+        crate::interrupt::remove_on_signal(sock);
     }
     zopts
 }

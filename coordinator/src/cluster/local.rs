@@ -1,6 +1,8 @@
 //! Worker processes started by the coordinator on its own host
 //! (`fixplan run --workers N`), stopped when the run ends, killed if they
-//! outstay it.
+//! outstay it, and sent SIGTERM when a signal stops the coordinator
+//! ([`crate::interrupt`]): they would otherwise look for it for a
+//! while, holding their shards' work.
 
 use fixplan_worker::zenoh_link::TlsFiles;
 use std::path::Path;
@@ -10,6 +12,8 @@ use std::time::{Duration, Instant};
 /// The worker processes of a run, killed on drop if still there.
 pub struct LocalWorkers {
     children: Vec<Child>,
+    /// SIGTERM to each of them if a signal ends the coordinator.
+    _on_signal: Option<crate::interrupt::LastWords>,
 }
 
 /// What a local worker is started with.
@@ -36,6 +40,7 @@ impl LocalWorkers {
     pub fn spawn(spec: &LocalSpec, count: usize) -> std::io::Result<LocalWorkers> {
         let mut w = LocalWorkers {
             children: Vec::new(),
+            _on_signal: None,
         };
         for _ in 0..count {
             let mut c = Command::new(spec.exe);
@@ -64,11 +69,27 @@ impl LocalWorkers {
             }
             w.children.push(c.spawn()?);
         }
+        let pids: Vec<libc::pid_t> = w
+            .children
+            .iter()
+            .filter_map(|c| c.id().try_into().ok())
+            .collect();
+        w._on_signal = Some(crate::interrupt::LastWords::say(move || {
+            for &pid in &pids {
+                // SAFETY: kill only sends a signal; the pids are this
+                // process's unreaped children, so none is another's.
+                unsafe {
+                    libc::kill(pid, libc::SIGTERM);
+                }
+            }
+        }));
         Ok(w)
     }
 
     /// Waits up to `grace` for the workers to leave, then kills the rest.
     pub fn stop(&mut self, grace: Duration) {
+        // Reaped below: their pids may be another process's later.
+        self._on_signal = None;
         let until = Instant::now() + grace;
         for c in &mut self.children {
             loop {

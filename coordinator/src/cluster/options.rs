@@ -72,6 +72,12 @@ pub struct ClusterOptions {
     /// `--good-enough`: every part stops at its first combination that
     /// admits a fixture scoring this or better (the embedded run's rule).
     pub good_enough: Option<f64>,
+    /// `--part-setups`: a part with more setups is `over_budget` (the
+    /// embedded run's verdict, whatever the workers).
+    pub part_setups: Option<u64>,
+    /// `--part-seconds`: a part still enumerating this long after its
+    /// first task went out is `over_budget` (the coordinator's clock).
+    pub part_seconds: Option<f64>,
 }
 
 impl Default for ClusterOptions {
@@ -91,6 +97,8 @@ impl Default for ClusterOptions {
             quiet: false,
             verify: VerifyPolicy::default(),
             good_enough: None,
+            part_setups: None,
+            part_seconds: None,
         }
     }
 }

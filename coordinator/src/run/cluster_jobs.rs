@@ -95,7 +95,10 @@ pub fn start<T>(
         }
     }
     let mut opts = opts.clone();
-    opts.good_enough = jobs.first().and_then(|j| j.ctx.search.good_enough);
+    let search = jobs.first().map(|j| j.ctx.search);
+    opts.good_enough = search.and_then(|s| s.good_enough);
+    opts.part_setups = search.and_then(|s| s.part_setups);
+    opts.part_seconds = search.and_then(|s| s.part_seconds);
     let dist = run_distributed_finishing(inputs, opts, remote.map(|r| r.finisher.clone()))?;
     Ok(ClusterJobs { dist, map, direct })
 }
@@ -126,6 +129,17 @@ fn from_steps(job: &PartJob, steps: Vec<StepOut>, ms: f64) -> Solved {
         if result.status == Status::Invalid && failed.is_none() {
             failed = Some(result.clone());
         }
+        // A step over budget ends the part, as in the embedded search.
+        if result.status == Status::OverBudget && failed.is_none() {
+            return Solved {
+                result,
+                timing: SolveTiming {
+                    enumerate_ms: ms,
+                    ..SolveTiming::default()
+                },
+                search: SearchInfo::default(),
+            };
+        }
         last = Some(result);
         if hit.is_some() {
             stopped_at = hit;
@@ -154,6 +168,11 @@ fn from_steps(job: &PartJob, steps: Vec<StepOut>, ms: f64) -> Solved {
 fn step_out(job: &PartJob, returned: Result<MergedPart, PartFailure>, ms: f64) -> StepOut {
     match returned {
         Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
+        Err(PartFailure::OverBudget(stop)) => {
+            let seconds = job.ctx.search.part_seconds;
+            let result = crate::job::budget::halted(&job.part.id, stop.into(), seconds);
+            (result, None, ms)
+        }
         Err(failure) => {
             let msg = format!("{}: {failure}", job.part.id);
             (SolveResult::gave_up(failure.status(), msg), None, ms)

@@ -10,7 +10,8 @@
 //! `session <run message as JSON>` when a run or resume starts,
 //! `start <index> <id as JSON>` before a part's solve starts,
 //! `done <index>` when its solve and messages are made,
-//! `end` when the process stops in order (an error it reports).
+//! `end` when the process stops in order (an error it reports),
+//! `end interrupted` when SIGINT or SIGTERM stops it ([`crate::interrupt`]).
 //! A session that does not end with `end` died; the parts started and not
 //! done in it were in flight at that death.
 //!
@@ -38,7 +39,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// The longest line read: a session line holds the run message (kit,
 /// parameters), a few kilobytes; anything longer is damage.
@@ -166,7 +167,7 @@ fn read_line(reader: &mut impl BufRead, line: &mut Vec<u8>) -> std::io::Result<O
 /// Applies a `start`, `done` or `end` line to a session of this run;
 /// false if it does not read or names a part not at its place.
 fn apply(s: &mut Session, text: &str, ids: &[&str]) -> bool {
-    if text == "end" {
+    if text == "end" || text == "end interrupted" {
         s.ended = true;
         return true;
     }
@@ -206,7 +207,8 @@ fn condemned(id: &str, d: RunDeaths) -> SolveResult {
 /// session appends to.
 pub struct Journal {
     path: PathBuf,
-    file: Mutex<File>,
+    /// Shared with the words said on a signal ([`Journal::interrupted_words`]).
+    file: Arc<Mutex<File>>,
     history: History,
     /// Catalogue index of job 0.
     first: usize,
@@ -251,7 +253,7 @@ impl Journal {
         }
         let journal = Journal {
             path,
-            file: Mutex::new(file),
+            file: Arc::new(Mutex::new(file)),
             history,
             first: 0,
             ids: ids.iter().map(|s| (*s).to_string()).collect(),
@@ -319,6 +321,18 @@ impl Journal {
             .unwrap_or_default()
     }
 
+    /// What the journal says when a signal stops the run: `end
+    /// interrupted`, so the parts in flight are not suspects; nothing is
+    /// written after it (the file stays locked until the process ends).
+    pub fn interrupted_words(&self) -> impl Fn() + Send + 'static {
+        let file = Arc::clone(&self.file);
+        move || {
+            let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
+            let _ = f.write_all(b"end interrupted\n");
+            std::mem::forget(f);
+        }
+    }
+
     /// Removes the file: the run completed.
     pub fn remove(mut self) {
         self.closed = true;
@@ -371,7 +385,7 @@ impl Watch for Journal {
         let id = self.ids.get(i).map_or("?", String::as_str);
         let id = serde_json::to_string(id).unwrap_or_default();
         self.note(&format!("start {i} {id}\n"));
-        fault::maybe_abort(&self.ids[i]);
+        fault::maybe_fail(&self.ids[i]);
     }
 
     fn finished(&self, job: usize) {
@@ -382,20 +396,33 @@ impl Watch for Journal {
 /// `fixplan run --fault abort-on:ID` (tests): the process aborts when
 /// part ID's solve starts, as a part that overflows its stack or is
 /// killed by the OOM killer ends it; not a panic, which
-/// [`crate::job::solve_guarded`] would catch.
+/// [`crate::job::solve_guarded`] would catch. `--fault stall-on:ID`: part
+/// ID's solve never ends, as a part too slow to wait for (the tests of
+/// [`crate::interrupt`]).
 pub(crate) mod fault {
     use std::sync::OnceLock;
 
     static ABORT_ON: OnceLock<String> = OnceLock::new();
+    static STALL_ON: OnceLock<String> = OnceLock::new();
 
     /// Makes the process abort when part `id` starts being solved.
     pub fn abort_on(id: &str) {
         let _ = ABORT_ON.set(id.to_string());
     }
 
-    pub(super) fn maybe_abort(id: &str) {
+    /// Makes part `id`'s solve never end.
+    pub fn stall_on(id: &str) {
+        let _ = STALL_ON.set(id.to_string());
+    }
+
+    pub(super) fn maybe_fail(id: &str) {
         if ABORT_ON.get().is_some_and(|a| a == id) {
             die();
+        }
+        if STALL_ON.get().is_some_and(|a| a == id) {
+            loop {
+                std::thread::sleep(std::time::Duration::from_secs(3600));
+            }
         }
     }
 

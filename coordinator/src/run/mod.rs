@@ -160,17 +160,7 @@ pub fn run_parts(
     };
     let (mut writer, start) =
         resume::open_output(&opts.output, opts.resume, &run_parts, &mut progress)?;
-    // The parts in flight, for the next resume: in this process only (a
-    // cluster's workers solve elsewhere).
-    let journal = match opts.backend {
-        Backend::Embedded { .. } => {
-            let mut j =
-                journal::Journal::open(&opts.output, &run_msg, &run_parts.ids, opts.resume)?;
-            j.set_first(start);
-            Some(j)
-        }
-        Backend::Cluster(_) => None,
-    };
+    let journal = open_journal(opts, &run_parts, start)?;
     let ctx = JobContext {
         kit: &spec.kit,
         params: &params,
@@ -187,6 +177,10 @@ pub fn run_parts(
         })
         .collect();
     let partial = resume::partial_path(&opts.output);
+    // Held while a chunk is written: a signal's last words wait for it.
+    let writing = std::sync::Arc::new(std::sync::Mutex::new(()));
+    let _last_words =
+        crate::interrupt::LastWords::say(interrupted_words(journal.as_ref(), &writing, &partial));
     let context = |i: usize| finish::context(start + i, jobs[i].part);
     let keep = |i: usize, bytes| {
         finish::outcome(bytes, start + i, jobs[i].part).or_else(|e| {
@@ -214,6 +208,7 @@ pub fn run_parts(
         |i, s| part_outcome(&ctx, start + i, jobs[i].part, s),
         |_, out: Result<PartOutcome, OutcomeError>| {
             let o = out.with_context(|| format!("writing {}", partial.display()))?;
+            let _writing = writing.lock().unwrap_or_else(|e| e.into_inner());
             writer
                 .write_chunk(&o.chunk)
                 .with_context(|| format!("writing {}", partial.display()))?;
@@ -242,4 +237,48 @@ pub fn run_parts(
         std::io::Write::write_all(&mut std::io::stdout(), table.as_bytes())?;
     }
     Ok(totals)
+}
+
+/// The parts in flight, for the next resume: in this process only (a
+/// cluster's workers solve elsewhere). Job 0 is catalogue part `start`.
+fn open_journal(
+    opts: &RunOptions,
+    run_parts: &resume::RunParts,
+    start: usize,
+) -> Result<Option<journal::Journal>> {
+    Ok(match opts.backend {
+        Backend::Embedded { .. } => {
+            let mut j = journal::Journal::open(
+                &opts.output,
+                run_parts.message,
+                &run_parts.ids,
+                opts.resume,
+            )?;
+            j.set_first(start);
+            Some(j)
+        }
+        Backend::Cluster(_) => None,
+    })
+}
+
+/// What a run says when a signal stops it ([`crate::interrupt`]): the journal's
+/// `end interrupted`, no chunk cut in half (the lock on `writing` is kept
+/// until the process ends), and how to go on.
+fn interrupted_words(
+    journal: Option<&journal::Journal>,
+    writing: &std::sync::Arc<std::sync::Mutex<()>>,
+    partial: &Path,
+) -> impl Fn() + Send + 'static {
+    let journal = journal.map(journal::Journal::interrupted_words);
+    let writing = std::sync::Arc::clone(writing);
+    let partial = partial.display().to_string();
+    move || {
+        std::mem::forget(writing.lock().unwrap_or_else(|e| e.into_inner()));
+        if let Some(words) = &journal {
+            words();
+        }
+        eprintln!(
+            "fixplan: run interrupted; {partial} keeps the parts written so far: resume with the same command and --resume"
+        );
+    }
 }

@@ -172,7 +172,8 @@ impl Drivers<'_, '_> {
     ) {
         loop {
             let i = self.next.fetch_add(1, Ordering::SeqCst);
-            if i >= self.jobs.len() || !self.wait_for_room(i) {
+            // A signal stops the run: no more work ([`crate::interrupt`]).
+            if i >= self.jobs.len() || crate::interrupt::stopping() || !self.wait_for_room(i) {
                 break;
             }
             let job = &self.jobs[i];

@@ -2,7 +2,7 @@
 //! reported (and so holds none any more), sized so that the workers run
 //! out of work together.
 
-use super::state::{requeue, Settings, ShardStatus, State, ROLE};
+use super::state::{requeue, Settings, ShardStatus, ShardWork, State, ROLE};
 use super::tasks;
 use fixplan_worker::protocol::{Assign, Next};
 use std::time::Instant;
@@ -81,6 +81,9 @@ fn lease_batch(
     // Suspects' shards this worker may not take now, back in front after.
     let mut deferred = Vec::new();
     let holds_nothing = st.workers.get(worker)?.leased.is_empty();
+    // Parts whose `--part-seconds` ran out before all their shards went.
+    let mut out_of_time = Vec::new();
+    let now = Instant::now();
     while cost < limit.0 && batch.len() < limit.1 {
         let Some(id) = st.queue.pop_front() else {
             break;
@@ -104,9 +107,19 @@ fn lease_batch(
             st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
             continue;
         };
+        let budget = match super::budget::task_budget(&mut st.parts[sh.part], settings, now) {
+            Ok(budget) => budget,
+            Err(stop) if matches!(sh.work, ShardWork::Combinations(_)) => {
+                out_of_time.push((sh.part, stop));
+                continue;
+            }
+            // A cut part's finishing: its enumeration is over.
+            Err(_) => Default::default(),
+        };
+        let part = &st.parts[sh.part];
         sh.status = ShardStatus::Leased {
             worker: worker.to_string(),
-            until: Instant::now() + settings.lease,
+            until: now + settings.lease,
         };
         st.queued_cost = st.queued_cost.saturating_sub(sh.cost);
         cost += sh.cost;
@@ -119,6 +132,7 @@ fn lease_batch(
             digest: part.digest,
             input,
             task,
+            budget,
         });
         if suspect {
             break;
@@ -126,6 +140,9 @@ fn lease_batch(
     }
     for id in deferred.into_iter().rev() {
         st.queue.push_front(id);
+    }
+    for (p, stop) in out_of_time {
+        super::budget::fail(st, p, stop);
     }
     Some(batch)
 }

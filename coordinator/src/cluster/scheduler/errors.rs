@@ -6,7 +6,7 @@
 
 use crate::cluster::verify::CheckError;
 use fixplan_core::PrepareError;
-use fixplan_worker::protocol::TaskError;
+use fixplan_worker::protocol::{BudgetStop, TaskError};
 use thiserror::Error;
 
 /// Why a whole message is refused. A worker prints it and exits, so it
@@ -64,6 +64,10 @@ pub enum PartFailure {
         /// Of those, workers that held nothing but that shard.
         alone: u32,
     },
+    /// Beyond `--part-setups` or `--part-seconds`
+    /// ([`super::budget`]); the run words it as the embedded run does.
+    #[error("over its work budget: {0}")]
+    OverBudget(BudgetStop),
 }
 
 impl PartFailure {
@@ -73,6 +77,7 @@ impl PartFailure {
         match self {
             PartFailure::Prepare(_) => fixplan_core::Status::Invalid,
             PartFailure::Worker(_) | PartFailure::Killed { .. } => fixplan_core::Status::Failed,
+            PartFailure::OverBudget(_) => fixplan_core::Status::OverBudget,
         }
     }
 }

@@ -9,6 +9,7 @@
 //! `errors` says why a request or a result is turned down.
 
 mod assign;
+mod budget;
 mod errors;
 mod results;
 mod state;
@@ -214,7 +215,7 @@ impl Scheduler {
     }
 
     fn failed(&self, failure: TaskFailed, worker: &str) -> Result<(), NotTaken> {
-        results::take_failure(&mut self.lock(), failure, worker)
+        results::take_failure(&mut self.lock(), &self.settings, failure, worker)
     }
 
     /// A worker's liveliness token vanished: its shards go back to the queue.

@@ -12,7 +12,7 @@ use crate::cluster::verify::{self, CheckError};
 use bytes::Bytes;
 use fixplan_core::{merge, PartialResult};
 use fixplan_worker::finish::FinishInputs;
-use fixplan_worker::protocol::{Answer, Digest, MergedCut, TaskDone, TaskFailed};
+use fixplan_worker::protocol::{Answer, Digest, MergedCut, TaskDone, TaskError, TaskFailed};
 use std::ops::Range;
 use tracing::warn;
 
@@ -416,7 +416,14 @@ fn close(st: &mut State, settings: &Settings, slot: usize) {
             .start
             .saturating_add(merged.counts.combinations);
     }
-    if !whole && stop.is_none() && settings.finisher.is_some() && part.finish.is_some() {
+    let finish = part.finish.is_some();
+    if let Some(over) =
+        super::budget::over_at_close(&st.parts[slot], settings, merged.counts.setups)
+    {
+        super::budget::fail(st, slot, over);
+        return;
+    }
+    if !whole && stop.is_none() && settings.finisher.is_some() && finish {
         queue_finishing(
             st,
             slot,
@@ -464,6 +471,7 @@ fn deliver(
 /// run's), else the worker's.
 pub(super) fn take_failure(
     st: &mut State,
+    settings: &Settings,
     failure: TaskFailed,
     worker: &str,
 ) -> Result<(), NotTaken> {
@@ -487,6 +495,13 @@ pub(super) fn take_failure(
         st.shards[failure.shard_id as usize].status = ShardStatus::Done;
         if let Some(merged) = merged {
             deliver(st, p, merged.result, None, None);
+        }
+        return Ok(());
+    }
+    if let TaskError::OverBudget(stop) = failure.error {
+        let deferred = super::budget::shard_over(st, settings, (p, failure.shard_id), stop);
+        if deferred && !still_open(st, p) && !st.parts[p].closed {
+            close(st, settings, p);
         }
         return Ok(());
     }

@@ -95,6 +95,12 @@ pub(super) struct PartSlot {
     pub(super) finishing: Option<u64>,
     /// Workers lost or timed out holding one of its shards ([`strike`]).
     pub(super) deaths: WorkerLosses,
+    /// When its first task was handed out: `--part-seconds` runs from
+    /// then ([`super::budget`]).
+    pub(super) started: Option<Instant>,
+    /// With `--good-enough`: the first combination of the earliest shard
+    /// that stopped on `--part-setups`, judged when the part closes.
+    pub(super) over: Option<u64>,
 }
 
 /// How often a part's shards were with a worker that was lost or whose
@@ -277,6 +283,10 @@ pub struct Settings {
     pub verify: VerifyPolicy,
     /// `--good-enough` threshold of every part.
     pub good_enough: Option<f64>,
+    /// `--part-setups` of every part ([`super::budget`]).
+    pub part_setups: Option<u64>,
+    /// `--part-seconds` of every part, by this process's clock.
+    pub part_seconds: Option<f64>,
     /// Cost of work ([`crate::job::shards::cost`]) handed out in one
     /// assignment at most, for each thread of the worker it goes to:
     /// small shards travel together up to it.
@@ -370,6 +380,8 @@ impl State {
             finish: part.finish.map(Bytes::from),
             finishing: None,
             deaths: WorkerLosses::default(),
+            started: None,
+            over: None,
         });
         self.part_index.push(part.index);
         self.open_parts += 1;

@@ -8,7 +8,9 @@ use fixplan_catalog::kit::{builtin_kit, METRIC_25};
 use fixplan_core::{Params, Part};
 use fixplan_worker::finish::FinishInputs;
 use fixplan_worker::part_input::PartInput;
-use fixplan_worker::protocol::{Answer, Assign, FinishError, Task, TransportChoice};
+use fixplan_worker::protocol::{
+    Answer, Assign, BudgetStop, FinishError, Task, TaskFailed, TransportChoice,
+};
 use std::ops::Range;
 use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
@@ -26,6 +28,8 @@ fn settings(verify: VerifyPolicy, batch_cost: u64) -> Settings {
         min_workers: 1,
         verify,
         good_enough: None,
+        part_setups: None,
+        part_seconds: None,
         batch_cost,
         finisher: None,
     }
@@ -705,6 +709,7 @@ fn a_cut_part_waiting_to_be_finished_is_merged_again_if_a_worker_of_it_is_banned
                     range,
                     good_enough: None,
                 },
+                budget: Default::default(),
             });
         }
         b
@@ -904,4 +909,85 @@ fn deaths_only_in_batches_fail_no_part() {
         (3, 0)
     );
     assert!(!st.parts[1].closed);
+}
+
+/// Every task carries the run's budget; a worker's over-budget answer for
+/// one shard makes its part `over_budget` (no shard of it goes out
+/// again) and the other parts are merged as ever; a part whose
+/// `--part-seconds` ran out before all its shards went is over too.
+#[test]
+fn over_budget_answers_and_spent_time_end_their_part() {
+    let (mut c, rx) = core_rx(2, 3, VerifyPolicy::All);
+    c.settings.part_setups = Some(1_000);
+    c.settings.batch_cost = 1;
+    join(&c, "w");
+    let Next::Work(batch) = c.next_work("w") else {
+        panic!("no work")
+    };
+    assert!(batch.iter().all(|a| a.budget.setups == Some(1_000)));
+    let over = batch[0].shard_id;
+    let over_part = c.lock().shards[over as usize].part;
+    let failed = Outcome::Failed(TaskFailed {
+        shard_id: over,
+        error: fixplan_worker::protocol::TaskError::OverBudget(BudgetStop::Setups(1_000)),
+    });
+    let mut next = match report(&c, "w", vec![failed]) {
+        Frame::Msg(Msg::Reply { next, .. }) => next,
+        other => panic!("{other:?}"),
+    };
+    loop {
+        match next {
+            Next::Work(batch) => {
+                let part_of = |id: u64| c.lock().shards[id as usize].part;
+                assert!(batch.iter().all(|a| part_of(a.shard_id) != over_part));
+                let Frame::Msg(Msg::Reply { next: n, .. }) =
+                    report(&c, "w", honest_any(&c, &batch))
+                else {
+                    panic!("no reply")
+                };
+                next = n;
+            }
+            Next::Idle { .. } => next = c.next_work("w"),
+            Next::Done => break,
+            other => panic!("{other:?}"),
+        }
+    }
+    let delivered: Vec<Delivery> = rx.try_iter().flatten().collect();
+    assert_eq!(delivered.len(), 2);
+    for (i, d) in delivered {
+        match d {
+            Err(e @ PartFailure::OverBudget(BudgetStop::Setups(1_000))) => {
+                assert_eq!(i, over_part);
+                assert_eq!(e.status(), fixplan_core::Status::OverBudget);
+            }
+            Ok(_) => assert_ne!(i, over_part),
+            Err(e) => panic!("part #{i}: {e}"),
+        }
+    }
+    // Time: the clock starts with a part's first task, and a part whose
+    // time is up when its next shard would go out is over.
+    let (mut c, rx) = core_rx(1, 3, VerifyPolicy::All);
+    c.settings.part_seconds = Some(0.001);
+    c.settings.batch_cost = 1;
+    join(&c, "w");
+    let first = match c.next_work("w") {
+        Next::Work(batch) => batch,
+        other => panic!("{other:?}"),
+    };
+    assert!(first.iter().all(|a| a.budget.millis == Some(1)));
+    std::thread::sleep(Duration::from_millis(5));
+    let outcomes = honest_any(&c, &first);
+    let Frame::Msg(Msg::Reply { next, .. }) = report(&c, "w", outcomes) else {
+        panic!("no reply")
+    };
+    let next = match next {
+        Next::Idle { .. } => c.next_work("w"),
+        other => other,
+    };
+    assert_eq!(next, Next::Done, "no shard of a part out of time goes out");
+    let delivered: Vec<Delivery> = rx.try_iter().flatten().collect();
+    assert!(matches!(
+        delivered.as_slice(),
+        [(0, Err(PartFailure::OverBudget(BudgetStop::Deadline)))]
+    ));
 }
