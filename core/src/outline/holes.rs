@@ -19,6 +19,7 @@ use super::mass::general;
 use super::validate::{sizes, validate_outline, OutlineError, TOUCH_REL};
 use super::vertex::Vertex;
 use crate::geometry::{cross, Aabb, V2};
+use std::cell::OnceCell;
 use thiserror::Error;
 
 /// Points tried along each edge when deciding whether a loop that meets
@@ -125,8 +126,10 @@ struct Loop {
     boxes: Vec<Aabb>,
     aabb: Aabb,
     ccw: Vec<Vertex>,
-    ccw_points: Vec<V2>,
-    ccw_edges: Vec<Edge>,
+    /// The counter-clockwise points and edges, made when a point is first
+    /// located in the loop: the outline's are, a hole's rarely (only when
+    /// another hole's box comes near it).
+    region: OnceCell<(Vec<V2>, Vec<Edge>)>,
 }
 
 impl Loop {
@@ -142,15 +145,20 @@ impl Loop {
             edges,
             boxes,
             aabb,
-            ccw_points: ccw.iter().map(Vertex::point).collect(),
-            ccw_edges: edges_of(&ccw),
             ccw,
+            region: OnceCell::new(),
         }
     }
 
     /// Even-odd location in the loop's region.
     fn contains(&self, p: V2) -> bool {
-        loop_contains(p, &self.ccw_points, &self.ccw_edges)
+        let (points, edges) = self.region.get_or_init(|| {
+            (
+                self.ccw.iter().map(Vertex::point).collect(),
+                edges_of(&self.ccw),
+            )
+        });
+        loop_contains(p, points, edges)
     }
 }
 

@@ -12,14 +12,15 @@
 //! Only the edges whose boxes come near the grown edge can make a piece
 //! too close; midpoints are tested against them alone, which gives the
 //! same answers since the others are farther than `r - eps`. Their
-//! crossings still cut a grown arc, and cut a grown line where they can
+//! crossings still cut a grown arc (those of the curves that run on past
+//! them: the others fall off the arc), and cut a grown line where they can
 //! change a piece's ends ([`super::far`]), so pieces end where they always
 //! did, bit for bit. A hole wall that its own hole leaves no room for (but
 //! stretches shorter than the trims) is known to offer nothing without
 //! the full cut ([`super::walls`]).
 
 use super::cuts::{edge_cuts, far_edge_cuts};
-use super::far::NearZones;
+use super::far::{EdgeSpans, NearZones};
 use super::line::complement;
 use super::segment::{Feature, LineFeature, Segment};
 use super::walls::{offers_nothing, Trim};
@@ -155,7 +156,7 @@ fn removed_pieces(
             for &j in near {
                 edge_cuts(f, &edges[j], rho, &mut cuts);
             }
-            let mut far = Vec::new();
+            let mut far = Vec::with_capacity(2 * edges.len());
             let mut near_iter = near.iter().peekable();
             for (j, e) in edges.iter().enumerate() {
                 if near_iter.next_if_eq(&&j).is_none() && j != i {
@@ -169,9 +170,15 @@ fn removed_pieces(
             NearZones::of(line, len, boxes, rho + slack, slack).add_far_cuts(&far, len, &mut cuts);
         }
         Feature::Arc(_) => {
+            // A far edge's end-point circles cannot reach the grown arc:
+            // their crossings with its circle lie off the arc and would be
+            // dropped below, so only the curves that run on are computed.
+            let mut near_iter = near.iter().peekable();
             for (j, e) in edges.iter().enumerate() {
-                if j != i {
+                if near_iter.next_if_eq(&&j).is_some() {
                     edge_cuts(f, e, rho, &mut cuts);
+                } else if j != i {
+                    far_edge_cuts(f, e, rho, &mut cuts);
                 }
             }
         }
@@ -188,14 +195,33 @@ fn removed_pieces(
     cuts.retain(|s| *s >= 0.0 && *s <= len);
     cuts.sort_by(f64::total_cmp);
     cuts.dedup();
-    let too_close = |p: V2| {
-        near.iter().any(|&j| edges[j].distance(p) < rho)
-            || access
-                .iter()
-                .any(|poly| point_in_polygon(p, poly) || boundary_distance2(p, poly).sqrt() < rho)
+    let near_access = |p: V2| {
+        access
+            .iter()
+            .any(|poly| point_in_polygon(p, poly) || boundary_distance2(p, poly).sqrt() < rho)
+    };
+    // The pieces come in order of `s`: on a line, each middle is tested
+    // against the near edges whose boxes can reach it.
+    let mut spans = match f {
+        Feature::Line(line) => Some(EdgeSpans::of(
+            line,
+            near,
+            outline.edge_boxes(),
+            rho + slack,
+            slack,
+        )),
+        Feature::Arc(_) => None,
+    };
+    let mut too_close = |s: f64| {
+        let p = f.point(s);
+        let near_edge = match spans.as_mut() {
+            Some(spans) => spans.at(s).any(|j| edges[j].distance(p) < rho),
+            None => near.iter().any(|&j| edges[j].distance(p) < rho),
+        };
+        near_edge || near_access(p)
     };
     cuts.windows(2)
-        .filter(|w| w[1] > w[0] && too_close(f.point(0.5 * (w[0] + w[1]))))
+        .filter(|w| w[1] > w[0] && too_close(0.5 * (w[0] + w[1])))
         .map(|w| (w[0], w[1]))
         .collect()
 }

@@ -39,12 +39,8 @@ impl NearZones {
         slack: f64,
     ) -> NearZones {
         let mut zones: Vec<(f64, f64)> = boxes
-            .filter_map(|b| {
-                let (x0, x1) = slab(line.origin.x, line.u.x, b.min.x - reach, b.max.x + reach)?;
-                let (y0, y1) = slab(line.origin.y, line.u.y, b.min.y - reach, b.max.y + reach)?;
-                let (lo, hi) = (x0.max(y0) - slack, x1.min(y1) + slack);
-                (lo <= hi && hi >= 0.0 && lo <= len).then_some((lo, hi))
-            })
+            .filter_map(|b| box_span(line, &b, reach, slack))
+            .filter(|&(lo, hi)| hi >= 0.0 && lo <= len)
             .collect();
         zones.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut merged: Vec<(f64, f64)> = Vec::with_capacity(zones.len());
@@ -82,5 +78,68 @@ impl NearZones {
                 cuts.extend([lo, hi]);
             }
         }
+    }
+}
+
+/// The parameters of the grown line `line` (an interval, maybe unbounded)
+/// where a point can lie within `reach` of the box `b`, widened by `slack`
+/// for the rounding of the clip; `None` if there are none.
+fn box_span(line: &LineFeature, b: &Aabb, reach: f64, slack: f64) -> Option<(f64, f64)> {
+    let (x0, x1) = slab(line.origin.x, line.u.x, b.min.x - reach, b.max.x + reach)?;
+    let (y0, y1) = slab(line.origin.y, line.u.y, b.min.y - reach, b.max.y + reach)?;
+    let (lo, hi) = (x0.max(y0) - slack, x1.min(y1) + slack);
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// The near edges of a grown line by the stretch of it their boxes can
+/// come within reach of ([`box_span`]), for testing a piece's middle
+/// against the few edges near it rather than against every near edge: a
+/// long outline edge beside a row of holes has hundreds of pieces and of
+/// near edges. An edge closer than the reach to a point has its box
+/// closer too, so it is among those listed at that point, and the answer
+/// of "is any edge too close" is the same.
+pub(super) struct EdgeSpans {
+    /// `(lo, hi, edge)`, by increasing `lo`.
+    spans: Vec<(f64, f64, usize)>,
+    /// How many of `spans` have been taken in.
+    taken: usize,
+    /// The edges taken in whose span has not ended before the last `s`,
+    /// as `(hi, edge)`.
+    active: Vec<(f64, usize)>,
+}
+
+impl EdgeSpans {
+    /// The spans of the edges `near` (indices into `boxes`) on `line`.
+    pub(super) fn of(
+        line: &LineFeature,
+        near: &[usize],
+        boxes: &[Aabb],
+        reach: f64,
+        slack: f64,
+    ) -> EdgeSpans {
+        let mut spans: Vec<(f64, f64, usize)> = near
+            .iter()
+            .filter_map(|&j| box_span(line, &boxes[j], reach, slack).map(|(lo, hi)| (lo, hi, j)))
+            .collect();
+        spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        EdgeSpans {
+            spans,
+            taken: 0,
+            active: Vec::new(),
+        }
+    }
+
+    /// The edges whose span holds `s`, and maybe a few more. `s` must not
+    /// decrease from one call to the next.
+    pub(super) fn at(&mut self, s: f64) -> impl Iterator<Item = usize> + '_ {
+        while let Some(&(lo, hi, j)) = self.spans.get(self.taken) {
+            if lo > s {
+                break;
+            }
+            self.active.push((hi, j));
+            self.taken += 1;
+        }
+        self.active.retain(|&(hi, _)| hi >= s);
+        self.active.iter().map(|&(_, j)| j)
     }
 }

@@ -118,10 +118,11 @@ fn hole(x: f64, y: f64, w: f64, h: f64, round: bool, ccw: bool) -> Vec<Vertex> {
     l
 }
 
-/// A straight outline (a rectangle with a notch in its top edge, so that
-/// it has a concave corner) and the holes that validate against it.
-fn part(width: f64, holes: &[(f64, f64, f64, f64, bool, bool)]) -> Option<Outline> {
-    let outline: Vec<Vertex> = [
+/// An outline (a rectangle with a notch in its top edge, so that it has
+/// a concave corner, its right side an arc of bulge `bulge`) and the holes
+/// that validate against it.
+fn part(width: f64, bulge: f64, holes: &[(f64, f64, f64, f64, bool, bool)]) -> Option<Outline> {
+    let mut outline: Vec<Vertex> = [
         [0.0, 0.0],
         [width, 0.0],
         [width, 6.0],
@@ -134,6 +135,7 @@ fn part(width: f64, holes: &[(f64, f64, f64, f64, bool, bool)]) -> Option<Outlin
     .iter()
     .map(|&[x, y]| Vertex::new(x, y, 0.0))
     .collect();
+    outline[1].bulge = bulge;
     let loops: Vec<Vec<Vertex>> = holes
         .iter()
         .map(|&(x, y, w, h, round, ccw)| hole(x, y, w, h, round, ccw))
@@ -149,7 +151,7 @@ fn small_holes_offer_nothing_and_big_ones_do() {
         (2.0, 2.0, 0.4, 0.4, true, false),
         (5.0, 1.0, 2.5, 2.5, false, true),
     ];
-    let outline = part(10.0, &holes).unwrap();
+    let outline = part(10.0, 0.0, &holes).unwrap();
     let (r, trim) = (0.4, 0.05);
     let fast = outline_segments(&outline, &[], r, trim);
     assert!(same_bits(&fast, &plain_segments(&outline, &[], r, trim)));
@@ -168,7 +170,8 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
     /// Random holes, round and square, small and large, near the edges
-    /// and far, with and without an access region and trim.
+    /// and far, with and without an access region, trim and an arc in the
+    /// outline.
     #[test]
     fn fast_cut_equals_plain_cut(
         width in 8.0f64..14.0,
@@ -179,17 +182,19 @@ proptest! {
         r in 0.15f64..0.7,
         trim in prop_oneof![Just(0.0), 0.01f64..0.3],
         access in any::<bool>(),
+        bulge in prop_oneof![Just(0.0), -0.2f64..0.4],
     ) {
         // Keep the holes that fit and do not meet; a bad set is skipped.
         let mut kept: Vec<(f64, f64, f64, f64, bool, bool)> = Vec::new();
         for h in holes {
             let mut with = kept.clone();
             with.push(h);
-            if part(width, &with).is_some() {
+            if part(width, bulge, &with).is_some() {
                 kept = with;
             }
         }
-        let outline = part(width, &kept).unwrap_or_else(|| part(width, &[]).unwrap());
+        let outline =
+            part(width, bulge, &kept).unwrap_or_else(|| part(width, bulge, &[]).unwrap());
         let access: Vec<Vec<V2>> = if access {
             vec![vec![v2(1.0, -1.0), v2(3.0, -1.0), v2(3.0, 0.3), v2(1.0, 0.3)]]
         } else {
