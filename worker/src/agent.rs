@@ -44,6 +44,12 @@ pub struct WorkerOptions {
     /// binary's, so the coordinator only copies their bytes. Without one,
     /// the coordinator finishes every part itself.
     pub finisher: Option<Arc<dyn Finisher>>,
+    /// The process that started this worker (`fixplan run --workers`):
+    /// once it is gone (this worker reparented), the worker stops, even
+    /// before it joined a run. A coordinator killed by SIGKILL cannot
+    /// stop its workers, and one killed before they joined left them
+    /// waiting for it for ever.
+    pub parent: Option<u32>,
 }
 
 impl Default for WorkerOptions {
@@ -58,6 +64,7 @@ impl Default for WorkerOptions {
             protocol_version: PROTOCOL_VERSION,
             runner: Arc::new(Plain),
             finisher: None,
+            parent: None,
         }
     }
 }
@@ -268,6 +275,14 @@ impl Agent {
         }
     }
 
+    /// Whether the process that started this worker has died: the
+    /// kernel then hands the worker to another parent.
+    fn orphaned(&self) -> bool {
+        self.opts
+            .parent
+            .is_some_and(|parent| std::os::unix::process::parent_id() != parent)
+    }
+
     fn run(&mut self) -> Result<(), WorkerError> {
         let mut waiting_since = Instant::now();
         let mut said_waiting = false;
@@ -300,6 +315,13 @@ impl Agent {
                     )));
                 }
                 Err(e) => {
+                    if self.orphaned() {
+                        info!(
+                            role = self.role,
+                            "the process that started this worker is gone ({e}); stopping"
+                        );
+                        return Ok(());
+                    }
                     if was_in_run && !self.opts.stay && waiting_since.elapsed() > GONE_AFTER {
                         // Its run ended while it was rejoining (the
                         // coordinator told the others), or the coordinator

@@ -179,6 +179,10 @@ pub struct WorkerArgs {
     /// Claim another protocol version (tests of the version check).
     #[arg(long, hide = true, default_value_t = PROTOCOL_VERSION)]
     pub protocol_version: u16,
+    /// Stop once the process PID is no longer this worker's parent: given
+    /// by `fixplan run --workers` to the workers it starts.
+    #[arg(long, hide = true, value_name = "PID")]
+    pub parent: Option<u32>,
     /// Misbehave (tests of the coordinator's checks): corrupt-score,
     /// forge-finished, slow:MS (every shard MS longer),
     /// abort-on-vertices:N (die on a part of N outline vertices).
@@ -323,6 +327,7 @@ pub fn worker_main(a: &WorkerArgs) -> Result<()> {
             None => Arc::new(Plain),
         },
         finisher: Some(Arc::new(crate::run::finish::RunFinisher)),
+        parent: a.parent,
     };
     match run_worker(opts) {
         Ok(_) => Ok(()),

@@ -50,6 +50,8 @@ impl LocalWorkers {
                 spec.connect,
                 "--key-prefix",
                 spec.key_prefix,
+                "--parent",
+                &std::process::id().to_string(),
             ])
             .args([
                 "--transport",
