@@ -1,9 +1,8 @@
 //! The shards a worker has running on its pool while it asks for more.
 //!
-//! A worker that ran each assignment to its end before asking again left
-//! its threads waiting for the assignment's slowest shard, every time
-//! (two 2-thread workers on 700 parts: 15-25% of their time). So the
-//! agent hands each shard to the pool on its own and asks again as soon
+//! A worker that ran each assignment to its end before asking again would
+//! leave its threads waiting for the assignment's slowest shard, every
+//! time (docs/performance.md measures that idle share). So the agent hands each shard to the pool on its own and asks again as soon
 //! as no more shards wait for a thread than it has threads, telling the
 //! coordinator which shards it still holds (protocol 7,
 //! [`crate::protocol::Msg::Report`]).

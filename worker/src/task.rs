@@ -21,9 +21,8 @@ pub type Prepared = Result<(PartInput, PreparedPart), WireInputError>;
 
 /// A part as its tasks find it on a worker: the input its first task
 /// brought, prepared once, by whichever of its tasks runs first, on the
-/// pool (preparing on the agent's thread made it a serial stage before
-/// every task: about 30-50 us a part, a limit for many threads on small
-/// parts), and only when a task needs it (a replayed one does not).
+/// pool (on the agent's thread, preparing would be a serial stage before
+/// every task, a limit for many threads on small parts), and only when a task needs it (a replayed one does not).
 pub struct CachedPart {
     digest: Digest,
     input: Option<Bytes>,

@@ -238,8 +238,8 @@ pub fn run_distributed_finishing(
 /// Cuts the parts into shards for `slots` worker threads, and the cost of
 /// one assignment at most. Plans from estimates, without preparing any
 /// part here (preparing the parts to cut, for their exact combination
-/// counts, was 6-15% of the coordinator's CPU with a thousand worker
-/// threads): a part that would be one shard anyway goes out whole,
+/// counts, would make the coordinator's CPU the limit of a big cluster):
+/// a part that would be one shard anyway goes out whole,
 /// a bigger one is cut over its estimated combinations, its last shard
 /// left open so that it takes whatever the estimate missed (access
 /// regions can split segments). A shard past the part's real count

@@ -48,10 +48,9 @@ pub fn estimate(input: &fixplan_worker::part_input::PartInput) -> (u64, usize) {
 /// to about `total cost / (slots x BATCHES_PER_SLOT)` for each of the
 /// worker's threads, so that a catalogue of small parts needs a few round
 /// trips per worker, not one per part. Each round trip costs the
-/// coordinator: 32 here cost 64 simulated worker threads (8 workers of 8)
-/// 25-29 us of coordinator CPU a part, 8 cost 22-23 (`fixplan
-/// bench-coordinator`, 21,000 parts, when batches were sized for one
-/// thread); the tail stays balanced by guided self-scheduling, which
+/// coordinator CPU, and more batches per slot mean more round trips
+/// (`fixplan bench-coordinator` measures it; docs/performance.md has the
+/// figures); the tail stays balanced by guided self-scheduling, which
 /// shrinks batches as the queue empties.
 pub const BATCHES_PER_SLOT: u64 = 8;
 

@@ -153,8 +153,8 @@ const KEPT_INTERVALS: usize = 4;
 
 /// An end of an angle piece with the phases' cosines of `g` and `h` there
 /// (and `(sin, cos)` of `t`, at an interval's end): a piece and its
-/// halves, or two neighbouring pieces, share ends, so each is worked out
-/// once where every piece used to work out both of its own.
+/// halves, or two neighbouring pieces, share ends, so each end is worked
+/// out once, not once by every piece that ends there.
 #[derive(Debug, Clone, Copy)]
 struct PieceEnd {
     t: f64,
