@@ -1,15 +1,18 @@
 //! Clamp placement (SPEC section 4): candidate contacts where a plunger
 //! axis crosses a segment's form-closure interval, then the mount search by
-//! increasing extension with every admissibility test. [`arc_reach`]
-//! narrows an arc segment's axis lines before the exact tests.
+//! increasing extension with every admissibility test. The candidates of
+//! a segment come from [`line_candidates`] or [`arc_candidates`], chosen
+//! by its feature in `offer_setup_candidates`; [`arc_reach`] narrows an
+//! arc segment's axis lines before the exact tests.
 
+mod arc_candidates;
 mod arc_reach;
+mod line_candidates;
 pub(crate) use arc_reach::{ArcReach, ClampWindow};
 
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, LocatorWrenches};
 use crate::checks::plate::Placement;
-use crate::geometry::arc::GrownArc;
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::setting::Setting;
 use crate::input::Pattern;
@@ -17,7 +20,7 @@ use crate::metric::{Metric, PartContact};
 use crate::poses::pose::Pose;
 use crate::results::ranking::{Fixture, TopK};
 use crate::results::report::Counts;
-use crate::segments::{arc_inward_normal, Feature, LineFeature, Segment};
+use crate::segments::{arc_inward_normal, Feature, Segment};
 use crate::setups::{lattice_point, Setup};
 use nalgebra::Vector3;
 
@@ -268,201 +271,6 @@ impl ClampSearch<'_> {
             Feature::Line(l) => -pose.rotate(l.n),
             Feature::Arc(a) => arc_inward_normal(pose.apply(a.center), a.radius, a.is_convex(), q),
         }
-    }
-
-    /// Candidates on a straight segment: the form-closure interval is exact
-    /// (SPEC 4), and the normal is the same all along, so the angle test
-    /// is made once per rotation.
-    fn line_candidates(
-        &self,
-        ctx: &SetupContext,
-        j: usize,
-        seg: &Segment,
-        line: &LineFeature,
-        acc: &mut Accumulator,
-        scratch: &mut Scratch,
-    ) {
-        let pose = ctx.setup.pose;
-        let f = -pose.rotate(line.n);
-        let mut angle_margins = [None; 4];
-        let mut any = false;
-        for (k, m) in (0..4u8).zip(angle_margins.iter_mut()) {
-            if ctx.only_rotation.is_none_or(|ok| ok == k) {
-                *m = self.angle_margin(k, f);
-                any |= m.is_some();
-            }
-        }
-        if !any {
-            return;
-        }
-        let q0 = pose.apply(line.origin);
-        let dq = pose.rotate(line.u);
-        let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
-        // No axis line across the whole segment, none across its interval
-        // (within it, see `axis_span`): the interval need not be solved.
-        let crossed = (0..4u8).zip(angle_margins).any(|(k, m)| {
-            m.is_some() && {
-                let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
-                ceil_i64(gmin) as f64 <= gmax
-            }
-        });
-        if !crossed {
-            return;
-        }
-        let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, s_lo, s_hi) else {
-            return;
-        };
-        for (k, angle_margin) in (0..4u8).zip(angle_margins) {
-            let Some(angle_margin) = angle_margin else {
-                continue;
-            };
-            let (g0, g1, gmin, gmax) = self.axis_span(k, q0, dq, lo, hi);
-            let mut line = ceil_i64(gmin);
-            while (line as f64) <= gmax {
-                let s = (line as f64 - g0) / g1;
-                if s > lo && s < hi {
-                    if ctx.count_only.get() == Some(true) {
-                        // What `offer` would do, without the candidate.
-                        acc.counts.candidates += 1;
-                    } else {
-                        let q = q0 + dq * s;
-                        let lam = ctx.lw.lambda(&wrench(q, f));
-                        let cand = Candidate {
-                            segment: j,
-                            rotation: k,
-                            line,
-                            q,
-                            f,
-                            margin: ctx
-                                .base_margin
-                                .min(seg.inner_margin(s))
-                                .min(lam.min() - EPS)
-                                .min(angle_margin),
-                        };
-                        self.offer(ctx, &cand, acc, scratch);
-                    }
-                }
-                line += 1;
-            }
-        }
-    }
-
-    /// The axis lines of rotation `k` (`e . q - y0 = line`) along the
-    /// contacts `q0 + s dq`, `s` in `[lo, hi]`: `g(s) = g0 + g1 s` and
-    /// the range of `g` there. Each step rounds monotonically in `s`, so a
-    /// narrower `[lo, hi]` gives a range within this one, bit for bit.
-    #[inline(always)]
-    fn axis_span(&self, k: u8, q0: V2, dq: V2, lo: f64, hi: f64) -> (f64, f64, f64, f64) {
-        let e = rot90(k, v2(0.0, 1.0));
-        let g0 = e.dot(&q0) - self.setting.clamp.y0;
-        let g1 = e.dot(&dq);
-        let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);
-        (g0, g1, ga.min(gb), ga.max(gb))
-    }
-
-    /// Candidates on an arc segment (SPEC 8.5): the points where each
-    /// plunger axis line crosses the posed grown circle, each tested for
-    /// span, angle and form closure on its own normal. Only the lines
-    /// [`arc_reach`] keeps are tried, and on each only the side facing
-    /// the push: at the other point `q_d - C'_d` (along `d`, an axis) is
-    /// `fl(C'_d + side half) - C'_d`, of the sign of `side` or zero since
-    /// rounding is monotone, so `d . f <= 0 < eps` there (and at a
-    /// tangency, `half = 0`, on both). The tests that remain are those of
-    /// every point kept, the cheap form-closure test before the `atan2`
-    /// of the inner one: the candidates are the same, in the same order.
-    fn arc_candidates(
-        &self,
-        ctx: &SetupContext,
-        j: usize,
-        seg: &Segment,
-        arc: &GrownArc,
-        acc: &mut Accumulator,
-        scratch: &mut Scratch,
-    ) {
-        let pose = ctx.setup.pose;
-        let centre = pose.apply(arc.center);
-        let rho = arc.radius;
-        let convex = arc.is_convex();
-        // Posed at the first rotation with an axis line across the circle
-        // (small arcs often have none). Without pieces (a test's reference
-        // search) every line across the circle is tried.
-        let mut piece = None;
-        for k in 0..4u8 {
-            if ctx.only_rotation.is_some_and(|ok| ok != k) {
-                continue;
-            }
-            let d = rot90(k, v2(1.0, 0.0));
-            let e = rot90(k, v2(0.0, 1.0));
-            // Axis line `line`: e . q - y0 = line.
-            let gc = e.dot(&centre) - self.setting.clamp.y0;
-            let first = ceil_i64(gc - rho);
-            if first as f64 > gc + rho {
-                continue;
-            }
-            let posed = *piece.get_or_insert_with(|| {
-                let piece = self.arc_pieces.get(j).copied().flatten();
-                piece.map(|p| p.posed(&pose, arc.center, rho))
-            });
-            // The window's centre: where the inward normal is `d`.
-            let n = if convex { -d } else { d };
-            let lines = match &posed {
-                Some(posed) => posed.axis_lines(&self.window, n, e, gc, rho),
-                None => Some((gc - rho, gc + rho)),
-            };
-            let Some((lo, hi)) = lines else {
-                continue;
-            };
-            let side = n.dot(&d);
-            let mut line = first.max(ceil_i64(lo));
-            while (line as f64) <= gc + rho && (line as f64) <= hi {
-                let h = line as f64 - gc;
-                let w2 = (rho - h.abs()) * (rho + h.abs());
-                if w2 > 0.0 {
-                    let half = w2.sqrt();
-                    let q = centre + e * h + d * (side * half);
-                    // Near tangency the two points merge: borderline.
-                    let tangency = rho - h.abs();
-                    if let Some((f, margin)) = self.arc_point(ctx, seg, arc, k, centre, q) {
-                        let cand = Candidate {
-                            segment: j,
-                            rotation: k,
-                            line,
-                            q,
-                            f,
-                            margin: margin.min(tangency),
-                        };
-                        self.offer(ctx, &cand, acc, scratch);
-                    }
-                }
-                line += 1;
-            }
-        }
-    }
-
-    /// SPEC 8.5's tests of one point `q` of an arc segment posed with
-    /// its centre at `centre`: the inward normal there and the decision
-    /// margin of a candidate before tangency, `None` when a test fails.
-    #[inline(always)]
-    fn arc_point(
-        &self,
-        ctx: &SetupContext,
-        seg: &Segment,
-        arc: &GrownArc,
-        k: u8,
-        centre: V2,
-        q: V2,
-    ) -> Option<(V2, f64)> {
-        let f = arc_inward_normal(centre, arc.radius, arc.is_convex(), q);
-        let angle_margin = self.angle_margin(k, f)?;
-        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
-        if lam <= 0.0 {
-            return None;
-        }
-        let inner = seg.inner_margin(seg.param_of(ctx.setup.pose.inverse_apply(q)));
-        if inner <= 0.0 {
-            return None;
-        }
-        Some((f, ctx.base_margin.min(inner).min(lam).min(angle_margin)))
     }
 
     /// SPEC 4 (c): the push direction of rotation `k` against the inward

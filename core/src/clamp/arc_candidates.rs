@@ -1,0 +1,118 @@
+//! Clamp candidates on an arc segment (SPEC 8.5): the one file of the
+//! clamp search that knows a segment is an arc (with [`super::arc_reach`],
+//! which narrows its axis lines). Every point where a plunger axis line
+//! crosses the posed grown circle is tested on its own normal.
+
+use super::{ceil_i64, Accumulator, Candidate, ClampSearch, SetupContext};
+use crate::checks::admissibility::Scratch;
+use crate::checks::form_closure::wrench;
+use crate::geometry::arc::GrownArc;
+use crate::geometry::{rot90, v2, EPS, V2};
+use crate::segments::{arc_inward_normal, Segment};
+
+impl ClampSearch<'_> {
+    /// Candidates on an arc segment (SPEC 8.5): the points where each
+    /// plunger axis line crosses the posed grown circle, each tested for
+    /// span, angle and form closure on its own normal. Only the lines
+    /// [`arc_reach`] keeps are tried, and on each only the side facing
+    /// the push: at the other point `q_d - C'_d` (along `d`, an axis) is
+    /// `fl(C'_d + side half) - C'_d`, of the sign of `side` or zero since
+    /// rounding is monotone, so `d . f <= 0 < eps` there (and at a
+    /// tangency, `half = 0`, on both). The tests that remain are those of
+    /// every point kept, the cheap form-closure test before the `atan2`
+    /// of the inner one: the candidates are the same, in the same order.
+    pub(super) fn arc_candidates(
+        &self,
+        ctx: &SetupContext,
+        j: usize,
+        seg: &Segment,
+        arc: &GrownArc,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        let pose = ctx.setup.pose;
+        let centre = pose.apply(arc.center);
+        let rho = arc.radius;
+        let convex = arc.is_convex();
+        // Posed at the first rotation with an axis line across the circle
+        // (small arcs often have none). Without pieces (a test's reference
+        // search) every line across the circle is tried.
+        let mut piece = None;
+        for k in 0..4u8 {
+            if ctx.only_rotation.is_some_and(|ok| ok != k) {
+                continue;
+            }
+            let d = rot90(k, v2(1.0, 0.0));
+            let e = rot90(k, v2(0.0, 1.0));
+            // Axis line `line`: e . q - y0 = line.
+            let gc = e.dot(&centre) - self.setting.clamp.y0;
+            let first = ceil_i64(gc - rho);
+            if first as f64 > gc + rho {
+                continue;
+            }
+            let posed = *piece.get_or_insert_with(|| {
+                let piece = self.arc_pieces.get(j).copied().flatten();
+                piece.map(|p| p.posed(&pose, arc.center, rho))
+            });
+            // The window's centre: where the inward normal is `d`.
+            let n = if convex { -d } else { d };
+            let lines = match &posed {
+                Some(posed) => posed.axis_lines(&self.window, n, e, gc, rho),
+                None => Some((gc - rho, gc + rho)),
+            };
+            let Some((lo, hi)) = lines else {
+                continue;
+            };
+            let side = n.dot(&d);
+            let mut line = first.max(ceil_i64(lo));
+            while (line as f64) <= gc + rho && (line as f64) <= hi {
+                let h = line as f64 - gc;
+                let w2 = (rho - h.abs()) * (rho + h.abs());
+                if w2 > 0.0 {
+                    let half = w2.sqrt();
+                    let q = centre + e * h + d * (side * half);
+                    // Near tangency the two points merge: borderline.
+                    let tangency = rho - h.abs();
+                    if let Some((f, margin)) = self.arc_point(ctx, seg, arc, k, centre, q) {
+                        let cand = Candidate {
+                            segment: j,
+                            rotation: k,
+                            line,
+                            q,
+                            f,
+                            margin: margin.min(tangency),
+                        };
+                        self.offer(ctx, &cand, acc, scratch);
+                    }
+                }
+                line += 1;
+            }
+        }
+    }
+
+    /// SPEC 8.5's tests of one point `q` of an arc segment posed with
+    /// its centre at `centre`: the inward normal there and the decision
+    /// margin of a candidate before tangency, `None` when a test fails.
+    #[inline(always)]
+    fn arc_point(
+        &self,
+        ctx: &SetupContext,
+        seg: &Segment,
+        arc: &GrownArc,
+        k: u8,
+        centre: V2,
+        q: V2,
+    ) -> Option<(V2, f64)> {
+        let f = arc_inward_normal(centre, arc.radius, arc.is_convex(), q);
+        let angle_margin = self.angle_margin(k, f)?;
+        let lam = ctx.lw.lambda(&wrench(q, f)).min() - EPS;
+        if lam <= 0.0 {
+            return None;
+        }
+        let inner = seg.inner_margin(seg.param_of(ctx.setup.pose.inverse_apply(q)));
+        if inner <= 0.0 {
+            return None;
+        }
+        Some((f, ctx.base_margin.min(inner).min(lam).min(angle_margin)))
+    }
+}
