@@ -172,6 +172,9 @@ fn signalled_at_glue(
         .spawn()
         .unwrap();
     let journal = out.with_extension("mcap.journal");
+    // A bound on a hang, not a speed test: the run reaches glue in well
+    // under a second.
+    let until = std::time::Instant::now() + std::time::Duration::from_secs(120);
     loop {
         let text = std::fs::read_to_string(&journal).unwrap_or_default();
         let ours = text.split("session ").nth(session + 1).unwrap_or_default();
@@ -179,6 +182,11 @@ fn signalled_at_glue(
             break;
         }
         assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+        if std::time::Instant::now() > until {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("the run did not start glue within 120 s");
+        }
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
     let sent = Command::new("kill")

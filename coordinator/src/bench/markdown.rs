@@ -39,8 +39,9 @@ pub fn print_part(part: &PartMeasured) {
     );
 }
 
-/// A mode's wall time with as many digits as a reader can use: three
-/// significant figures up to a second, then seconds.
+/// A mode's wall time with as many digits as the run-to-run noise leaves
+/// meaningful: hundredths of a millisecond under 10 ms, tenths under 100,
+/// whole milliseconds under a second, then seconds to two decimals.
 fn wall(measured: Option<&Measured>) -> String {
     let Some(measured) = measured else {
         return "-".to_string();
