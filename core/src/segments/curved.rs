@@ -1,4 +1,7 @@
-//! The segments of an outline with arcs (SPEC 8.2).
+//! The segments of an outline with arcs or holes (SPEC 8.2 and 9.3),
+//! whatever its edges' kinds: each edge is grown ([`super::grow`]), the
+//! pieces too close to the part are removed ([`super::pieces`], which
+//! picks the feature's code once) and the rest are trimmed here.
 //!
 //! A point of a grown edge is removed when it lies closer than `r - eps`
 //! to another part edge or to an access region. That set is bounded by the
@@ -14,18 +17,18 @@
 //! same answers since the others are farther than `r - eps`. Their
 //! crossings still cut a grown arc (those of the curves that run on past
 //! them: the others fall off the arc), and cut a grown line where they can
-//! change a piece's ends ([`super::far`]), so pieces end where they always
+//! change a piece's ends (`pieces/far.rs`), so pieces end where they always
 //! did, bit for bit. A hole wall that its own hole leaves no room for (but
 //! stretches shorter than the trims) is known to offer nothing without
 //! the full cut ([`super::walls`]).
 
-use super::cuts::{edge_cuts, far_edge_cuts};
-use super::far::{EdgeSpans, NearZones};
-use super::line::complement;
-use super::segment::{Feature, LineFeature, Segment};
+use super::grow::grown_feature;
+use super::pieces::{removed_pieces, EdgeCut};
+use super::polygon::complement;
+use super::segment::{Feature, Segment};
 use super::walls::{offers_nothing, Trim};
-use crate::geometry::{boundary_distance2, point_in_polygon, Aabb, EPS, V2};
-use crate::outline::{Edge, GrownEdge, Outline};
+use crate::geometry::{Aabb, EPS, V2};
+use crate::outline::Outline;
 
 /// Slack of the box tests that choose the edges a midpoint is tested
 /// against, relative to the coordinates' size: boxes and distances are
@@ -46,10 +49,9 @@ pub(super) fn outline_segments(
     for (k, own) in outline.loop_edges().enumerate() {
         for i in own.clone() {
             let edge = &edges[i];
-            let Some(feature) = edge.grown(r, EPS).map(feature_of) else {
+            let Some((feature, len)) = grown_feature(edge, r) else {
                 continue;
             };
-            let len = feature_length(&feature, edge);
             let smooth_start = outline.smooth_joint(i);
             let smooth_end = outline.smooth_joint(outline.next_in_loop(i));
             let trims = Trim {
@@ -65,7 +67,16 @@ pub(super) fn outline_segments(
             let edge_box = edge.aabb();
             let slack = NEAR_SLACK_REL * (1.0 + size_of(&edge_box) + r);
             outline.edges_near(&edge_box, r + rho + slack, i, &mut near);
-            let mut removed = removed_pieces(&feature, len, i, outline, &near, access, rho, slack);
+            let cut = EdgeCut {
+                edge: i,
+                len,
+                outline,
+                near: &near,
+                access,
+                rho,
+                slack,
+            };
+            let mut removed = removed_pieces(&feature, &cut);
             let pieces = complement(&mut removed, 0.0, len);
             push_pieces(&mut out, i, &feature, pieces, len, trims);
         }
@@ -110,118 +121,4 @@ fn size_of(b: &Aabb) -> f64 {
     [b.min.x, b.min.y, b.max.x, b.max.y]
         .iter()
         .fold(0.0f64, |m, x| m.max(x.abs()))
-}
-
-/// The grown edge as a segment feature (the whole grown edge, `s` from 0).
-fn feature_of(grown: GrownEdge) -> Feature {
-    match grown {
-        GrownEdge::Line { a, b, normal } => {
-            let u = (b - a).normalize();
-            Feature::Line(LineFeature::new(a, u, normal))
-        }
-        GrownEdge::Arc(arc) => Feature::Arc(arc),
-    }
-}
-
-/// Length of the whole grown edge (the range of `s`): a grown line is the
-/// edge moved along its normal, so it keeps the edge's length.
-fn feature_length(f: &Feature, edge: &Edge) -> f64 {
-    match f {
-        Feature::Line(_) => edge.length(),
-        Feature::Arc(a) => a.length(),
-    }
-}
-
-/// The open parameter intervals of the grown edge `i` that lie closer than
-/// `rho` to another edge or to a filled access region. Cut at the curves
-/// of every edge (on a grown line, those of far edges only where they can
-/// change the answer: [`super::far`]); `near` lists the edges a point of
-/// the grown edge can be closer than `rho` to, `slack` the rounding
-/// allowance of the box tests that chose them.
-#[allow(clippy::too_many_arguments)] // the cut's inputs, each used
-fn removed_pieces(
-    f: &Feature,
-    len: f64,
-    i: usize,
-    outline: &Outline,
-    near: &[usize],
-    access: &[Vec<V2>],
-    rho: f64,
-    slack: f64,
-) -> Vec<(f64, f64)> {
-    let edges = outline.edges();
-    let mut cuts = vec![0.0, len];
-    match f {
-        Feature::Line(line) => {
-            for &j in near {
-                edge_cuts(f, &edges[j], rho, &mut cuts);
-            }
-            let mut far = Vec::with_capacity(2 * edges.len());
-            let mut near_iter = near.iter().peekable();
-            for (j, e) in edges.iter().enumerate() {
-                if near_iter.next_if_eq(&&j).is_none() && j != i {
-                    far_edge_cuts(f, e, rho, &mut far);
-                }
-            }
-            let boxes = near
-                .iter()
-                .map(|&j| outline.edge_boxes()[j])
-                .chain(access.iter().map(|poly| Aabb::of(poly)));
-            NearZones::of(line, len, boxes, rho + slack, slack).add_far_cuts(&far, len, &mut cuts);
-        }
-        Feature::Arc(_) => {
-            // A far edge's end-point circles cannot reach the grown arc:
-            // their crossings with its circle lie off the arc and would be
-            // dropped below, so only the curves that run on are computed.
-            let mut near_iter = near.iter().peekable();
-            for (j, e) in edges.iter().enumerate() {
-                if near_iter.next_if_eq(&&j).is_some() {
-                    edge_cuts(f, e, rho, &mut cuts);
-                } else if j != i {
-                    far_edge_cuts(f, e, rho, &mut cuts);
-                }
-            }
-        }
-    }
-    for poly in access {
-        for k in 0..poly.len() {
-            let e = Edge::Line {
-                a: poly[k],
-                b: poly[(k + 1) % poly.len()],
-            };
-            edge_cuts(f, &e, rho, &mut cuts);
-        }
-    }
-    cuts.retain(|s| *s >= 0.0 && *s <= len);
-    cuts.sort_by(f64::total_cmp);
-    cuts.dedup();
-    let near_access = |p: V2| {
-        access
-            .iter()
-            .any(|poly| point_in_polygon(p, poly) || boundary_distance2(p, poly).sqrt() < rho)
-    };
-    // The pieces come in order of `s`: on a line, each middle is tested
-    // against the near edges whose boxes can reach it.
-    let mut spans = match f {
-        Feature::Line(line) => Some(EdgeSpans::of(
-            line,
-            near,
-            outline.edge_boxes(),
-            rho + slack,
-            slack,
-        )),
-        Feature::Arc(_) => None,
-    };
-    let mut too_close = |s: f64| {
-        let p = f.point(s);
-        let near_edge = match spans.as_mut() {
-            Some(spans) => spans.at(s).any(|j| edges[j].distance(p) < rho),
-            None => near.iter().any(|&j| edges[j].distance(p) < rho),
-        };
-        near_edge || near_access(p)
-    };
-    cuts.windows(2)
-        .filter(|w| w[1] > w[0] && too_close(0.5 * (w[0] + w[1])))
-        .map(|w| (w[0], w[1]))
-        .collect()
 }

@@ -1,9 +1,14 @@
 //! A usable segment and what it lies on: a grown line or a grown arc, with
-//! its contact parameter, inward normals and distance bounds (SPEC 2, 8.2,
-//! 8.3).
+//! its contact parameter and inward normals (SPEC 2, 8.2, 8.3).
+//!
+//! The accessors of one segment (point, parameter, normal, kind, arc
+//! piece) are one-line matches on its [`Feature`] and stay here, beside
+//! the enum: a new feature kind adds its arm to each. What differs by more
+//! than a line (growing, cutting, distance bounds) is chosen once per
+//! operation in its own module (see the stage's module doc).
 
-use crate::geometry::arc::{arc_arc_closest, segment_arc_closest, CircArc, GrownArc};
-use crate::geometry::{segment_segment_dist2, EPS, V2};
+use crate::geometry::arc::{CircArc, GrownArc};
+use crate::geometry::{EPS, V2};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -134,73 +139,21 @@ impl Segment {
         let Feature::Arc(a) = &self.feature else {
             return None;
         };
+        Some(self.piece_of_arc(a))
+    }
+
+    /// The piece of the grown arc `a` (the segment's feature) the segment
+    /// covers, for the code that has matched the feature already.
+    pub(crate) fn piece_of_arc(&self, a: &GrownArc) -> CircArc {
         let sweep = a.sweep.signum() * (self.s1 - self.s0) / a.radius;
-        Some(CircArc {
+        CircArc {
             a: self.start(),
             b: self.end(),
             center: a.center,
             radius: a.radius,
             bulge: (sweep / 4.0).tan(),
             sweep,
-        })
-    }
-}
-
-/// Smallest and largest distance between a point of `a` and a point of
-/// `b`: the annulus that prunes where locators on `a` and `b` can be.
-///
-/// Exact for two lines (end points, the code of polygons) and for a line
-/// and an arc (the farthest point of an arc is a convex function of the
-/// other point, so it peaks at the line's ends); between two arcs the
-/// largest distance is sampled and bounded above by its Lipschitz slack.
-pub fn distance_range(a: &Segment, b: &Segment) -> (f64, f64) {
-    let (pa, pb) = (a.arc_piece(), b.arc_piece());
-    match (pa, pb) {
-        (None, None) => {
-            let dmin = segment_segment_dist2(a.start(), a.end(), b.start(), b.end()).sqrt();
-            let dmax = [
-                (a.start() - b.start()).norm(),
-                (a.start() - b.end()).norm(),
-                (a.end() - b.start()).norm(),
-                (a.end() - b.end()).norm(),
-            ]
-            .into_iter()
-            .fold(0.0, f64::max);
-            (dmin, dmax)
         }
-        (Some(arc), None) | (None, Some(arc)) => {
-            let line = if pa.is_some() { b } else { a };
-            let dmin = segment_arc_closest(line.start(), line.end(), &arc).distance;
-            let dmax = farthest_on_arc(&arc, line.start()).max(farthest_on_arc(&arc, line.end()));
-            (dmin, dmax)
-        }
-        (Some(p), Some(q)) => {
-            let dmin = arc_arc_closest(&p, &q).distance;
-            // Samples `step` apart along p: every point of p is within
-            // step / 2 of one, and the farthest distance is 1-Lipschitz.
-            const SAMPLES: usize = 64;
-            let step = p.length() / SAMPLES as f64;
-            let dmax = (0..=SAMPLES)
-                .map(|k| farthest_on_arc(&q, p.point_at(k as f64 / SAMPLES as f64)))
-                .fold(0.0, f64::max)
-                + 0.5 * step;
-            (dmin, dmax)
-        }
-    }
-}
-
-/// Largest distance from `p` to a point of `arc`: an end, or the point
-/// opposite `p` across the centre when the arc reaches it.
-fn farthest_on_arc(arc: &CircArc, p: V2) -> f64 {
-    let ends = (p - arc.a).norm().max((p - arc.b).norm());
-    let w = arc.center - p;
-    let d = w.norm();
-    if d > 0.0 && arc.contains_on_circle(arc.center + w * (arc.radius / d), 0.0) {
-        ends.max(d + arc.radius)
-    } else if d == 0.0 {
-        ends.max(arc.radius)
-    } else {
-        ends
     }
 }
 

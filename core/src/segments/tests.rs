@@ -6,10 +6,11 @@
 
 use super::curved::outline_segments;
 use super::cuts::edge_cuts;
-use super::line::complement;
-use super::segment::{Feature, LineFeature, Segment};
+use super::grow::grown_feature;
+use super::polygon::complement;
+use super::segment::Segment;
 use crate::geometry::{boundary_distance2, point_in_polygon, v2, EPS, V2};
-use crate::outline::{validate_holes, Edge, GrownEdge, Outline, Vertex};
+use crate::outline::{validate_holes, Edge, Outline, Vertex};
 use proptest::prelude::*;
 
 /// The plain cut: SPEC 8.2 and 9.3 as the arc path first did it.
@@ -18,17 +19,8 @@ fn plain_segments(outline: &Outline, access: &[Vec<V2>], r: f64, trim: f64) -> V
     let rho = r - EPS;
     let mut out = Vec::new();
     for (i, edge) in edges.iter().enumerate() {
-        let Some(feature) = edge.grown(r, EPS).map(|g| match g {
-            GrownEdge::Line { a, b, normal } => {
-                Feature::Line(LineFeature::new(a, (b - a).normalize(), normal))
-            }
-            GrownEdge::Arc(arc) => Feature::Arc(arc),
-        }) else {
+        let Some((feature, len)) = grown_feature(edge, r) else {
             continue;
-        };
-        let len = match feature {
-            Feature::Line(_) => edge.length(),
-            Feature::Arc(a) => a.length(),
         };
         let mut cuts = vec![0.0, len];
         for (j, e) in edges.iter().enumerate() {

@@ -145,8 +145,8 @@ fn size_of(f: &Feature, len: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::outline::{edges_of, GrownEdge, Vertex};
-    use crate::segments::segment::LineFeature;
+    use crate::outline::{edges_of, Vertex};
+    use crate::segments::grow::grown_feature;
 
     /// The walls of a rectangle hole `w` by `h` (clockwise, as holes are
     /// kept), grown by `r` into it, and whether the samples show each
@@ -160,12 +160,11 @@ mod tests {
         let rho = r - EPS;
         (0..edges.len())
             .map(|i| {
-                let Some(GrownEdge::Line { a, b, normal }) = edges[i].grown(r, EPS) else {
-                    panic!("a straight wall grows straight");
+                let Some((f, len)) = grown_feature(&edges[i], r) else {
+                    panic!("a straight wall grows");
                 };
-                let f = Feature::Line(LineFeature::new(a, (b - a).normalize(), normal));
                 let others = || (0..edges.len()).filter(move |&j| j != i).map(|j| &edges[j]);
-                covered_at_samples(&f, edges[i].length(), others, rho)
+                covered_at_samples(&f, len, others, rho)
             })
             .collect()
     }

@@ -1,7 +1,7 @@
 //! The crossings far edges add to the cut of a grown line, cut down to the
 //! ones that can change its answer.
 //!
-//! The cut of [`super::curved`] splits a grown edge at its crossings with
+//! The cut of [`crate::segments::curved`] splits a grown edge at its crossings with
 //! the level curves of every edge of the part. An edge farther than `rho`
 //! from the grown edge never makes a piece too close, but the lines along
 //! it run on and cross the grown line: a part with many holes gives every
@@ -18,9 +18,9 @@
 //! either way, so the removed pieces, and the segments, are the same bit
 //! for bit.
 
-use super::line::slab;
-use super::segment::LineFeature;
 use crate::geometry::Aabb;
+use crate::segments::polygon::slab;
+use crate::segments::segment::LineFeature;
 
 /// The zones of a grown line, merged and in order of `s`.
 pub(super) struct NearZones {

@@ -1,7 +1,10 @@
 //! The segments of a polygon (SPEC section 2): grown edges cut by
 //! capsules around the other edges and by the access regions. Outlines
 //! without arcs take this path, the one fixplan had before arcs, so their
-//! segments stay bit for bit what they were.
+//! segments stay bit for bit what they were; it is the fast path
+//! [`super::usable_segments`] picks, and has only lines, so it chooses
+//! nothing by feature. Its interval helpers ([`slab`], [`complement`])
+//! serve the general cut too.
 
 use super::segment::{Feature, LineFeature, Segment};
 use crate::geometry::{cross, point_in_polygon, v2, EPS, V2};

@@ -1,8 +1,18 @@
 //! Distance bounds between every two segments: the annuli that prune the
 //! lattice points a second or third locator can take (SPEC 3), computed
 //! once per part, on its first enumeration.
+//!
+//! The bound of a pair is computed by the code of its feature pair, chosen
+//! once in [`PairBounds::between`]: `line_line` (exact, from end points:
+//! the code of polygons), `line_arc` (exact) and `arc_arc` (sampled, with
+//! a Lipschitz slack). A new feature kind adds its pairs there.
 
-use super::segment::{distance_range, Segment};
+mod arc_arc;
+mod farthest;
+mod line_arc;
+mod line_line;
+
+use super::segment::{Feature, Segment};
 use std::sync::{Arc, OnceLock};
 
 /// Distance range between the points of two segments: the annulus that
@@ -16,9 +26,21 @@ pub struct PairBounds {
 }
 
 impl PairBounds {
-    /// The distance range between the points of `a` and those of `b`.
+    /// The distance range between the points of `a` and those of `b`: the
+    /// dispatcher of the bounds, by feature pair.
     pub(crate) fn between(a: &Segment, b: &Segment) -> PairBounds {
-        let (dmin, dmax) = distance_range(a, b);
+        let (dmin, dmax) = match (&a.feature, &b.feature) {
+            (Feature::Line(_), Feature::Line(_)) => line_line::distance_range(a, b),
+            (Feature::Arc(arc), Feature::Line(_)) => {
+                line_arc::distance_range(b, &a.piece_of_arc(arc))
+            }
+            (Feature::Line(_), Feature::Arc(arc)) => {
+                line_arc::distance_range(a, &b.piece_of_arc(arc))
+            }
+            (Feature::Arc(p), Feature::Arc(q)) => {
+                arc_arc::distance_range(&a.piece_of_arc(p), &b.piece_of_arc(q))
+            }
+        };
         PairBounds { dmin, dmax }
     }
 }
