@@ -304,14 +304,23 @@ pub fn max_force_floor_exceeds(
     }
     let first = if *start < applied.len() { *start } else { 0 };
     let (tail, head) = applied.split_at(first);
-    let found = head.iter().chain(tail).position(|p| {
-        let l0 = -(inv * p);
-        l0[0] > bound || l0[1] > bound || l0[2] > bound
-    });
-    if let Some(i) = found {
-        *start = (first + i) % applied.len();
+    for (i, p) in head.iter().chain(tail).enumerate() {
+        if floor_above(&inv, p, bound) {
+            *start = (first + i) % applied.len();
+            return true;
+        }
     }
-    found.is_some()
+    false
+}
+
+/// Whether a locator force resisting `p` is above `bound` with the
+/// clamp's share at zero (`lambda0_i = -(W^-1 p)_i`): inlined in the loop
+/// of [`max_force_floor_exceeds`] (as a closure it was a call per
+/// wrench), the three comparisons without branches.
+#[inline(always)]
+fn floor_above(inv: &Matrix3<f64>, p: &Vector3<f64>, bound: f64) -> bool {
+    let l0 = -(inv * p);
+    (l0[0] > bound) | (l0[1] > bound) | (l0[2] > bound)
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! which narrows its axis lines). Every point where a plunger axis line
 //! crosses the posed grown circle is tested on its own normal.
 
+use super::axes::along;
 use super::{ceil_i64, Accumulator, Candidate, ClampSearch, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
@@ -21,6 +22,8 @@ impl ClampSearch<'_> {
     /// tangency, `half = 0`, on both). The tests that remain are those of
     /// every point kept, the cheap form-closure test before the `atan2`
     /// of the inner one: the candidates are the same, in the same order.
+    /// The cheapest test first: [`super::arc_reach::PosedPiece::misses`]
+    /// (one comparison), then whether any axis line crosses the circle.
     pub(super) fn arc_candidates(
         &self,
         ctx: &SetupContext,
@@ -34,35 +37,39 @@ impl ClampSearch<'_> {
         let centre = pose.apply(arc.center);
         let rho = arc.radius;
         let convex = arc.is_convex();
-        // Posed at the first rotation with an axis line across the circle
-        // (small arcs often have none). Without pieces (a test's reference
-        // search) every line across the circle is tried.
-        let mut piece = None;
+        let y0 = self.setting.clamp.y0;
+        // Without pieces (a test's reference search) every line across
+        // the circle is tried.
+        let piece = self.arc_pieces.get(j).copied().flatten();
+        let posed = piece.map(|p| p.posed(&pose, arc.center, rho, &self.window));
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;
             }
-            let d = rot90(k, v2(1.0, 0.0));
-            let e = rot90(k, v2(0.0, 1.0));
-            // Axis line `line`: e . q - y0 = line.
-            let gc = e.dot(&centre) - self.setting.clamp.y0;
-            let first = ceil_i64(gc - rho);
-            if first as f64 > gc + rho {
+            if posed.is_some_and(|p| p.misses(k, convex)) {
                 continue;
             }
-            let posed = *piece.get_or_insert_with(|| {
-                let piece = self.arc_pieces.get(j).copied().flatten();
-                piece.map(|p| p.posed(&pose, arc.center, rho))
-            });
-            // The window's centre: where the inward normal is `d`.
-            let n = if convex { -d } else { d };
+            // Axis line `line`: e . q - y0 = line. Whether one crosses the
+            // circle is told from `e . C'` read off a coordinate: only a
+            // zero's sign can differ from the product's, which `gc +- rho`
+            // does not see.
+            let across = along(k + 1, centre) - y0;
+            let first = ceil_i64(across - rho);
+            if first as f64 > across + rho {
+                continue;
+            }
+            let d = rot90(k, v2(1.0, 0.0));
+            let e = rot90(k, v2(0.0, 1.0));
+            let gc = e.dot(&centre) - y0;
             let lines = match &posed {
-                Some(posed) => posed.axis_lines(&self.window, n, e, gc, rho),
+                Some(posed) => posed.axis_lines(&self.window, k, convex, gc, rho),
                 None => Some((gc - rho, gc + rho)),
             };
             let Some((lo, hi)) = lines else {
                 continue;
             };
+            // The window's centre: where the inward normal is `d`.
+            let n = if convex { -d } else { d };
             let side = n.dot(&d);
             let mut line = first.max(ceil_i64(lo));
             while (line as f64) <= gc + rho && (line as f64) <= hi {

@@ -20,6 +20,7 @@
 //! test needs `d . f > eps`, and the point on the wrong side has
 //! `d . f <= 0` in floating point too (see `ClampSearch::arc_candidates`).
 
+use super::axes::along;
 use crate::geometry::{v2, EPS, V2};
 use crate::poses::pose::Pose;
 use crate::segments::{Feature, Segment};
@@ -30,6 +31,21 @@ use std::f64::consts::PI;
 /// rounding of a contact's computed `d . f`, at least 4.5e-11 even at a
 /// zero clamp angle (where `eps` alone opens the window by 4.5e-5 rad).
 const WINDOW_SLACK: f64 = 1e-6;
+
+/// How much further apart, in angle, than the window's and the piece's
+/// half-angles together a piece's middle and a window's centre must be
+/// before [`PosedPiece::misses`] gives the rotation up: above the angle
+/// by which [`PosedPiece::offsets`]'s widening opens a piece (`err` in the
+/// cosine is at most `1.5 sqrt(2 err)` in angle, 6.7e-5 at
+/// [`REACH_ERR`]), and far above the rounding of one dot product.
+const REACH_SLACK: f64 = 1e-4;
+
+/// The largest `err` with which [`PosedPiece::misses`] decides.
+const REACH_ERR: f64 = 1e-9;
+
+/// `misses` decides only when the half-angles and slack add up to at most
+/// this: away from a half turn, where the cosine flattens out.
+const REACH_MAX: f64 = PI - 0.1;
 
 /// The directions the angle test can accept, about the push direction:
 /// one per setting, shared by every setup and arc.
@@ -42,6 +58,10 @@ pub(crate) struct ClampWindow {
     /// By how much a contact's computed `d . f` may be off before the
     /// widening stops covering it: `cos(angle) - cos(widened)`.
     tolerance: f64,
+    /// The widened half-angle plus [`REACH_SLACK`], its cosine and sine.
+    reach: f64,
+    reach_cos: f64,
+    reach_sin: f64,
 }
 
 impl ClampWindow {
@@ -54,10 +74,15 @@ impl ClampWindow {
         let floor = if limit >= 0.0 { limit.min(1.0) } else { 0.0 };
         let angle = floor.acos() + WINDOW_SLACK;
         let (sin, cos) = angle.sin_cos();
+        let reach = angle + REACH_SLACK;
+        let (reach_sin, reach_cos) = reach.sin_cos();
         ClampWindow {
             cos,
             sin,
             tolerance: floor - cos,
+            reach,
+            reach_cos,
+            reach_sin,
         }
     }
 }
@@ -70,6 +95,9 @@ pub(crate) struct ArcReach {
     mid: V2,
     /// Cosine of the piece's half-angle (-1: the whole circle).
     cos_half: f64,
+    /// The piece's half-angle and its sine.
+    half: f64,
+    sin_half: f64,
     /// The piece's ends (`s0`, `s1`).
     ends: [V2; 2],
     /// `1 / rho`: a setup's rounding bound then needs no division.
@@ -90,6 +118,8 @@ impl ArcReach {
         Some(ArcReach {
             mid: dir(0.5 * (seg.s0 + seg.s1)),
             cos_half: if half >= PI { -1.0 } else { half.cos() },
+            half,
+            sin_half: half.sin(),
             ends: [dir(seg.s0), dir(seg.s1)],
             inv_rho: 1.0 / arc.radius,
         })
@@ -97,9 +127,16 @@ impl ArcReach {
 
     /// The piece in the plate frame for one setup. `center` is the arc's
     /// centre in the part frame and `rho` its grown radius: with the pose
-    /// they size the rounding the widening must cover.
+    /// they size the rounding the widening must cover. `window` gives
+    /// [`PosedPiece::misses`] its threshold.
     #[inline]
-    pub(crate) fn posed(&self, pose: &Pose, center: V2, rho: f64) -> PosedPiece {
+    pub(crate) fn posed(
+        &self,
+        pose: &Pose,
+        center: V2,
+        rho: f64,
+        window: &ClampWindow,
+    ) -> PosedPiece {
         let posed_center = pose.apply(center);
         let scale = posed_center.x.abs()
             + posed_center.y.abs()
@@ -108,11 +145,22 @@ impl ArcReach {
             + center.x.abs()
             + center.y.abs()
             + rho;
+        let err = 1e-12 + 1e-14 * scale * self.inv_rho;
+        // Where `offsets` decides nothing (`err` above the window's
+        // tolerance), neither does `misses`.
+        let decides = err <= REACH_ERR && err <= window.tolerance;
+        let reach = if decides && self.half + window.reach <= REACH_MAX {
+            // cos(half + reach), a few ulps off.
+            self.cos_half * window.reach_cos - self.sin_half * window.reach_sin
+        } else {
+            f64::NEG_INFINITY
+        };
         PosedPiece {
             mid: pose.rotate(self.mid),
             cos_half: self.cos_half,
             ends: [pose.rotate(self.ends[0]), pose.rotate(self.ends[1])],
-            err: 1e-12 + 1e-14 * scale * self.inv_rho,
+            err,
+            reach,
         }
     }
 }
@@ -129,55 +177,88 @@ pub(crate) struct PosedPiece {
     /// contact and the centre are both near the pose's translation, their
     /// difference is `rho`), about 45 times the few roundings on the way.
     err: f64,
+    /// Below this `n . mid`, the window about `n` misses the piece
+    /// (see [`Self::misses`]); minus infinity when that is not decided.
+    reach: f64,
 }
 
 impl PosedPiece {
+    /// Whether rotation `k` (window centre `n`, as in [`Self::axis_lines`])
+    /// surely has no axis line, in one comparison where [`Self::offsets`]
+    /// makes a dozen: the piece's middle is further from `n` than the
+    /// window's widened half-angle `A`, the piece's `h` and [`REACH_SLACK`]
+    /// together. A direction `offsets` takes is within `A` of `n` (an end
+    /// or a window edge, `v . n >= cos A`, or `e` when `A >= 90` degrees)
+    /// and within `h + 1.5 sqrt(2 err)` of the middle (its widened piece
+    /// test, `err <= REACH_ERR`; above the window's tolerance `offsets`
+    /// takes every line, and `misses` none), so it would find none: the lines kept are
+    /// the same (`misses_only_where_offsets_finds_none`). The margin of
+    /// `REACH_SLACK` over those angles is at least 2.8e-9 in the cosine,
+    /// against a few ulps of rounding here.
+    #[inline]
+    pub(crate) fn misses(&self, k: u8, convex: bool) -> bool {
+        let sign = if convex { -1.0 } else { 1.0 };
+        sign * along(k, self.mid) < self.reach
+    }
+
     /// The axis lines that can give a contact passing the angle and inner
-    /// tests, for window centre `n` (see the module doc) and the axis
-    /// normal `e` (perpendicular unit axis vectors), as bounds `(lo, hi)`
-    /// on the line index: `gc` is the posed centre's offset `e . C' - y0`
-    /// and `rho` the radius. `None` when no line can.
+    /// tests for clamp rotation `k` (window centre `n`: `-d` on a `convex`
+    /// arc, `d` on a concave one, see the module doc), as bounds
+    /// `(lo, hi)` on the line index: `gc` is the posed centre's offset
+    /// `e . C' - y0` and `rho` the radius. `None` when no line can.
     #[inline]
     pub(crate) fn axis_lines(
         &self,
         window: &ClampWindow,
-        n: V2,
-        e: V2,
+        k: u8,
+        convex: bool,
         gc: f64,
         rho: f64,
     ) -> Option<(f64, f64)> {
-        let (lo, hi) = self.offsets(window, n, e)?;
+        let (lo, hi) = self.offsets(window, k, convex)?;
         // Covers the rounding of `line - gc` for any |gc| below 1e6.
         const LINE_SLACK: f64 = 1e-9;
         Some((gc + rho * lo - LINE_SLACK, gc + rho * hi + LINE_SLACK))
     }
 
     /// The range of `e . v` over the directions `v` of contacts that can
-    /// pass both tests, widened by `err`.
+    /// pass both tests, widened by `err`. `n` and `e` are unit axis
+    /// vectors, so every dot product with them is a coordinate read off
+    /// ([`along`]), and those of the window's edges `n cos + e side sin`
+    /// with `mid` are `cos (n . mid) + side sin (e . mid)`: the same
+    /// roundings as the vector products, whose other terms are zeros
+    /// (`e . n` among them). The values are the vector formulas' but for
+    /// the sign of a zero, which the comparisons and the non-zero `err`
+    /// added do not see (`offsets_match_the_vector_formulas`).
     #[inline]
-    fn offsets(&self, window: &ClampWindow, n: V2, e: V2) -> Option<(f64, f64)> {
+    fn offsets(&self, window: &ClampWindow, k: u8, convex: bool) -> Option<(f64, f64)> {
         let err = self.err;
         if err > window.tolerance {
             // A tiny radius far from the origin: no sound filter.
             return Some((-1.0, 1.0));
         }
-        let in_window = |v: V2| v.dot(&n) >= window.cos;
-        let in_piece = |v: V2| v.dot(&self.mid) >= self.cos_half - err;
+        let sign = if convex { -1.0 } else { 1.0 };
+        let normal = |v: V2| sign * along(k, v);
+        let across = |v: V2| along(k + 1, v);
+        let floor = self.cos_half - err;
+        let (mid_n, mid_e) = (normal(self.mid), across(self.mid));
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let mut take = |x: f64| {
             lo = lo.min(x);
             hi = hi.max(x);
         };
         for v in self.ends {
-            if in_window(v) {
-                take(e.dot(&v));
+            if normal(v) >= window.cos {
+                take(across(v));
             }
         }
         for side in [-1.0, 1.0] {
-            if in_piece(n * window.cos + e * (side * window.sin)) {
+            // The window's edge on this side, in the piece.
+            if window.cos * mid_n + side * window.sin * mid_e >= floor {
                 take(side * window.sin);
             }
-            if in_window(e * side) && in_piece(e * side) {
+            // `side e`, in the window (`e . n = 0`) and in the piece.
+            if 0.0 >= window.cos && side * mid_e >= floor {
                 take(side);
             }
         }
@@ -217,6 +298,142 @@ mod tests {
         }
     }
 
+    /// [`PosedPiece::offsets`] as first written, with the vectors `n` and
+    /// `e` (the module doc's formulas): the reference it must equal.
+    fn vector_offsets(
+        piece: &PosedPiece,
+        window: &ClampWindow,
+        n: V2,
+        e: V2,
+    ) -> Option<(f64, f64)> {
+        let err = piece.err;
+        if err > window.tolerance {
+            return Some((-1.0, 1.0));
+        }
+        let in_window = |v: V2| v.dot(&n) >= window.cos;
+        let in_piece = |v: V2| v.dot(&piece.mid) >= piece.cos_half - err;
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut take = |x: f64| {
+            lo = lo.min(x);
+            hi = hi.max(x);
+        };
+        for v in piece.ends {
+            if in_window(v) {
+                take(e.dot(&v));
+            }
+        }
+        for side in [-1.0, 1.0] {
+            if in_piece(n * window.cos + e * (side * window.sin)) {
+                take(side * window.sin);
+            }
+            if in_window(e * side) && in_piece(e * side) {
+                take(side);
+            }
+        }
+        (lo <= hi).then_some((lo - err, hi + err))
+    }
+
+    /// The offsets read off coordinates equal the vector formulas' bit
+    /// for bit (a zero's sign aside), so the filter keeps the lines it
+    /// kept: random arcs and poses, clamp angles from 0 to 180 degrees
+    /// (windows past a half turn take the `side e` branch), pieces from
+    /// a sliver to the whole circle, and poses at exact quarter turns
+    /// (zero coordinates).
+    #[test]
+    fn offsets_match_the_vector_formulas() {
+        let mut rng = Xorshift::new(0x1d87_2b41_55a3_90c7);
+        let mut seen = [0u64; 2];
+        for case in 0..40_000 {
+            let seg = random_segment(&mut rng);
+            let Feature::Arc(arc) = seg.feature else {
+                unreachable!()
+            };
+            let theta = match case % 5 {
+                0 => PI * f64::from(case % 4) / 2.0,
+                _ => PI * (rng.signed_unit() + 1.0),
+            };
+            let pose = Pose {
+                theta,
+                cos: theta.cos(),
+                sin: theta.sin(),
+                t: v2(20.0 * rng.signed_unit(), 20.0 * rng.signed_unit()),
+            };
+            let degrees = match case % 4 {
+                0 => 0.0,
+                1 => 90.0,
+                _ => 90.0 * (rng.signed_unit() + 1.0),
+            };
+            let window = ClampWindow::new(f64::to_radians(degrees).cos());
+            let piece = ArcReach::of(&seg)
+                .expect("an arc")
+                .posed(&pose, arc.center, arc.radius, &window);
+            for k in 0..4u8 {
+                let d = rot90(k, v2(1.0, 0.0));
+                let e = rot90(k, v2(0.0, 1.0));
+                for convex in [false, true] {
+                    let n = if convex { -d } else { d };
+                    let want = vector_offsets(&piece, &window, n, e);
+                    let got = piece.offsets(&window, k, convex);
+                    assert_eq!(got, want, "case {case} k {k} convex {convex}");
+                    seen[usize::from(want.is_some())] += 1;
+                }
+            }
+        }
+        // Both outcomes, many times.
+        assert!(seen[0] > 10_000 && seen[1] > 10_000, "{seen:?}");
+    }
+
+    /// [`PosedPiece::misses`] gives a rotation up only where
+    /// [`PosedPiece::offsets`] finds no line, so the lines tried are the
+    /// same: random arcs, poses and clamp angles, and poses turning the
+    /// piece's middle to just inside and outside the threshold angle
+    /// `h + A + REACH_SLACK` from each window's centre.
+    #[test]
+    fn misses_only_where_offsets_finds_none() {
+        let mut rng = Xorshift::new(0x6a09_e667_f3bc_c908);
+        let (mut missed, mut near) = (0u64, 0u64);
+        for case in 0..40_000 {
+            let seg = random_segment(&mut rng);
+            let Feature::Arc(arc) = seg.feature else {
+                unreachable!()
+            };
+            let reach = ArcReach::of(&seg).expect("an arc");
+            let degrees = match case % 4 {
+                0 => 0.0,
+                1 => 90.0,
+                _ => 90.0 * (rng.signed_unit() + 1.0),
+            };
+            let window = ClampWindow::new(f64::to_radians(degrees).cos());
+            let k = (case % 4) as u8;
+            let convex = arc.is_convex();
+            // The angle of the part-frame middle, and where window k's
+            // centre points in the plate frame.
+            let mid_angle = reach.mid.y.atan2(reach.mid.x);
+            let centre_angle = f64::from(k) * PI / 2.0 + if convex { PI } else { 0.0 };
+            let threshold = reach.half + window.reach;
+            let theta = if case % 2 == 0 && threshold < PI {
+                // Just inside or outside the threshold, either side.
+                let off = threshold * (1.0 + 1e-7 * rng.signed_unit());
+                near += 1;
+                centre_angle - mid_angle + off * rng.signed_unit().signum()
+            } else {
+                PI * (rng.signed_unit() + 1.0)
+            };
+            let pose = Pose {
+                theta,
+                cos: theta.cos(),
+                sin: theta.sin(),
+                t: v2(20.0 * rng.signed_unit(), 20.0 * rng.signed_unit()),
+            };
+            let piece = reach.posed(&pose, arc.center, arc.radius, &window);
+            if piece.misses(k, convex) {
+                missed += 1;
+                assert_eq!(piece.offsets(&window, k, convex), None, "case {case}");
+            }
+        }
+        assert!(missed > 5_000 && near > 10_000, "{missed} {near}");
+    }
+
     /// Every crossing of an axis line with a posed arc that passes SPEC
     /// 8.5's angle and inner tests (computed as the clamp search computes
     /// them) lies on a line [`PosedPiece::offsets`] keeps, on the side the
@@ -249,7 +466,7 @@ mod tests {
             let window = ClampWindow::new(limit);
             let piece = ArcReach::of(&seg)
                 .expect("an arc")
-                .posed(&pose, arc.center, arc.radius);
+                .posed(&pose, arc.center, arc.radius, &window);
             let (centre, rho, convex) = (pose.apply(arc.center), arc.radius, arc.is_convex());
             let y0 = rng.signed_unit();
             for k in 0..4u8 {
@@ -257,14 +474,15 @@ mod tests {
                 let e = rot90(k, v2(0.0, 1.0));
                 let n = if convex { -d } else { d };
                 let gc = e.dot(&centre) - y0;
-                let kept = piece.axis_lines(&window, n, e, gc, rho);
+                let kept = piece.axis_lines(&window, k, convex, gc, rho);
                 let mut line = (gc - rho).ceil() as i64;
                 while (line as f64) <= gc + rho {
                     let at = line as f64;
                     let h = at - gc;
                     line += 1;
                     lines_all += 1;
-                    let keeps = kept.is_some_and(|(lo, hi)| at >= lo && at <= hi);
+                    let keeps = !piece.misses(k, convex)
+                        && kept.is_some_and(|(lo, hi)| at >= lo && at <= hi);
                     lines_kept += u64::from(keeps);
                     let w2 = (rho - h.abs()) * (rho + h.abs());
                     if w2 < 0.0 {

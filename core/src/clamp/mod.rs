@@ -7,6 +7,7 @@
 
 mod arc_candidates;
 mod arc_reach;
+mod axes;
 mod line_candidates;
 pub(crate) use arc_reach::{ArcReach, ClampWindow};
 
@@ -275,10 +276,12 @@ impl ClampSearch<'_> {
 
     /// SPEC 4 (c): the push direction of rotation `k` against the inward
     /// normal `f`. `None` when the angle is too large, otherwise how far
-    /// the cosine is from the limits (the decision margin).
+    /// the cosine is from the limits (the decision margin). The cosine
+    /// `d . f` is read off `f` ([`axes::along`]): a zero's sign aside it
+    /// is the product, and a zero fails `c > eps` either way.
     #[inline]
     fn angle_margin(&self, k: u8, f: V2) -> Option<f64> {
-        let c = rot90(k, v2(1.0, 0.0)).dot(&f);
+        let c = axes::along(k, f);
         let limit = self.setting.cos_max_angle;
         (c > EPS && c >= limit - EPS).then(|| (c - limit.max(0.0)).abs().min(c - EPS))
     }
