@@ -31,6 +31,7 @@ use crate::segments::{PairBounds, PairTable, Segment};
 use crate::sweeps::{LocatorSweep, PivotPair, PivotPoint, SweepScratch, SweptSegment};
 use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
+use std::sync::{Arc, OnceLock};
 
 /// Slack on annulus bounds, far above rounding and far below a lattice step.
 const ANNULUS_SLACK: f64 = 1e-7;
@@ -63,6 +64,8 @@ pub(crate) struct SetupSearch<'a> {
     pub(crate) swept: &'a [SweptSegment],
     /// Distance bounds of every two segments, computed on first use.
     pub(crate) pairs: &'a PairTable,
+    /// How every ordered pair ranks as a pivot, computed on first use.
+    pub(crate) ranks: &'a PivotRanks,
     /// Locators 2 and 3 lie on multiples of this.
     pub(crate) grid_step: i64,
     /// Alternating plates take locators on dowel holes only.
@@ -185,60 +188,50 @@ impl SetupSearch<'_> {
         mut visit: impl FnMut(&Setup),
     ) -> SearchStats {
         let mut stats = SearchStats::default();
-        match self.pivot(combo) {
-            Some(pivot) => self.swept_setups(combo, &pivot, scratch, &mut stats, &mut visit),
+        match self.pivot_roles(combo) {
+            Some(roles) => self.swept_setups(combo, roles, scratch, &mut stats, &mut visit),
             None => self.annulus_setups(combo, &mut stats, &mut visit),
         }
         stats
     }
 
     /// The pivot of a combination: of the ordered pairs of its segments a
-    /// sweep pivots on ([`PivotPair::of`]), those of the kind preferred
-    /// ([`PivotPair::preference`]), and of these the one with the thinnest
-    /// annulus (the region is built once per lattice point of that
-    /// annulus, so the pair with the fewest points costs least). Orders are
-    /// ranked first, so a sweep is built only for the winner (and the next
-    /// ones when nearly parallel lines refuse it).
-    fn pivot(&self, combo: [usize; 3]) -> Option<Pivot<'_>> {
-        // Every order of the roles (pivot's first, pivot's second, swept):
-        // the combination's order says nothing about which is which.
-        const ROLES: [[usize; 3]; 6] = [
-            [0, 1, 2],
-            [0, 2, 1],
-            [1, 0, 2],
-            [1, 2, 0],
-            [2, 0, 1],
-            [2, 1, 0],
-        ];
-        let (table, count) = (self.pair_table(), self.segments.len());
-        let pair = |first: usize, second: usize| table[first * count + second];
-        let mut ranked = [(0u8, f64::INFINITY, [0usize; 3]); 6];
-        let mut len = 0;
-        for roles in ROLES {
-            let [p, q, _] = roles;
-            let Some(kind) = PivotPair::of(&self.swept[combo[p]], &self.swept[combo[q]]) else {
-                continue;
-            };
-            if kind.symmetric() && p > q {
-                continue;
+    /// sweep pivots on and does not refuse ([`PivotRanks`]), those of the
+    /// kind preferred ([`PivotPair::preference`]), and of these the one
+    /// with the thinnest annulus (the region is built once per lattice
+    /// point of that annulus, so the pair with the fewest points costs
+    /// least). The roles only: the sweep is built once the pair is known
+    /// to have pivot points.
+    fn pivot_roles(&self, combo: [usize; 3]) -> Option<[usize; 3]> {
+        // ROLES visited by pairs of positions, each pair in both orders:
+        // (forward, backward) as indices into ROLES, whose first order
+        // wins a tie.
+        const PAIRS: [(usize, usize); 3] = [(0, 2), (1, 4), (3, 5)];
+        let count = self.segments.len();
+        let ranks = self.ranks.of(self.swept, self.pair_table());
+        let mut best: Option<(u8, f64, usize)> = None;
+        let mut consider = |rank: &PivotRank, order: usize| {
+            if rank.preference != NOT_A_PIVOT
+                && best.is_none_or(|(preference, area, first)| {
+                    rank.ranks_before(preference, area)
+                        || (rank.preference == preference && rank.area == area && order < first)
+                })
+            {
+                best = Some((rank.preference, rank.area, order));
             }
-            let preference = kind.preference();
-            let (lo, hi) = annulus_sq(pair(combo[p], combo[q]));
-            // Insertion keeps the first of equal keys first.
-            let mut k = len;
-            while k > 0 && ranks_after(ranked[k - 1], preference, hi - lo) {
-                ranked[k] = ranked[k - 1];
-                k -= 1;
+        };
+        for (forward, backward) in PAIRS {
+            let [p, q, _] = ROLES[forward];
+            let (first, second) = (combo[p], combo[q]);
+            let rank = &ranks[first * count + second];
+            consider(rank, forward);
+            // A symmetric pair finds the same setups in the other order
+            // (symmetry is a property of the unordered pair).
+            if !rank.symmetric {
+                consider(&ranks[second * count + first], backward);
             }
-            ranked[k] = (preference, hi - lo, roles);
-            len += 1;
         }
-        ranked[..len].iter().find_map(|&(_, _, roles)| {
-            let [p, q, r] = roles.map(|k| combo[k]);
-            let swept = [p, q, r].map(|i| &self.swept[i]);
-            let sweep = LocatorSweep::new(swept, p == q, pair(p, r).dmax)?;
-            Some(Pivot { roles, sweep })
-        })
+        best.map(|(_, _, order)| ROLES[order])
     }
 
     /// Setups by the sweep: the pivot's first locator at the origin, its
@@ -248,25 +241,40 @@ impl SetupSearch<'_> {
     fn swept_setups(
         &self,
         combo: [usize; 3],
-        pivot: &Pivot<'_>,
+        roles: [usize; 3],
         scratch: &mut SetupScratch,
         stats: &mut SearchStats,
         visit: &mut impl FnMut(&Setup),
     ) {
-        let [p, q, r] = pivot.roles.map(|k| combo[k]);
+        let [p, q, r] = roles.map(|k| combo[k]);
         let g = self.grid_step;
-        let SetupScratch { sweep, pivots } = scratch;
-        for (d, pt) in pivots.points(p, q, |out| self.pivot_points(&pivot.sweep, p, q, out)) {
+        let SetupScratch {
+            sweep: buffers,
+            pivots,
+        } = scratch;
+        // A pivot pair without pivot points gives no setup whatever the
+        // third segment: most combinations of a small part end here,
+        // before their sweep is built.
+        let known = pivots.range(p, q);
+        if known.as_ref().is_some_and(std::ops::Range::is_empty) {
+            return;
+        }
+        let swept = [p, q, r].map(|i| &self.swept[i]);
+        let Some(sweep) = LocatorSweep::new(swept, p == q, self.pair(p, r).dmax) else {
+            // Never: the ranks leave out the pairs a sweep refuses.
+            return self.annulus_setups(combo, stats, visit);
+        };
+        let range = known
+            .unwrap_or_else(|| pivots.insert(p, q, |out| self.pivot_points(&sweep, p, q, out)));
+        for (d, pt) in &pivots.points[range] {
             let d = *d;
-            let listed = pivot
-                .sweep
-                .for_each_third_locator(pt, g, sweep, |e, angles| {
-                    self.solve_placed(combo, pivot, d, e, angles, stats, visit)
-                });
+            let listed = sweep.for_each_third_locator(pt, g, buffers, |e, angles| {
+                self.solve_placed(combo, roles, d, e, angles, stats, visit)
+            });
             if !listed {
                 let (pr, qr) = (self.pair(p, r), self.pair(q, r));
                 annulus_points(d, pr, qr, g, |e| {
-                    self.solve_placed(combo, pivot, d, e, None, stats, visit)
+                    self.solve_placed(combo, roles, d, e, None, stats, visit)
                 });
             }
         }
@@ -324,7 +332,7 @@ impl SetupSearch<'_> {
     fn solve_placed(
         &self,
         combo: [usize; 3],
-        pivot: &Pivot<'_>,
+        roles: [usize; 3],
         second: [i64; 2],
         third: [i64; 2],
         angles: Option<&AngleSet>,
@@ -332,7 +340,7 @@ impl SetupSearch<'_> {
         visit: &mut impl FnMut(&Setup),
     ) {
         let mut placed = [[0i64; 2]; 3];
-        let [p, q, r] = pivot.roles;
+        let [p, q, r] = roles;
         (placed[p], placed[q], placed[r]) = ([0, 0], second, third);
         let o = placed[0];
         let (l2, l3) = (sub(placed[1], o), sub(placed[2], o));
@@ -429,12 +437,76 @@ impl Allowed<'_> {
     }
 }
 
-/// A combination's roles for the sweep: `roles[0]`, `roles[1]` (positions
-/// in the combination) are the two segments it pivots on (a
-/// [`PivotPair`]), `roles[2]` the segment it sweeps.
-struct Pivot<'s> {
-    roles: [usize; 3],
-    sweep: LocatorSweep<'s>,
+/// Every order of a combination's roles (pivot's first, pivot's second,
+/// swept), as positions in the combination: its order says nothing about
+/// which is which. A tie between pivots goes to the first order here.
+const ROLES: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [0, 2, 1],
+    [1, 0, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [2, 1, 0],
+];
+
+/// Marks a [`PivotRank`] of a pair no sweep pivots on in that order.
+const NOT_A_PIVOT: u8 = u8::MAX;
+
+/// How an ordered pair of segments ranks as a combination's pivot (see
+/// `SetupSearch::pivot_roles`): what the ranking reads of a pair, worked
+/// out once per part rather than for each of the combinations it is in.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PivotRank {
+    /// [`PivotPair::preference`]; [`NOT_A_PIVOT`] when no sweep pivots on
+    /// the pair in this order or the sweep refuses it (nearly parallel
+    /// lines).
+    preference: u8,
+    /// [`PivotPair::symmetric`]: the other order finds the same setups.
+    symmetric: bool,
+    /// The width `hi^2 - lo^2` of the pair's annulus.
+    area: f64,
+}
+
+impl PivotRank {
+    /// Whether this pair pivots before one of kind `preference` and
+    /// annulus width `area`: a preferred kind, or the same kind and a
+    /// thinner annulus.
+    #[inline]
+    fn ranks_before(&self, preference: u8, area: f64) -> bool {
+        preference > self.preference || (preference == self.preference && area > self.area)
+    }
+}
+
+/// Every ordered pair's [`PivotRank`], `first * n + second`, computed on
+/// first use from the pair bounds and shared by clones (like
+/// [`PairTable`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct PivotRanks(Arc<OnceLock<Vec<PivotRank>>>);
+
+impl PivotRanks {
+    /// The ranks of the segments `swept`, whose pair bounds are `pairs`
+    /// (the first call fixes them).
+    #[inline]
+    pub(crate) fn of(&self, swept: &[SweptSegment], pairs: &[PairBounds]) -> &[PivotRank] {
+        self.0.get_or_init(|| {
+            let mut ranks = Vec::with_capacity(pairs.len());
+            for first in swept {
+                for second in swept {
+                    let (lo, hi) = annulus_sq(pairs[ranks.len()]);
+                    // Finite segments are a finite distance apart: the
+                    // ranking compares areas as a total order.
+                    debug_assert!(!(hi - lo).is_nan(), "pair bounds {:?}", pairs[ranks.len()]);
+                    let kind = PivotPair::of(first, second).filter(|kind| !kind.refused());
+                    ranks.push(PivotRank {
+                        preference: kind.map_or(NOT_A_PIVOT, |kind| kind.preference()),
+                        symmetric: kind.is_some_and(|kind| kind.symmetric()),
+                        area: hi - lo,
+                    });
+                }
+            }
+            ranks
+        })
+    }
 }
 
 /// Buffers and pivot points one thread reuses across combinations.
@@ -466,27 +538,29 @@ struct PivotCache {
 }
 
 impl PivotCache {
-    fn points(
+    /// Where the pivot points of `(first, second)` lie in `points`, when
+    /// already worked out.
+    fn range(&self, first: usize, second: usize) -> Option<std::ops::Range<usize>> {
+        self.pairs.get(&(first, second)).cloned()
+    }
+
+    /// Works out the pivot points of `(first, second)` by `push` and
+    /// says where they lie in `points`.
+    fn insert(
         &mut self,
         first: usize,
         second: usize,
         push: impl FnOnce(&mut Vec<LatticePivot>),
-    ) -> &[LatticePivot] {
-        let range = match self.pairs.get(&(first, second)) {
-            Some(r) => r.clone(),
-            None => {
-                if self.points.len() > PIVOT_CACHE_POINTS {
-                    self.pairs.clear();
-                    self.points.clear();
-                }
-                let start = self.points.len();
-                push(&mut self.points);
-                let r = start..self.points.len();
-                self.pairs.insert((first, second), r.clone());
-                r
-            }
-        };
-        &self.points[range]
+    ) -> std::ops::Range<usize> {
+        if self.points.len() > PIVOT_CACHE_POINTS {
+            self.pairs.clear();
+            self.points.clear();
+        }
+        let start = self.points.len();
+        push(&mut self.points);
+        let r = start..self.points.len();
+        self.pairs.insert((first, second), r.clone());
+        r
     }
 }
 
@@ -578,13 +652,6 @@ impl SearchStats {
     }
 }
 
-/// Whether a ranked pivot order comes after one of kind `preference` and
-/// annulus area `area`: a less preferred kind, or the same kind and a
-/// wider annulus.
-fn ranks_after(ranked: (u8, f64, [usize; 3]), preference: u8, area: f64) -> bool {
-    ranked.0 > preference || (ranked.0 == preference && ranked.1 > area)
-}
-
 /// Squared annulus bounds with slack.
 fn annulus_sq(pair: PairBounds) -> (f64, f64) {
     let lo = (pair.dmin - ANNULUS_SLACK).max(0.0);
@@ -666,6 +733,91 @@ mod tests {
         assert!(!at(pq, [0, 1], [0, 5]), "|second| = 1 < 2 from p to q");
         // The roles are not interchangeable.
         assert!(!at(pairs([&q, &p, &r]), second, [0, 5]));
+    }
+
+    /// The pivot as the setup search chose it before [`PivotRanks`]:
+    /// every order of the roles a sweep accepts (a symmetric pair in one
+    /// order), sorted by preference then annulus width (stable), the first
+    /// whose sweep is built.
+    fn pivot_by_sorting(search: &SetupSearch<'_>, combo: [usize; 3]) -> Option<[usize; 3]> {
+        let mut ranked = Vec::new();
+        for roles in ROLES {
+            let [p, q, _] = roles;
+            let Some(kind) = PivotPair::of(&search.swept[combo[p]], &search.swept[combo[q]]) else {
+                continue;
+            };
+            if kind.symmetric() && p > q {
+                continue;
+            }
+            let (lo, hi) = annulus_sq(search.pair(combo[p], combo[q]));
+            ranked.push((kind.preference(), hi - lo, roles));
+        }
+        ranked.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        ranked.into_iter().map(|r| r.2).find(|&roles| {
+            let [p, q, r] = roles.map(|k| combo[k]);
+            let swept = [p, q, r].map(|i| &search.swept[i]);
+            LocatorSweep::new(swept, p == q, search.pair(p, r).dmax).is_some()
+        })
+    }
+
+    /// Random lines (some parallel or nearly so, some sharing a length, so
+    /// that annuli tie) and arcs.
+    fn ranking_segments(seed: u64, count: usize) -> Vec<Segment> {
+        let mut rng = crate::test_rng::Xorshift::new(seed);
+        let mut out = Vec::new();
+        while out.len() < count {
+            let a = v2(4.0 * rng.signed_unit(), 4.0 * rng.signed_unit());
+            let kind = (rng.signed_unit().abs() * 5.0) as u8;
+            let direction = v2(1.0 + rng.signed_unit(), 2.0 * rng.signed_unit());
+            out.push(match kind {
+                0 => arc(a, 0.5 + rng.signed_unit().abs(), rng.signed_unit(), 3.0),
+                // A copy of the last segment moved, nearly parallel or parallel.
+                1 | 2 if !out.is_empty() => {
+                    let last: &Segment = &out[out.len() - 1];
+                    let (p, q) = (last.point(last.s0), last.point(last.s1));
+                    let tilt = if kind == 1 {
+                        v2(0.0, 1e-6)
+                    } else {
+                        v2(0.0, 0.0)
+                    };
+                    line(p + a, q + a + tilt)
+                }
+                _ => line(a, a + direction),
+            });
+        }
+        out
+    }
+
+    #[test]
+    fn pivot_ranks_choose_the_pivot_sorting_chose() {
+        for seed in 1..40u64 {
+            let segments = ranking_segments(seed, 9);
+            let swept: Vec<SweptSegment> = segments.iter().map(SweptSegment::of).collect();
+            let (pairs, ranks) = (PairTable::default(), PivotRanks::default());
+            let search = SetupSearch {
+                segments: &segments,
+                swept: &swept,
+                pairs: &pairs,
+                ranks: &ranks,
+                grid_step: 1,
+                pattern: Pattern::Square,
+            };
+            let n = segments.len();
+            let mut chosen = 0;
+            // Every combination: a <= b <= c, not one segment thrice.
+            let combos =
+                (0..n).flat_map(|a| (a..n).flat_map(move |b| (b..n).map(move |c| [a, b, c])));
+            for combo in combos.filter(|&[a, _, c]| a != c) {
+                let roles = search.pivot_roles(combo);
+                assert_eq!(
+                    roles,
+                    pivot_by_sorting(&search, combo),
+                    "seed {seed} {combo:?}"
+                );
+                chosen += usize::from(roles.is_some_and(|r| r != [0, 1, 2]));
+            }
+            assert!(chosen > 0, "seed {seed}: every pivot in the first order");
+        }
     }
 
     proptest::proptest! {

@@ -18,7 +18,7 @@ use crate::input::{Kit, MountHole, Params, Part, Units};
 use crate::metric::{MaxForceMetric, Metric, WrenchListMetric};
 use crate::outline::{validate_holes, Edge, Outline, Vertex};
 use crate::segments::{usable_segments, PairTable, Segment};
-use crate::setups::{Allowed, SearchStats, Setup, SetupScratch, SetupSearch};
+use crate::setups::{Allowed, PivotRanks, SearchStats, Setup, SetupScratch, SetupSearch};
 use crate::sweeps::SweptSegment;
 use std::ops::Range;
 use std::sync::Arc;
@@ -62,6 +62,9 @@ pub struct PreparedPart {
     /// Distance range of every two segments, computed on the first
     /// enumeration and shared by clones.
     pairs: PairTable,
+    /// How every two segments rank as a pivot, computed with `pairs` and
+    /// shared by clones.
+    pivot_ranks: PivotRanks,
     /// Each segment as the setup sweep uses it, so that choosing a
     /// combination's pivot costs no trig per combination.
     swept: Vec<SweptSegment>,
@@ -98,6 +101,7 @@ pub fn prepare(
         segments,
         metric,
         pairs: PairTable::default(),
+        pivot_ranks: PivotRanks::default(),
         swept,
         arc_pieces,
         setting,
@@ -318,6 +322,7 @@ impl PreparedPart {
             segments: &self.segments,
             swept: &self.swept,
             pairs: &self.pairs,
+            ranks: &self.pivot_ranks,
             grid_step: self.setting.grid_step,
             pattern: self.setting.pattern,
         }

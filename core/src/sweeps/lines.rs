@@ -137,10 +137,10 @@ impl<'s> LineSweep<'s> {
             }
             None => false,
         };
-        let mode = if d.abs() <= PARALLEL {
-            Mode::Sliding
-        } else if d.abs() < NEAR_PARALLEL {
+        let mode = if refuses(a, b) {
             return None;
+        } else if d.abs() <= PARALLEL {
+            Mode::Sliding
         } else {
             // p2 - p1 = R^T L2 gives s_a = cross(u_b, q) / D and s_b =
             // cross(u_a, q) / D for q = R^T L2 + o_a - o_b; the L2 terms
@@ -242,6 +242,14 @@ impl<'s> LineSweep<'s> {
             } => turning_region(self, &pt.angles, (sa, phi_a_sc), ends_sc, out),
         }
     }
+}
+
+/// Whether the sweep refuses to pivot on lines `a` then `b` (nearly but
+/// not exactly parallel, see [`PARALLEL`]): a property of the pair alone,
+/// so the setup search can rank pivots without building sweeps.
+pub(super) fn refuses(a: &LinePiece, b: &LinePiece) -> bool {
+    let d = cross(a.line.u, b.line.u).abs();
+    d > PARALLEL && d < NEAR_PARALLEL
 }
 
 /// Lines `a` and `b` not parallel: the part turns through `angles`

@@ -120,6 +120,16 @@ impl<'s> PivotPair<'s> {
         }
     }
 
+    /// Whether [`LocatorSweep::new`] refuses this pair whatever the third
+    /// segment (nearly parallel lines), so the caller must take another
+    /// pivot or the annuli.
+    pub(crate) fn refused(&self) -> bool {
+        match self {
+            PivotPair::Lines(a, b) => lines::refuses(a, b),
+            PivotPair::LineArc(..) => false,
+        }
+    }
+
     /// Whether the two segments play the same part, so that the pair in
     /// the other order finds the same setups and need not be tried.
     pub(crate) fn symmetric(&self) -> bool {
