@@ -492,10 +492,37 @@ enum Class {
 /// swarm of sign changes).
 struct Bounds {
     m3: f64,
+    /// Bounds `|f^(5)|`, for [`Taylor5`].
+    m5: f64,
+    /// How far `f` and its first four derivatives computed at an angle
+    /// can be from their true values there (see [`roots`]).
+    eval_err: [f64; 5],
     noise: f64,
     tol: f64,
     noise1: f64,
     noise2: f64,
+}
+
+impl Bounds {
+    /// The bounds for `poly`, whose `|f'''|` is at most `m3 > 0`.
+    fn new(poly: &Trig, m3: f64, tol: f64, noise: f64) -> Bounds {
+        let noise = noise + 64.0 * f64::EPSILON * (poly.a[0].abs() + poly.bound(0));
+        Bounds {
+            m3,
+            m5: poly.bound(5),
+            noise,
+            tol: tol + noise,
+            noise1: 20.0 * noise + 64.0 * f64::EPSILON * poly.bound(1),
+            noise2: 60.0 * noise + 64.0 * f64::EPSILON * poly.bound(2),
+            eval_err: [
+                64.0 * f64::EPSILON * (poly.a[0].abs() + poly.bound(0)),
+                64.0 * f64::EPSILON * poly.bound(1),
+                64.0 * f64::EPSILON * poly.bound(2),
+                64.0 * f64::EPSILON * poly.bound(3),
+                64.0 * f64::EPSILON * poly.bound(4),
+            ],
+        }
+    }
 }
 
 /// What [`Class`] `[lo, hi]`, inside start interval `start`, falls in.
@@ -521,6 +548,157 @@ fn classify(poly: &Trig, bounds: &Bounds, start: usize, lo: f64, hi: f64) -> Cla
     } else {
         Class::Split
     }
+}
+
+/// What [`Taylor5`] proves about the subtree below a `Split` node.
+enum Below {
+    /// No interval in it pushes an angle or joins a run; the plain search
+    /// would examine at most this many intervals there.
+    Silent(usize),
+    /// Intervals this many levels down are `Split` too (at leaf width:
+    /// join a run, as `Split` and `Flat` leaves both do).
+    Split(u32),
+}
+
+/// Relative margin every proved test keeps over its threshold, far above
+/// the rounding of the few operations in each.
+const MARGIN: f64 = 1e-9;
+
+/// Bounds over a whole interval `[lo, hi]`, from `f` and its first four
+/// derivatives at the midpoint and the bound on `|f^(5)|` (a fifth-order
+/// Taylor bound, much tighter than [`classify`]'s third-order one on small
+/// intervals). They bound the values [`classify`] and the root polishers
+/// compute at any angle inside: those are within `64 eps` of the sums of
+/// their terms' magnitudes (see [`roots`]).
+struct Taylor5 {
+    /// Upper bounds on the computed `|f|`, `|f'|`, `|f''|` anywhere inside.
+    upper: [f64; 3],
+    /// Lower bounds on the computed `|f|` and `|f'|` anywhere inside (`f`
+    /// and `f'` keep one sign there when positive).
+    lower: [f64; 2],
+}
+
+impl Taylor5 {
+    fn new(poly: &Trig, bounds: &Bounds, start: usize, lo: f64, hi: f64) -> Taylor5 {
+        let h = 0.5 * (hi - lo);
+        let (c1, s1) = cos_sin_near(lo + h, start);
+        let d = derivatives(poly, c1, s1);
+        let err = &bounds.eval_err;
+        // Descendants' midpoints lie in [lo, hi], within rounding.
+        let r = h * (1.0 + 1e-6) + 1e-12;
+        let mut upper = [0.0; 3];
+        let mut lower = [0.0; 2];
+        for k in 0..3 {
+            // |f^(k)(x) - f^(k)(mid)| <= spread for every x inside.
+            let mut term = r;
+            let mut spread = 0.0;
+            for i in 1..=(4 - k) {
+                spread += (d[k + i].abs() + err[k + i]) * term;
+                term *= r / (i + 1) as f64;
+            }
+            spread += bounds.m5 * term;
+            let centre = d[k].abs();
+            upper[k] = (centre + err[k] + spread + err[k]) * (1.0 + MARGIN);
+            if k < 2 {
+                lower[k] = (centre - err[k] - spread) * (1.0 - MARGIN)
+                    - (centre + spread) * MARGIN
+                    - err[k];
+            }
+        }
+        Taylor5 { upper, lower }
+    }
+
+    /// Whether [`classify`]'s monotone test passes on every interval of
+    /// half-width at most `half` inside.
+    fn monotone_at(&self, bounds: &Bounds, half: f64) -> bool {
+        self.lower[1] - half * self.upper[2] - 0.5 * bounds.m3 * half * half
+            > bounds.noise1 * (1.0 + MARGIN) + MARGIN * self.upper[1]
+    }
+
+    /// What the bounds prove about the subtree below a node of width
+    /// `width` that [`classify`] has just found [`Class::Split`].
+    fn below(&self, bounds: &Bounds, width: f64) -> Below {
+        match self.silent(bounds, width) {
+            Some(nodes) => Below::Silent(nodes),
+            None => Below::Split(self.split_levels(bounds, width)),
+        }
+    }
+
+    /// Whether the subtree below this node is sure to push nothing, and an
+    /// upper bound on how many intervals it would have examined. It is when
+    /// `|f|` stays above the noise and the evaluation error (so no interval
+    /// is `Flat` and every computed sign is the true one), `f'` too (so a
+    /// `Convex` interval is monotone to its polisher and no extremum is
+    /// pushed), and [`classify`]'s monotone test passes at leaf width (so no
+    /// leaf joins a run): then every interval examined is `Empty`,
+    /// `Monotone` or `Convex` without a sign change, or is split.
+    fn silent(&self, bounds: &Bounds, width: f64) -> Option<usize> {
+        let sure = self.lower[0] > bounds.noise * (1.0 + MARGIN)
+            && self.lower[1] > 0.0
+            && self.monotone_at(bounds, 0.5 * LEAF * (1.0 + 1e-6));
+        if !sure {
+            return None;
+        }
+        // Every interval ends at the first level where the monotone test
+        // is sure to pass, or at leaf width.
+        let mut levels = 1;
+        let mut w = width * 0.5;
+        while !self.monotone_at(bounds, 0.5 * w * (1.0 + 1e-6) + 1e-13) && w * (1.0 + 1e-6) > LEAF {
+            levels += 1;
+            w *= 0.5;
+        }
+        Some((2usize << levels.min(30)) - 2)
+    }
+
+    /// How many levels of descendants (a node [`classify`] has just found
+    /// [`Class::Split`]) are sure to be classified `Split` too, or, at leaf
+    /// width, to join a run: [`classify`]'s tests on a narrower interval
+    /// are monotone in its width.
+    fn split_levels(&self, bounds: &Bounds, width: f64) -> u32 {
+        let m3 = bounds.m3;
+        let keep = 1.0 - MARGIN;
+        let mut levels = 0;
+        let mut width = width;
+        while levels < 40 {
+            width *= 0.5;
+            let (wlo, whi) = (width * (1.0 - 1e-6) - 1e-13, width * (1.0 + 1e-6) + 1e-13);
+            let hj = 0.5 * wlo;
+            let run_member = self.upper[0] <= (bounds.tol + m3 * hj * hj * hj / 6.0) * keep
+                && self.upper[1] <= (bounds.noise1 + 0.5 * m3 * hj * hj) * keep
+                && self.upper[2] <= (bounds.noise2 + m3 * hj) * keep;
+            if !run_member {
+                break;
+            }
+            if whi <= LEAF {
+                // A leaf: Split and Flat both join the run.
+                return levels + 1;
+            }
+            if wlo <= LEAF || m3 * hj * hj * hj / 6.0 <= bounds.noise * (1.0 + MARGIN) {
+                break;
+            }
+            levels += 1;
+        }
+        levels
+    }
+}
+
+/// `f` and its first four derivatives at the angle with cosine `cos` and
+/// sine `sin`.
+fn derivatives(poly: &Trig, cos: f64, sin: f64) -> [f64; 5] {
+    let (mut c, mut s) = (1.0, 0.0);
+    let mut d = [poly.a[0], 0.0, 0.0, 0.0, 0.0];
+    for j in 1..=DEG {
+        (c, s) = (c * cos - s * sin, s * cos + c * sin);
+        let jf = j as f64;
+        let even = poly.a[j] * c + poly.b[j] * s;
+        let odd = jf * (poly.b[j] * c - poly.a[j] * s);
+        d[0] += even;
+        d[1] += odd;
+        d[2] -= jf * jf * even;
+        d[3] -= jf * jf * odd;
+        d[4] += jf * jf * jf * jf * even;
+    }
+    d
 }
 
 /// Intervals narrower than this are not split further: what is left there
@@ -583,6 +761,12 @@ pub(super) type Within<'a> = dyn Fn(f64, f64) -> bool + 'a;
 /// counted as zero beyond it, to catch near misses. The work is
 /// bounded (`out.overflow` is set if the bound is reached, which takes a
 /// polynomial that is zero to within `tol` almost everywhere).
+///
+/// Near a cluster of roots (a near-multiple root, or a stretch where `f`
+/// stays within `tol` of zero) the third-order bound splits down to the
+/// leaves; fifth-order bounds ([`Taylor5`]) decide most of those intervals
+/// without classifying them, and only where they prove [`classify`]'s
+/// answer, so the angles reported are the same to the bit.
 pub(super) fn roots(poly: &Trig, tol: f64, noise: f64, within: &Within, out: &mut Angles) {
     let m3 = poly.bound(3);
     if m3 == 0.0 {
@@ -595,42 +779,85 @@ pub(super) fn roots(poly: &Trig, tol: f64, noise: f64, within: &Within, out: &mu
     // come within about 25 eps of the sums of their terms' magnitudes, well
     // inside the 64 eps allowed below. A coefficient error `noise` moves f'
     // by up to sum 2j noise and f'' by sum 2j^2 noise.
-    let noise = noise + 64.0 * f64::EPSILON * (poly.a[0].abs() + poly.bound(0));
-    let b = Bounds {
-        m3,
-        noise,
-        tol: tol + noise,
-        noise1: 20.0 * noise + 64.0 * f64::EPSILON * poly.bound(1),
-        noise2: 60.0 * noise + 64.0 * f64::EPSILON * poly.bound(2),
-    };
-    let mut budget = 20_000usize;
+    let b = Bounds::new(poly, m3, tol, noise);
+    let saved = *out;
+    if search(poly, &b, within, out, true).is_none() {
+        *out = saved;
+        search(poly, &b, within, out, false);
+    }
+}
+
+/// Intervals examined per call before the search gives up on a polynomial
+/// that is zero to within `tol` almost everywhere.
+const BUDGET: usize = 20_000;
+
+/// The subdivision of [`roots`]; the number of intervals classified.
+///
+/// With `prove`, what the fifth-order bounds of [`Taylor5`] decide below a
+/// `Split` node is not classified: a subtree proved silent is dropped, and
+/// nodes proved `Split` are split unexamined (still counted against the
+/// budget). The output is the same as without, except that a dropped
+/// subtree's intervals no longer count against the budget: `None` when
+/// they might have exhausted it, which would have changed the answer (the
+/// caller then searches again without `prove`).
+fn search(
+    poly: &Trig,
+    b: &Bounds,
+    within: &Within,
+    out: &mut Angles,
+    prove: bool,
+) -> Option<usize> {
+    let mut budget = BUDGET;
+    let (mut reserve, mut classified) = (0usize, 0usize);
     let mut run = None;
-    let mut stack = [(0.0, 0.0); 48];
+    let mut stack = [(0.0, 0.0, 0u32); 48];
     for i in 0..START {
-        stack[0] = (i as f64 * STEP, (i + 1) as f64 * STEP);
+        stack[0] = (i as f64 * STEP, (i + 1) as f64 * STEP, 0);
         if !within(stack[0].0, stack[0].1) {
             continue;
         }
         let mut n = 1;
         while n > 0 {
             n -= 1;
-            let (lo, hi) = stack[n];
+            let (lo, hi, known) = stack[n];
             budget = budget.saturating_sub(1);
-            match classify(poly, &b, i, lo, hi) {
+            let class = if known > 0 {
+                Class::Split
+            } else {
+                classified += 1;
+                classify(poly, b, i, lo, hi)
+            };
+            match class {
                 Class::Empty => {}
                 Class::Monotone(Some((flo, fhi))) if (flo < 0.0) == (fhi < 0.0) => {}
                 Class::Monotone(_) => monotone_root(poly, lo, hi, out),
                 Class::Convex => convex_roots(poly, b.tol, lo, hi, out),
                 Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
+                    let next = if known > 0 {
+                        known - 1
+                    } else if prove {
+                        match Taylor5::new(poly, b, i, lo, hi).below(b, hi - lo) {
+                            Below::Silent(nodes) => {
+                                reserve += nodes;
+                                if BUDGET - budget + reserve >= BUDGET {
+                                    return None;
+                                }
+                                continue;
+                            }
+                            Below::Split(levels) => levels,
+                        }
+                    } else {
+                        0
+                    };
                     // Halves with no wanted angle are dropped unexamined:
                     // the halves kept are split exactly as before.
                     let m = 0.5 * (lo + hi);
                     if within(m, hi) {
-                        stack[n] = (m, hi);
+                        stack[n] = (m, hi, next);
                         n += 1;
                     }
                     if within(lo, m) {
-                        stack[n] = (lo, m);
+                        stack[n] = (lo, m, next);
                         n += 1;
                     }
                 }
@@ -642,6 +869,8 @@ pub(super) fn roots(poly: &Trig, tol: f64, noise: f64, within: &Within, out: &mu
         }
     }
     Run::flush(&mut run, out);
+    // The plain search examines at most `reserve` more intervals.
+    (reserve == 0 || BUDGET - budget + reserve < BUDGET).then_some(classified)
 }
 
 #[cfg(test)]
@@ -808,6 +1037,175 @@ mod tests {
             for &t in &r {
                 assert!(f.value(t).abs() < 1e-12, "{t}");
             }
+        }
+    }
+
+    /// `roots` and the plain search (the subdivision before the
+    /// fifth-order proofs, kept as the oracle) on the same input: the same
+    /// angles to the bit and the same overflow flag. Returns how many
+    /// intervals each classified.
+    fn same_as_plain(poly: &Trig, tol: f64, noise: f64, within: &Within) -> (usize, usize) {
+        let mut got = Angles::new();
+        got.push(1.0);
+        let mut want = got;
+        roots(poly, tol, noise, within, &mut got);
+        let b = Bounds::new(poly, poly.bound(3), tol, noise);
+        let plain = search(poly, &b, within, &mut want, false).expect("plain search is complete");
+        let bits = |a: &Angles| a.as_slice().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(
+            bits(&got),
+            bits(&want),
+            "{poly:?} tol {tol:e} noise {noise:e}"
+        );
+        assert_eq!(got.overflow, want.overflow, "{poly:?}");
+        let mut fresh = Angles::new();
+        let proved = search(poly, &b, within, &mut fresh, true).unwrap_or(plain);
+        (proved, plain)
+    }
+
+    fn from_bits(bits: [u64; 12]) -> (Trig, f64, f64) {
+        let v = bits.map(f64::from_bits);
+        let poly = Trig {
+            a: [v[0], v[1], v[2], v[3], v[4]],
+            b: [v[5], v[6], v[7], v[8], v[9]],
+        };
+        (poly, v[10], v[11])
+    }
+
+    #[test]
+    fn recorded_clusters_are_found_as_before_with_fewer_intervals() {
+        // Eliminants of the deck panel of the real-files set, with the
+        // tolerances the pose solver passed: a near-sixfold root at 0
+        // (F ~ K (1 - cos)^3), a long stretch within `tol` of zero, one
+        // that exhausts the budget, and a cluster elsewhere.
+        let recorded: [[u64; 12]; 4] = [
+            [
+                0x4136860f557122c0,
+                0xc140e48980abac12,
+                0x412b0738cea0594c,
+                0xc10204c5db4fba0d,
+                0xbdf9840000000000,
+                0x0,
+                0x3e081eac00000000,
+                0xbe049ce000000000,
+                0x3de1ef2000000000,
+                0xbdaea40000000000,
+                0x3f1a754f18409b49,
+                0x3e796609d666fd9c,
+            ],
+            [
+                0x418a3253e32ba9b9,
+                0x418a47f880b53b60,
+                0xc14a7d4ee5401b30,
+                0xc150f7af0c541749,
+                0xbe30000000000000,
+                0x0,
+                0x418d3648b4d37924,
+                0x417f42569d89d8b7,
+                0x4148978d9462fd3a,
+                0x3e4c000000000000,
+                0x3f72498fcd6fcb8f,
+                0x3ee4d3940b262788,
+            ],
+            [
+                0x4163c39a002e8a11,
+                0xc1427c838630617d,
+                0xc15691c571914250,
+                0x411ca203cbd7cac9,
+                0xbe111a0000000000,
+                0x0,
+                0x416d490dbf484497,
+                0xc13d38baa0a01275,
+                0xc12c36e179830cad,
+                0xbe0b400000000000,
+                0x3f4608b80f9edeaf,
+                0x3eb291cb17b1e6ac,
+            ],
+            [
+                0x41414c9d6e40978a,
+                0xc149d5ac190cdfbd,
+                0x413464cfa59417f6,
+                0xc10a95927fdc3c7b,
+                0xbdf7800000000000,
+                0x0,
+                0xc114e125d6388fb4,
+                0x4110a7034cfbcaf2,
+                0xc0f0912bafa94049,
+                0xbdd6fc0000000000,
+                0x3f21a2d39094e842,
+                0x3e83667efdb68b01,
+            ],
+        ];
+        let mut saved = 0;
+        for bits in recorded {
+            let (poly, tol, noise) = from_bits(bits);
+            let (proved, plain) = same_as_plain(&poly, tol, noise, &|_, _| true);
+            assert!(proved <= plain);
+            saved += plain - proved;
+            // Part of the circle only, as the setup sweep asks.
+            same_as_plain(&poly, tol, noise, &|lo, hi| hi >= 1.0 && lo <= 4.0);
+            same_as_plain(&poly, tol, noise, &|lo, _| lo <= 0.2 || lo >= 6.1);
+        }
+        assert!(saved > 10_000, "{saved}");
+    }
+
+    /// `K (1 - cos(t - t0))^power (c + cos(t - t1))` plus a small random
+    /// remainder: a near-multiple root at `t0`.
+    fn cluster(
+        k: f64,
+        power: i32,
+        (t0, t1, c): (f64, f64, f64),
+        remainder: [f64; 9],
+        size: f64,
+    ) -> Trig {
+        let g = |t: f64| {
+            let base = k * (1.0 - (t - t0).cos()).powi(power);
+            let r = remainder[0]
+                + (1..=DEG)
+                    .map(|j| {
+                        let jt = j as f64 * t;
+                        remainder[2 * j - 1] * jt.cos() + remainder[2 * j] * jt.sin()
+                    })
+                    .sum::<f64>();
+            if power <= 3 {
+                base * (c + (t - t1).cos()) + size * k * r
+            } else {
+                base + size * k * r
+            }
+        };
+        Trig::from_samples(&sampled(g))
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+
+        #[test]
+        fn proved_search_is_the_plain_search_on_clusters(
+            k in 1e-3f64..1e8,
+            power in 1i32..=4,
+            shape in (0.0f64..TAU, 0.0f64..TAU, 1.5f64..3.0),
+            at_zero in proptest::bool::ANY,
+            remainder in proptest::array::uniform9(-1.0f64..1.0),
+            size_exp in -18.0f64..-8.0,
+            tol_exp in -14.0f64..-9.0,
+            noise_exp in -17.0f64..-12.0,
+        ) {
+            let shape = if at_zero { (0.0, shape.1, shape.2) } else { shape };
+            let poly = cluster(k, power, shape, remainder, 10f64.powf(size_exp));
+            let (tol, noise) = (k * 10f64.powf(tol_exp), k * 10f64.powf(noise_exp));
+            same_as_plain(&poly, tol, noise, &|_, _| true);
+            let (lo, hi) = (shape.0 - 0.3, shape.0 + 0.05);
+            same_as_plain(&poly, tol, noise, &|a, b| b >= lo && a <= hi);
+        }
+
+        #[test]
+        fn proved_search_is_the_plain_search_on_random_polynomials(
+            a in proptest::array::uniform5(-1.0f64..1.0),
+            b in proptest::array::uniform5(-1.0f64..1.0),
+            tol_exp in -14.0f64..-2.0,
+        ) {
+            let poly = Trig { a, b: [0.0, b[1], b[2], b[3], b[4]] };
+            same_as_plain(&poly, 10f64.powf(tol_exp), 1e-15, &|_, _| true);
         }
     }
 }
