@@ -67,7 +67,7 @@ mod test_rng;
 
 pub mod parts;
 
-pub use enumerate::budget::{BudgetHalt, WorkBudget};
+pub use enumerate::budget::{fixture_cap, BudgetHalt, WorkBudget};
 pub use enumerate::combinations::combination_count;
 pub use enumerate::prepare::{prepare, PreparedPart};
 pub use enumerate::shards::{merge, EnumerateOptions, Enumeration, PartialResult, Profile};

@@ -233,3 +233,25 @@ fn a_part_interrupted_twice_is_not_failed() {
     assert!(export(&out).iter().all(|p| p["status"] != "failed"));
     assert_eq!(fixtures_channel(&out), fixtures_channel(&clean));
 }
+
+/// `--fault abort-on:ID` acts where a part's solve starts in the run's
+/// own process, which `--workers` never does: the combination is refused
+/// at start, naming why, rather than running without the fault.
+#[test]
+fn a_run_fault_with_workers_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.mcap");
+    for fault in ["abort-on:bracket-1", "stall-on:bracket-1"] {
+        let got = fixplan()
+            .args(["run", "-q", "--workers", "2", "--fault", fault, "-o"])
+            .arg(&out)
+            .env_remove("RUST_LOG")
+            .stdin(std::process::Stdio::null())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&got.stderr);
+        assert!(!got.status.success(), "{fault}: {err}");
+        assert!(err.contains("--workers"), "{fault}: {err}");
+        assert!(!out.exists() && !dir.path().join("out.mcap.partial").exists());
+    }
+}

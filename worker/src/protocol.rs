@@ -15,7 +15,7 @@ use std::ops::Range;
 use thiserror::Error;
 
 /// The version of this protocol. A peer speaking another one is refused.
-pub const PROTOCOL_VERSION: u16 = 10;
+pub const PROTOCOL_VERSION: u16 = 11;
 const MAGIC: [u8; 2] = *b"FX";
 const HEADER: usize = 5;
 const KIND_MSG: u8 = 1;
@@ -133,15 +133,20 @@ pub struct Assign {
     pub budget: TaskBudget,
 }
 
-/// A task's work budget (protocol 10): `--part-setups`, the same on every
-/// worker, and what is left of the part's `--part-seconds` by the
-/// coordinator's clock when the task is handed out.
+/// A task's work budget (protocol 10; fixtures since 11): `--part-setups`
+/// and `--part-fixtures`, the same on every worker, and what is left of
+/// the part's `--part-seconds` by the coordinator's clock when the task
+/// is handed out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct TaskBudget {
     /// Setups at most (SPEC's `setups` count): a task that sees more
     /// stops, and so does its part, since a task's setups are at most its
     /// part's.
     pub setups: Option<u64>,
+    /// Fixtures kept at most, for a part whose top-k can exceed it (0 or
+    /// above it): a task that keeps more stops, and so does its part,
+    /// since a task's fixtures are admissible fixtures of its part.
+    pub fixtures: Option<u64>,
     /// Milliseconds the task may still run.
     pub millis: Option<u64>,
 }
@@ -153,6 +158,10 @@ pub enum BudgetStop {
     /// the worker or the shard.
     #[error("more than {0} setups")]
     Setups(u64),
+    /// More fixtures kept than [`TaskBudget::fixtures`]: the same verdict
+    /// whatever the worker or the shard.
+    #[error("more than {0} fixtures kept")]
+    Fixtures(u64),
     /// Past [`TaskBudget::millis`] (wall clock).
     #[error("past its time")]
     Deadline,
@@ -162,6 +171,7 @@ impl From<fixplan_core::BudgetHalt> for BudgetStop {
     fn from(halt: fixplan_core::BudgetHalt) -> BudgetStop {
         match halt {
             fixplan_core::BudgetHalt::Setups(n) => BudgetStop::Setups(n),
+            fixplan_core::BudgetHalt::Fixtures(n) => BudgetStop::Fixtures(n),
             fixplan_core::BudgetHalt::Deadline => BudgetStop::Deadline,
         }
     }
@@ -171,6 +181,7 @@ impl From<BudgetStop> for fixplan_core::BudgetHalt {
     fn from(stop: BudgetStop) -> fixplan_core::BudgetHalt {
         match stop {
             BudgetStop::Setups(n) => fixplan_core::BudgetHalt::Setups(n),
+            BudgetStop::Fixtures(n) => fixplan_core::BudgetHalt::Fixtures(n),
             BudgetStop::Deadline => fixplan_core::BudgetHalt::Deadline,
         }
     }
@@ -639,6 +650,7 @@ mod tests {
                 task,
                 budget: TaskBudget {
                     setups: Some(i as u64 + 1),
+                    fixtures: (i == 1).then_some(250_000),
                     millis: (i == 0).then_some(900),
                 },
             })

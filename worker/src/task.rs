@@ -169,7 +169,8 @@ fn enumerate(
 ) -> Result<(PartialResult, Option<u64>, u64), TaskError> {
     let t0 = Instant::now();
     let deadline = budget.millis.map(|ms| t0 + Duration::from_millis(ms));
-    let work = WorkBudget::new(budget.setups, deadline);
+    let work =
+        WorkBudget::new(budget.setups, deadline).with_fixtures(budget.fixtures, prep.top_k());
     let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let options = EnumerateOptions {
             good_enough,
@@ -179,7 +180,11 @@ fn enumerate(
         prep.enumerate(range.clone(), options)
     }));
     match out {
-        Ok(done) => match work.verdict(done.halted, done.result.counts.setups) {
+        Ok(done) => match work.verdict(
+            done.halted,
+            done.result.counts.setups,
+            done.result.fixtures.len(),
+        ) {
             Some(halt) => Err(TaskError::OverBudget(halt.into())),
             None => Ok((done.result, done.stopped_at, micros_since(t0))),
         },

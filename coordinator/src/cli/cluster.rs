@@ -147,6 +147,13 @@ pub struct CoordinatorArgs {
     /// whatever the workers, shard size or threads. Default: no limit.
     #[arg(long, value_name = "N")]
     pub part_setups: Option<u64>,
+    /// Stop a part (each grid step of it) once it keeps more than N
+    /// fixtures, as `fixplan run --part-fixtures` and with its default
+    /// (about 650 MB of fixtures): the coordinator holds a part's shard
+    /// results until the part is merged, so it needs the cap as much as
+    /// a run. Deterministic: the same parts as `fixplan run`.
+    #[arg(long, value_name = "N", default_value_t = crate::job::budget::DEFAULT_PART_FIXTURES)]
+    pub part_fixtures: u64,
     /// Stop a part still enumerating S seconds (the coordinator's clock)
     /// after its first shard went out: its status is `over_budget`, its
     /// shards not handed out again. NOT deterministic. Default: no limit.
@@ -299,6 +306,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         quiet: a.quiet,
         search: SearchOptions {
             part_setups: a.part_setups,
+            part_fixtures: Some(a.part_fixtures),
             part_seconds: a.part_seconds,
             ..SearchOptions::default()
         },

@@ -333,8 +333,17 @@ fn run_load(sheet: bool, holes: Option<HoleMode>) -> LoadOptions {
     }
 }
 
-/// `fixplan run --fault`: only the fault of a run in this process.
-fn run_fault(fault: Option<fault::Fault>) -> Result<()> {
+/// `fixplan run --fault`: only the fault of a run in this process. They
+/// act when a part's solve starts in this process, which never happens
+/// with `--workers` (the workers solve): refused there rather than
+/// silently doing nothing.
+fn run_fault(fault: Option<fault::Fault>, backend: &Backend) -> Result<()> {
+    if let (Some(fault), Backend::Cluster(_)) = (&fault, backend) {
+        anyhow::bail!(
+            "--fault {fault:?} acts on parts solved in this process; with --workers the workers \
+             solve them (to kill a worker on a part: fixplan worker --fault abort-on-vertices:N)"
+        );
+    }
     match fault {
         None => Ok(()),
         Some(fault::Fault::AbortOn(id)) => {
@@ -378,9 +387,9 @@ fn real_main() -> Result<()> {
             search,
             fault,
         } => {
-            run_fault(fault)?;
-            crate::interrupt::catch()?;
             let backend = run_backend(&cluster, threads, shard_size);
+            run_fault(fault, &backend)?;
+            crate::interrupt::catch()?;
             load_and_run(
                 &RunOptions {
                     catalog: catalog.unwrap_or_else(default_catalog),

@@ -2,6 +2,7 @@
 //! `--good-enough` on `fixplan run`.
 
 use super::cluster::RunClusterArgs;
+use crate::job::budget::DEFAULT_PART_FIXTURES;
 use crate::job::search::{parse_grid_steps, SearchError, SearchOptions};
 use crate::study::{study_main, StudyOptions, StudyReport};
 use anyhow::Result;
@@ -94,6 +95,11 @@ pub struct StudyArgs {
     /// No table.
     #[arg(short, long)]
     pub quiet: bool,
+    /// A (kit, part) keeping more than N fixtures is `over_budget`, as in
+    /// `fixplan run --part-fixtures` (same default; it only bites with
+    /// `--top-k` 0 or above N).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_PART_FIXTURES)]
+    pub part_fixtures: u64,
     /// Circular arcs of the parts: `exact` (SPEC 8) or `flatten` (chords
     /// within the catalogue's chord tolerance, for comparison). Default:
     /// the manifest's `arcs`, else exact.
@@ -149,6 +155,19 @@ pub struct SearchArgs {
     /// huge parts.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_PART_SETUPS)]
     pub part_setups: u64,
+    /// Stop a part (each grid step of it) once it keeps more than N
+    /// fixtures: with `--top-k 0` (or a part's `top_k = 0`) a part keeps
+    /// every admissible fixture, and a big part on a big plate has
+    /// millions. Its status is `over_budget`, no fixture of it is written,
+    /// and the run goes on. Deterministic: the same parts stop whatever
+    /// the threads or workers. Only bites when top-k is 0 or above N. A
+    /// kept fixture costs about 2.6 KB at the peak of a run (shard
+    /// results, merge, report and chunk: 11.4 GB max RSS for the 4.38 M
+    /// fixtures of `housing-57` x3 with `--top-k 0`, 1.07 GB for the
+    /// 413 k of x2), so the default, 250,000, keeps a part under about
+    /// 650 MB, well under 2 GiB.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_PART_FIXTURES)]
+    pub part_fixtures: u64,
     /// Stop a part still enumerating after S seconds of wall clock: its
     /// status is `over_budget`. NOT deterministic (it depends on the
     /// machine and its load); default: no time limit.
@@ -169,6 +188,7 @@ impl SearchArgs {
             good_enough: self.good_enough,
             part_budget: Some(self.part_budget),
             part_setups: Some(self.part_setups),
+            part_fixtures: Some(self.part_fixtures),
             part_seconds: self.part_seconds,
         }
     }
@@ -193,6 +213,7 @@ pub fn study_cli_main(a: &StudyArgs, default_catalog: PathBuf) -> Result<StudyRe
         no_share: a.no_share,
         quiet: a.quiet,
         arcs: a.arcs,
+        part_fixtures: Some(a.part_fixtures),
     };
     let copts = a.cluster.options(a.threads);
     study_main(&opts, copts.as_ref())

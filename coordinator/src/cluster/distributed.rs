@@ -294,6 +294,7 @@ fn settings(opts: &ClusterOptions, batch_cost: u64) -> Settings {
         verify: opts.verify,
         good_enough: opts.good_enough,
         part_setups: opts.part_setups,
+        part_fixtures: opts.part_fixtures,
         part_seconds: opts.part_seconds,
         batch_cost,
         finisher: None,

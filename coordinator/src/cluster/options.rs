@@ -75,6 +75,9 @@ pub struct ClusterOptions {
     /// `--part-setups`: a part with more setups is `over_budget` (the
     /// embedded run's verdict, whatever the workers).
     pub part_setups: Option<u64>,
+    /// `--part-fixtures`: a part keeping more fixtures is `over_budget`
+    /// (the embedded run's verdict, whatever the workers).
+    pub part_fixtures: Option<u64>,
     /// `--part-seconds`: a part still enumerating this long after its
     /// first task went out is `over_budget` (the coordinator's clock).
     pub part_seconds: Option<f64>,
@@ -98,6 +101,7 @@ impl Default for ClusterOptions {
             verify: VerifyPolicy::default(),
             good_enough: None,
             part_setups: None,
+            part_fixtures: None,
             part_seconds: None,
         }
     }

@@ -12,9 +12,18 @@
 //! budget, whatever its segments turn out to be (an outline's edge count
 //! bounds its segments from neither side: trimming drops edges, access
 //! regions split them). The setup budget and the deadline are checked
-//! inside the enumeration ([`fixplan_core::WorkBudget`]).
+//! inside the enumeration ([`fixplan_core::WorkBudget`]), and so is the
+//! fixture cap (`--part-fixtures`): what a part keeps is what it holds in
+//! memory and writes in one results chunk.
 
 use fixplan_core::{BudgetHalt, Part, PreparedPart, SolveResult, Status};
+
+/// `--part-fixtures`'s default (`run`, `study`, `coordinator`): a kept
+/// fixture costs about 2.6 KB at the peak of a run (shard results, merge,
+/// report, chunk: 11.4 GB max RSS for `housing-57` x3's 4.38 M fixtures
+/// with `--top-k 0`, 1.07 GB for x2's 413 k), so a part stays under about
+/// 650 MB, well under 2 GiB.
+pub const DEFAULT_PART_FIXTURES: u64 = 250_000;
 
 /// The estimated work of a prepared part, in [`super::shards::cost`]
 /// units, with the counts it is made of.
@@ -69,11 +78,15 @@ fn verdict(
 }
 
 /// The part's [`Status::OverBudget`] result when a budget stopped its
-/// enumeration (`--part-setups`, `--part-seconds`): what it exceeded.
+/// enumeration (`--part-setups`, `--part-fixtures`, `--part-seconds`):
+/// what it exceeded.
 pub fn halted(id: &str, halt: BudgetHalt, seconds: Option<f64>) -> SolveResult {
     let why = match halt {
         BudgetHalt::Setups(budget) => {
             format!("more than {budget} setups, beyond --part-setups {budget}")
+        }
+        BudgetHalt::Fixtures(cap) => {
+            format!("more than {cap} fixtures kept, beyond --part-fixtures {cap}")
         }
         BudgetHalt::Deadline => format!(
             "still enumerating after {} s, beyond --part-seconds (wall clock)",

@@ -30,6 +30,6 @@ pub fn solve_prepared(
         .collect();
     let halted = pieces.iter().find_map(|p| p.1);
     let merged = merge(prep.top_k(), pieces.into_iter().map(|p| p.0).collect());
-    let halt = budget.verdict(halted, merged.counts.setups);
+    let halt = budget.verdict(halted, merged.counts.setups, merged.fixtures.len());
     (report(prep, &merged), n, halt)
 }

@@ -34,6 +34,10 @@ pub struct SearchOptions {
     /// `--part-setups`: a part (each grid step of it) with more setups
     /// than this is stopped and gets `over_budget`; deterministic.
     pub part_setups: Option<u64>,
+    /// `--part-fixtures`: a part (each grid step of it) keeping more
+    /// fixtures than this (top-k 0 or above it) is stopped and gets
+    /// `over_budget`; deterministic.
+    pub part_fixtures: Option<u64>,
     /// `--part-seconds`: a part still enumerating after this many seconds
     /// is stopped and gets `over_budget`; wall clock, not deterministic.
     pub part_seconds: Option<f64>,
@@ -84,13 +88,14 @@ pub fn parse_grid_steps(text: &str) -> Result<Vec<u32>, SearchError> {
 }
 
 impl SearchOptions {
-    /// A part's budget: the setups of one enumeration and the instant
+    /// A part's budget: the setups and the fixtures (for a part keeping
+    /// its best `top_k`) of one enumeration, and the instant
     /// `--part-seconds` from `start`.
-    pub fn work_budget(&self, start: std::time::Instant) -> WorkBudget {
+    pub fn work_budget(&self, start: std::time::Instant, top_k: usize) -> WorkBudget {
         let deadline = self
             .part_seconds
             .map(|s| start + std::time::Duration::from_secs_f64(s));
-        WorkBudget::new(self.part_setups, deadline)
+        WorkBudget::new(self.part_setups, deadline).with_fixtures(self.part_fixtures, top_k)
     }
 
     /// One full enumeration: neither option given.
@@ -228,7 +233,7 @@ pub fn solve_search(
             }
         };
         let t0 = std::time::Instant::now();
-        let budget = opts.work_budget(start);
+        let budget = opts.work_budget(start, p.top_k());
         let (res, hit, halt) = match opts.good_enough {
             Some(g) => {
                 let options = EnumerateOptions {
@@ -238,7 +243,8 @@ pub fn solve_search(
                 let done = p.enumerate(0..p.combination_count(), options);
                 let (partial, hit): (PartialResult, Option<u64>) = (done.result, done.stopped_at);
                 info.shards += 1;
-                let halt = budget.verdict(done.halted, partial.counts.setups);
+                let halt =
+                    budget.verdict(done.halted, partial.counts.setups, partial.fixtures.len());
                 (report(&p, &partial), hit, halt)
             }
             None => {

@@ -135,7 +135,7 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
     let t1 = Instant::now();
     let solved = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if ctx.search.is_plain() {
-            let budget = ctx.search.work_budget(start);
+            let budget = ctx.search.work_budget(start, prep.top_k());
             let (res, n, halt) = solve_prepared(&prep, ctx.shard_size, &budget);
             let info = SearchInfo {
                 shards: n,

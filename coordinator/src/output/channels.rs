@@ -155,7 +155,7 @@ mod tests {
         let want = [
             (
                 "fixplan.Run",
-                "8065762188b1b83911db23af6e5eb5540e26f3c2fe5b7765fcff08bcf45400ff",
+                "0b035ce9bf18b208ec019619dae2b2b6bad522b78e2b81ad5eb47b8d04596d18",
             ),
             (
                 "fixplan.Part",

@@ -158,6 +158,9 @@ pub struct BudgetsField {
     /// `--part-setups`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub setups: Option<u64>,
+    /// `--part-fixtures`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fixtures: Option<u64>,
     /// `--part-seconds` (wall clock).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seconds: Option<f64>,
@@ -169,9 +172,11 @@ impl BudgetsField {
         let b = BudgetsField {
             cost: search.part_budget,
             setups: search.part_setups,
+            fixtures: search.part_fixtures,
             seconds: search.part_seconds,
         };
-        (b.cost.is_some() || b.setups.is_some() || b.seconds.is_some()).then_some(b)
+        let any = b.cost.is_some() || b.setups.is_some() || b.fixtures.is_some();
+        (any || b.seconds.is_some()).then_some(b)
     }
 }
 

@@ -98,6 +98,7 @@ pub fn start<T>(
     let search = jobs.first().map(|j| j.ctx.search);
     opts.good_enough = search.and_then(|s| s.good_enough);
     opts.part_setups = search.and_then(|s| s.part_setups);
+    opts.part_fixtures = search.and_then(|s| s.part_fixtures);
     opts.part_seconds = search.and_then(|s| s.part_seconds);
     let dist = run_distributed_finishing(inputs, opts, remote.map(|r| r.finisher.clone()))?;
     Ok(ClusterJobs { dist, map, direct })

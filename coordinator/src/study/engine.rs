@@ -26,6 +26,8 @@ pub struct Engine<'a> {
     kits: &'a [StudyKit],
     params: &'a [Params],
     backend: Backend,
+    /// The budgets of every solve (`--part-fixtures`).
+    search: SearchOptions,
     prepares: usize,
 }
 
@@ -36,12 +38,14 @@ impl<'a> Engine<'a> {
         kits: &'a [StudyKit],
         params: &'a [Params],
         backend: Backend,
+        search: SearchOptions,
     ) -> Engine<'a> {
         Engine {
             catalog,
             kits,
             params,
             backend,
+            search,
             prepares: 0,
         }
     }
@@ -55,14 +59,14 @@ impl<'a> Engine<'a> {
     pub fn solve(&mut self, jobs: &[Job]) -> Result<Vec<StudyPartRow>> {
         let units = self.catalog.units;
         let parts = &self.catalog.parts;
-        let search = SearchOptions::default();
+        let search = &self.search;
         let ctxs: Vec<JobContext> = (0..self.kits.len())
             .map(|k| JobContext {
                 kit: &self.kits[k].spec.kit,
                 params: &self.params[k],
                 units,
                 shard_size: None,
-                search: &search,
+                search,
             })
             .collect();
         let bases = match self.backend {

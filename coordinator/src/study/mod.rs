@@ -45,6 +45,9 @@ pub struct StudyOptions {
     /// Fixtures kept per part (default 1: the statistics need only the best
     /// one, and the counts and best score do not depend on top-k).
     pub top_k: Option<usize>,
+    /// `--part-fixtures`: a (kit, part) keeping more fixtures is
+    /// `over_budget`.
+    pub part_fixtures: Option<u64>,
     /// Count admissible fixtures exactly (off: top-k mode).
     pub full_counts: bool,
     /// Threads of an embedded study (default: all cores).
@@ -80,7 +83,11 @@ pub fn run_study(
             threads: opts.threads,
         },
     };
-    let mut engine = engine::Engine::new(catalog, kits, &params, backend);
+    let search = crate::job::SearchOptions {
+        part_fixtures: opts.part_fixtures,
+        ..crate::job::SearchOptions::default()
+    };
+    let mut engine = engine::Engine::new(catalog, kits, &params, backend, search);
     let np = catalog.parts.len();
     let mut rows = Rows::new(kits.len(), np);
     // Phase 1: the kits no other kit has a larger plate than.

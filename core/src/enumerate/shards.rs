@@ -5,7 +5,7 @@
 
 use crate::checks::admissibility::{Scratch, Timing};
 use crate::clamp::{Accumulator, ClampSearch, Work};
-use crate::enumerate::budget::{BudgetHalt, WorkBudget};
+use crate::enumerate::budget::{BudgetHalt, Spending, WorkBudget};
 use crate::enumerate::combinations::{combination_count, combinations_in};
 use crate::results::ranking::{merge_ranked, Fixture};
 use crate::results::report::Counts;
@@ -122,11 +122,10 @@ impl Stages<'_> {
     ) -> RangePiece {
         let (timed, good_enough) = (options.timed, options.good_enough);
         let unlimited = WorkBudget::default();
-        let budget = options.budget.unwrap_or(&unlimited);
         // With good_enough, pieces after the first hit are dropped, so a
-        // piece counts only its own setups: the setups of dropped pieces
-        // must not stop a kept one.
-        let shared = good_enough.is_none();
+        // piece counts only its own spending ([`Spending`]).
+        let mut spending =
+            Spending::new(options.budget.unwrap_or(&unlimited), good_enough.is_none());
         let mut halted = None;
         let clock = std::time::Instant::now();
         let mut acc = self.accumulator();
@@ -138,16 +137,13 @@ impl Stages<'_> {
         let end = range.end.min(self.combination_count());
         let mut hit = None;
         let mut done_to = end;
-        let mut own = 0u64;
         for (index, combo) in combinations_in(n, range.start..end) {
-            let base = if shared { budget.seen() } else { own };
-            halted = budget.halt(base, true);
+            halted = spending.start(acc.top.len());
             if halted.is_some() {
                 done_to = index;
                 break;
             }
             acc.counts.combinations += 1;
-            let mut seen = 0u64;
             let s = self
                 .setups
                 .setups_of_combination(combo, &mut setup_scratch, |s| {
@@ -157,19 +153,13 @@ impl Stages<'_> {
                     if halted.is_some() {
                         return;
                     }
-                    seen += 1;
-                    if budget.is_limited() {
-                        halted = budget.halt(base + seen, false);
-                        if halted.is_some() {
-                            return;
-                        }
+                    halted = spending.setup();
+                    if halted.is_none() {
+                        self.clamp.process_setup(s, &mut acc, &mut scratch);
+                        halted = spending.kept(acc.top.len());
                     }
-                    self.clamp.process_setup(s, &mut acc, &mut scratch)
                 });
-            own += seen;
-            if shared && budget.is_limited() {
-                budget.add(seen);
-            }
+            spending.end(acc.top.len());
             search.add(&s);
             if halted.is_some() {
                 done_to = index + 1;
@@ -289,8 +279,8 @@ pub struct EnumerateOptions<'a> {
     pub good_enough: Option<f64>,
     /// Time each stage for the profile: clock reads in the inner loop.
     pub timed: bool,
-    /// Stop once the part's setups exceed this budget or its deadline
-    /// passes ([`Enumeration::halted`] says which); shared by every
+    /// Stop once the part's setups or kept fixtures exceed this budget
+    /// or its deadline passes ([`Enumeration::halted`] says which); shared by every
     /// range of the part enumerated in this process.
     pub budget: Option<&'a WorkBudget>,
 }

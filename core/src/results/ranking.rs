@@ -111,6 +111,17 @@ impl TopK {
         self.heap.push(Ranked(f));
     }
 
+    /// Fixtures held: a part's fixture cap counts them (each an
+    /// admissible fixture of what was seen).
+    pub fn len(&self) -> usize {
+        self.heap.len()
+    }
+
+    /// Whether none is held.
+    pub fn is_empty(&self) -> bool {
+        self.heap.is_empty()
+    }
+
     /// The score above which nothing can enter: the k-th fixture's once
     /// `k` are held, infinity before (and when keeping all).
     pub fn score_bound(&self) -> f64 {

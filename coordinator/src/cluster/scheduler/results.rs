@@ -372,7 +372,10 @@ fn hold(
         result,
         finished: enumeration.finished,
     });
-    if !open && !part.closed {
+    if super::budget::held_over(st, settings, slot) {
+        return;
+    }
+    if !open && !st.parts[slot].closed {
         close(st, settings, slot);
     }
 }
@@ -417,9 +420,7 @@ fn close(st: &mut State, settings: &Settings, slot: usize) {
             .saturating_add(merged.counts.combinations);
     }
     let finish = part.finish.is_some();
-    if let Some(over) =
-        super::budget::over_at_close(&st.parts[slot], settings, merged.counts.setups)
-    {
+    if let Some(over) = super::budget::over_at_close(&st.parts[slot], settings, &merged) {
         super::budget::fail(st, slot, over);
         return;
     }

@@ -8,7 +8,7 @@ use bytes::Bytes;
 use fixplan_core::{Fixture, PartialResult, PrepareError, PreparedPart};
 use fixplan_worker::finish::Finisher;
 use fixplan_worker::part_input::{digest, PartInput};
-use fixplan_worker::protocol::{DataPath, Digest, MergedCut, TransportChoice};
+use fixplan_worker::protocol::{BudgetStop, DataPath, Digest, MergedCut, TransportChoice};
 use std::collections::{HashMap, HashSet, VecDeque};
 use std::ops::Range;
 use std::sync::Arc;
@@ -99,8 +99,9 @@ pub(super) struct PartSlot {
     /// then ([`super::budget`]).
     pub(super) started: Option<Instant>,
     /// With `--good-enough`: the first combination of the earliest shard
-    /// that stopped on `--part-setups`, judged when the part closes.
-    pub(super) over: Option<u64>,
+    /// that stopped on `--part-setups` or `--part-fixtures`, and which,
+    /// judged when the part closes.
+    pub(super) over: Option<(u64, BudgetStop)>,
 }
 
 /// How often a part's shards were with a worker that was lost or whose
@@ -285,6 +286,8 @@ pub struct Settings {
     pub good_enough: Option<f64>,
     /// `--part-setups` of every part ([`super::budget`]).
     pub part_setups: Option<u64>,
+    /// `--part-fixtures` of every part ([`super::budget`]).
+    pub part_fixtures: Option<u64>,
     /// `--part-seconds` of every part, by this process's clock.
     pub part_seconds: Option<f64>,
     /// Cost of work ([`crate::job::shards::cost`]) handed out in one

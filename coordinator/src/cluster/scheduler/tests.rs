@@ -29,6 +29,7 @@ fn settings(verify: VerifyPolicy, batch_cost: u64) -> Settings {
         verify,
         good_enough: None,
         part_setups: None,
+        part_fixtures: None,
         part_seconds: None,
         batch_cost,
         finisher: None,
@@ -990,4 +991,88 @@ fn over_budget_answers_and_spent_time_end_their_part() {
         delivered.as_slice(),
         [(0, Err(PartFailure::OverBudget(BudgetStop::Deadline)))]
     ));
+}
+
+/// Part 0 of a one-part scheduler with `--good-enough` (any fixture is
+/// good enough) in shards of 3, every shard in one batch: each shard
+/// answered honestly, except that `over` shards answer `stop`. What the
+/// part becomes, and the first combination with a fixture.
+fn good_enough_with_overs(
+    over: impl Fn(&Range<u64>, u64) -> bool,
+    stop: BudgetStop,
+) -> (Result<Option<u64>, PartFailure>, u64) {
+    let (mut c, rx) = core_rx(1, 3, VerifyPolicy::All);
+    let good = 1e9;
+    c.settings.good_enough = Some(good);
+    c.settings.part_setups = Some(1_000_000);
+    c.settings.batch_cost = u64::MAX;
+    join(&c, "w");
+    let prep = c.lock().parts[0].prep.clone().expect("prepared");
+    let hit = fixplan_worker::run_shard_until(&prep, 0..prep.combination_count(), Some(good))
+        .1
+        .expect("a fixture");
+    let Next::Work(batch) = c.next_work("w") else {
+        panic!("no work")
+    };
+    assert!(
+        batch.iter().any(|a| range_of(a).start > hit),
+        "shards past the hit at {hit}"
+    );
+    // Answers past the stop first: their verdict waits for the stop.
+    let mut outcomes: Vec<(u64, Outcome)> = batch
+        .iter()
+        .map(|a| {
+            let range = range_of(a);
+            let outcome = if over(&range, hit) {
+                Outcome::Failed(TaskFailed {
+                    shard_id: a.shard_id,
+                    error: fixplan_worker::protocol::TaskError::OverBudget(stop),
+                })
+            } else {
+                let (result, h) = fixplan_worker::run_shard_until(&prep, range.clone(), Some(good));
+                match done(a, result, None) {
+                    Outcome::Done(mut d) => {
+                        d.answer = match d.answer {
+                            Answer::Enumerated { result, .. } => {
+                                Answer::Enumerated { result, hit: h }
+                            }
+                            other => other,
+                        };
+                        Outcome::Done(d)
+                    }
+                    failed => failed,
+                }
+            };
+            (u64::MAX - range.start, outcome)
+        })
+        .collect();
+    outcomes.sort_by_key(|o| o.0);
+    report(&c, "w", outcomes.into_iter().map(|o| o.1).collect());
+    let delivered: Vec<Delivery> = rx.try_iter().flatten().collect();
+    let [(0, part)] = <[Delivery; 1]>::try_from(delivered).expect("one part delivered") else {
+        panic!("part 0")
+    };
+    (part.map(|m| m.stopped_at), hit)
+}
+
+/// With `--good-enough`, a shard past the part's stop that stopped on
+/// its budget does not count (the embedded run never enumerates it); one
+/// up to the stop makes the part over budget, for the budget it stopped
+/// on, setups or fixtures.
+#[test]
+fn a_budget_stop_counts_only_up_to_the_good_enough_stop() {
+    let past = |r: &Range<u64>, hit: u64| r.start > hit;
+    let (part, hit) = good_enough_with_overs(past, BudgetStop::Setups(10));
+    assert!(matches!(part, Ok(Some(h)) if h == hit), "{part:?}");
+    let (part, _) = good_enough_with_overs(past, BudgetStop::Fixtures(5));
+    assert!(matches!(part, Ok(Some(_))), "{part:?}");
+    let first = |r: &Range<u64>, _: u64| r.start == 0;
+    for stop in [BudgetStop::Setups(10), BudgetStop::Fixtures(5)] {
+        let (part, hit) = good_enough_with_overs(first, stop);
+        assert!(hit >= 3, "the first shard is before the stop: {hit}");
+        assert!(
+            matches!(part, Err(PartFailure::OverBudget(s)) if s == stop),
+            "{part:?}"
+        );
+    }
 }
