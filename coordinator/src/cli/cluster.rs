@@ -144,9 +144,11 @@ pub struct CoordinatorArgs {
     /// Stop a part (each grid step of it) once it has more than N setups,
     /// as `fixplan run --part-setups`: its status is `over_budget`, and
     /// the run goes on. Deterministic: the same parts as `fixplan run`,
-    /// whatever the workers, shard size or threads. Default: no limit.
-    #[arg(long, value_name = "N")]
-    pub part_setups: Option<u64>,
+    /// whatever the workers, shard size or threads. The default is
+    /// `fixplan run`'s (10^7), so that a catalogue gives the same results
+    /// in a run and in the cluster unless told otherwise.
+    #[arg(long, value_name = "N", default_value_t = crate::cli::study::DEFAULT_PART_SETUPS)]
+    pub part_setups: u64,
     /// Stop a part (each grid step of it) once it keeps more than N
     /// fixtures, as `fixplan run --part-fixtures` and with its default
     /// (about 650 MB of fixtures): the coordinator holds a part's shard
@@ -305,7 +307,7 @@ pub fn coordinator_main(a: &CoordinatorArgs, default_catalog: PathBuf) -> Result
         shard_size: a.shard_size,
         quiet: a.quiet,
         search: SearchOptions {
-            part_setups: a.part_setups,
+            part_setups: Some(a.part_setups),
             part_fixtures: Some(a.part_fixtures),
             part_seconds: a.part_seconds,
             ..SearchOptions::default()

@@ -16,7 +16,8 @@
 //! fixture cap (`--part-fixtures`): what a part keeps is what it holds in
 //! memory and writes in one results chunk.
 
-use fixplan_core::{BudgetHalt, Part, PreparedPart, SolveResult, Status};
+use super::search::SearchOptions;
+use fixplan_core::{fixture_cap, BudgetHalt, Part, PreparedPart, SolveResult, Status};
 
 /// `--part-fixtures`'s default (`run`, `study`, `coordinator`): a kept
 /// fixture costs about 2.6 KB at the peak of a run (shard results, merge,
@@ -79,18 +80,25 @@ fn verdict(
 
 /// The part's [`Status::OverBudget`] result when a budget stopped its
 /// enumeration (`--part-setups`, `--part-fixtures`, `--part-seconds`):
-/// what it exceeded.
-pub fn halted(id: &str, halt: BudgetHalt, seconds: Option<f64>) -> SolveResult {
-    let why = match halt {
-        BudgetHalt::Setups(budget) => {
+/// what it exceeded. When both deterministic budgets bind the part (its
+/// `top_k` lets the fixture cap bite), which of them a piece meets first
+/// depends on threads and shards, so the message names both: the bytes of
+/// a result must not depend on how the work was cut.
+pub fn halted(id: &str, halt: BudgetHalt, search: &SearchOptions, top_k: usize) -> SolveResult {
+    let fixtures = fixture_cap(search.part_fixtures, top_k);
+    let why = match (halt, search.part_setups, fixtures) {
+        (BudgetHalt::Setups(_) | BudgetHalt::Fixtures(_), Some(setups), Some(cap)) => format!(
+            "more than {setups} setups or more than {cap} fixtures kept, beyond --part-setups {setups} or --part-fixtures {cap}"
+        ),
+        (BudgetHalt::Setups(budget), ..) => {
             format!("more than {budget} setups, beyond --part-setups {budget}")
         }
-        BudgetHalt::Fixtures(cap) => {
+        (BudgetHalt::Fixtures(cap), ..) => {
             format!("more than {cap} fixtures kept, beyond --part-fixtures {cap}")
         }
-        BudgetHalt::Deadline => format!(
+        (BudgetHalt::Deadline, ..) => format!(
             "still enumerating after {} s, beyond --part-seconds (wall clock)",
-            seconds.unwrap_or_default()
+            search.part_seconds.unwrap_or_default()
         ),
     };
     SolveResult::gave_up(

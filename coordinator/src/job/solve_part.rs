@@ -154,7 +154,7 @@ pub fn solve_part(ctx: &JobContext, cp: &CatalogPart, preparation: Preparation) 
         }
         Ok((_, info, Some(halt))) => {
             timing.shards = info.shards;
-            let result = super::budget::halted(&cp.id, halt, ctx.search.part_seconds);
+            let result = super::budget::halted(&cp.id, halt, ctx.search, prep.top_k());
             (result, SearchInfo::default())
         }
         Err(p) => (

@@ -170,8 +170,9 @@ fn step_out(job: &PartJob, returned: Result<MergedPart, PartFailure>, ms: f64) -
     match returned {
         Ok(s) => (report(&s.prep, &s.merged), s.stopped_at, ms),
         Err(PartFailure::OverBudget(stop)) => {
-            let seconds = job.ctx.search.part_seconds;
-            let result = crate::job::budget::halted(&job.part.id, stop.into(), seconds);
+            let top_k = job.part.top_k.unwrap_or(job.ctx.params.top_k);
+            let result =
+                crate::job::budget::halted(&job.part.id, stop.into(), job.ctx.search, top_k);
             (result, None, ms)
         }
         Err(failure) => {
