@@ -77,6 +77,7 @@ const START_SIN: [f64; START] = [
 /// correction (at most 0.22) is within 0.6 eps and the final sum adds at
 /// most eps / 2: within 2 eps of the true values all told, against libm's
 /// 1 ulp, and the same `f64` angle is evaluated.
+#[inline]
 pub(super) fn cos_sin_near(theta: f64, start: usize) -> (f64, f64) {
     let d = theta - START_MID[start];
     debug_assert!(
@@ -156,6 +157,7 @@ impl Bounds {
 }
 
 /// What [`Class`] `[lo, hi]`, inside start interval `start`, falls in.
+#[inline]
 pub(super) fn classify(poly: &Trig, bounds: &Bounds, start: usize, lo: f64, hi: f64) -> Class {
     let h = 0.5 * (hi - lo);
     let (c, s) = cos_sin_near(lo + h, start);

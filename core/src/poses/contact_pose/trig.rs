@@ -199,6 +199,7 @@ impl Trig {
     }
 
     /// [`Trig::eval3`] at the angle with cosine `cos` and sine `sin`.
+    #[inline]
     pub(super) fn eval3_cs(&self, cos: f64, sin: f64) -> (f64, f64, f64) {
         let (mut c, mut s) = (1.0, 0.0);
         let (mut f, mut d1, mut d2) = (self.a[0], 0.0, 0.0);
