@@ -20,15 +20,18 @@
 //! Why no pose is missed: the reduction is an equivalence (`w = N / D`
 //! wherever `D != 0`), so every isolated pose has its angle among the
 //! roots of `F`, of `D`, or (when `D` vanishes identically) of `N`; the
-//! root finder in `trig` discards an interval of angles only when a Taylor
+//! root finder in `root_search` discards an interval of angles only when a Taylor
 //! bound proves the polynomial nonzero there, and at each candidate angle
 //! every `w` the reduced system allows is tried. Continua are recognised
 //! structurally: `F` vanishing identically (every angle has a solution),
 //! or three circles congruent to the locator triangle (a continuum at one
 //! angle, whose fourfold root of `F` is handled in closed form).
 
+mod classify;
 mod half_angle;
 mod limits;
+mod root_search;
+mod taylor5;
 mod trig;
 mod two_lines;
 
@@ -540,7 +543,7 @@ impl Reduced {
         let d_max = sm.d.max_abs();
         if d_max > DEGENERATE_REL * sm.max_dhat {
             let tol = NEAR_MISS * self.rho0 * sm.max_dhat * sm.max_dhat;
-            trig::roots(&sm.f, tol, ROUNDING_REL * sm.scale_f, within, out);
+            root_search::roots(&sm.f, tol, ROUNDING_REL * sm.scale_f, within, out);
             // D has degree <= 1 (the rotation cancels from b1 x b2).
             trig::linear_roots(&sm.d, out);
         }
@@ -551,7 +554,7 @@ impl Reduced {
             let tol = NEAR_MISS * sm.max_dhat;
             for n in [&sm.nx, &sm.ny].map(Trig::from_samples) {
                 if n.max_abs() > ROUNDING_REL * sm.max_nhat {
-                    trig::roots(&n, tol, ROUNDING_REL * sm.max_nhat, within, out);
+                    root_search::roots(&n, tol, ROUNDING_REL * sm.max_nhat, within, out);
                 }
             }
         }

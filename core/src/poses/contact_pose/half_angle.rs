@@ -1,6 +1,6 @@
 //! The roots of a trigonometric polynomial of degree at most 2 without
 //! subdivision: two locators on lines leave an eliminant of that degree
-//! (`two_lines`), and for it the general root search of `trig` (Taylor
+//! (`two_lines`), and for it the general root search of `root_search` (Taylor
 //! bounds on sixteen intervals, then splitting) costs far more than the
 //! answer needs.
 //!
@@ -19,7 +19,7 @@
 //! can only misplace a critical point by a few ulps, where `P` is at its
 //! extremum, and every extremum with `|P|` within the near-miss band is
 //! passed on as a candidate (a tangency, or a near miss that the caller's
-//! residual test decides), as `trig::roots` does.
+//! residual test decides), as `root_search::roots` does.
 
 use super::trig::{bracketed_root, Angles, Trig, Within};
 use crate::geometry::angle_set::rem_tau;
@@ -199,7 +199,7 @@ const ANGLE_SLACK: f64 = 1e-6;
 /// noise for the callers) in `[0, 2 pi)` that `within` wants, plus every
 /// local extremum with `|f| <= tol` and no root beside it (tangencies and
 /// near misses), pushed onto `out`; `noise` bounds the error of the
-/// coefficients, as for `trig::roots`.
+/// coefficients, as for `root_search::roots`.
 pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut Angles) {
     // P = (1 + t^2)^2 F with the factor at most 4 on |t| <= 1; evaluating
     // the quartic adds a few ulps of the sum of its coefficients'
@@ -308,7 +308,7 @@ mod tests {
             }
             let mine = found(&f, 1e-13);
             let mut general = Angles::new();
-            super::super::trig::roots(&f, 1e-13, 0.0, &|_, _| true, &mut general);
+            super::super::root_search::roots(&f, 1e-13, 0.0, &|_, _| true, &mut general);
             for &t in general.as_slice() {
                 if value(&f, t).abs() < 1e-12 {
                     assert!(
