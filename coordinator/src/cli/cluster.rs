@@ -147,7 +147,7 @@ pub struct CoordinatorArgs {
     /// whatever the workers, shard size or threads. The default is
     /// `fixplan run`'s (10^7), so that a catalogue gives the same results
     /// in a run and in the cluster unless told otherwise.
-    #[arg(long, value_name = "N", default_value_t = crate::cli::study::DEFAULT_PART_SETUPS)]
+    #[arg(long, value_name = "N", default_value_t = crate::job::budget::DEFAULT_PART_SETUPS)]
     pub part_setups: u64,
     /// Stop a part (each grid step of it) once it keeps more than N
     /// fixtures, as `fixplan run --part-fixtures` and with its default

@@ -2,7 +2,7 @@
 //! `--good-enough` on `fixplan run`.
 
 use super::cluster::RunClusterArgs;
-use crate::job::budget::DEFAULT_PART_FIXTURES;
+use crate::job::budget::{DEFAULT_PART_FIXTURES, DEFAULT_PART_SETUPS};
 use crate::job::search::{parse_grid_steps, SearchError, SearchOptions};
 use crate::study::{study_main, StudyOptions, StudyReport};
 use anyhow::Result;
@@ -177,8 +177,6 @@ pub struct SearchArgs {
 
 /// `--part-budget`'s default, in segment combinations x segments.
 pub const DEFAULT_PART_BUDGET: u64 = 100_000_000_000;
-/// `--part-setups`'s default.
-pub const DEFAULT_PART_SETUPS: u64 = 10_000_000;
 
 impl SearchArgs {
     /// The search of every part of the run.

@@ -19,6 +19,11 @@
 use super::search::SearchOptions;
 use fixplan_core::{fixture_cap, BudgetHalt, Part, PreparedPart, SolveResult, Status};
 
+/// `--part-setups`'s default (`run`, `study`, `coordinator`): seconds to
+/// minutes of a core, 17 times the setups of the largest example part
+/// (`housing-57` x3).
+pub const DEFAULT_PART_SETUPS: u64 = 10_000_000;
+
 /// `--part-fixtures`'s default (`run`, `study`, `coordinator`): a kept
 /// fixture costs about 2.6 KB at the peak of a run (shard results, merge,
 /// report, chunk: 11.4 GB max RSS for `housing-57` x3's 4.38 M fixtures
