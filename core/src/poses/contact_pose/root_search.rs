@@ -13,17 +13,23 @@ use super::trig::{bracketed_root, Angles, Trig, Within};
 /// The sign-change root of `f` in `[lo, hi]`, if any (the caller knows `f`
 /// is monotone there, so there is at most one).
 fn monotone_root(poly: &Trig, lo: f64, hi: f64, out: &mut Angles) {
-    let (flo, fhi) = (poly.value(lo), poly.value(hi));
-    if flo == 0.0 {
-        out.push(lo);
-    } else if fhi == 0.0 {
-        out.push(hi);
-    } else if (flo < 0.0) != (fhi < 0.0) {
+    sign_change_root(poly, (lo, poly.value(lo)), (hi, poly.value(hi)), out);
+}
+
+/// The root of `f` in `[a, b]`, where `f` is monotone and takes `fa`, `fb`
+/// at the ends: an end where `f` is zero, else the bracketed sign change,
+/// if any.
+fn sign_change_root(poly: &Trig, (a, fa): (f64, f64), (b, fb): (f64, f64), out: &mut Angles) {
+    if fa == 0.0 {
+        out.push(a);
+    } else if fb == 0.0 {
+        out.push(b);
+    } else if (fa < 0.0) != (fb < 0.0) {
         let g = |t: f64| {
             let (v, d, _) = poly.eval3(t);
             (v, d)
         };
-        out.push(bracketed_root(g, lo, hi, flo));
+        out.push(bracketed_root(g, a, b, fa));
     }
 }
 
@@ -50,21 +56,8 @@ fn convex_roots(poly: &Trig, tol: f64, lo: f64, hi: f64, out: &mut Angles) {
     };
     let fc = poly.value(tc);
     let before = out.n;
-    let mut side = |a: f64, b: f64, fa: f64, fb: f64| {
-        if fa == 0.0 {
-            out.push(a);
-        } else if fb == 0.0 {
-            out.push(b);
-        } else if (fa < 0.0) != (fb < 0.0) {
-            let g = |t: f64| {
-                let (v, d, _) = poly.eval3(t);
-                (v, d)
-            };
-            out.push(bracketed_root(g, a, b, fa));
-        }
-    };
-    side(lo, tc, flo, fc);
-    side(tc, hi, fc, fhi);
+    sign_change_root(poly, (lo, flo), (tc, fc), out);
+    sign_change_root(poly, (tc, fc), (hi, fhi), out);
     if out.n == before && fc.abs() <= tol {
         out.push(tc);
     }
