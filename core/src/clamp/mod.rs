@@ -17,7 +17,7 @@ use crate::checks::plate::Placement;
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::setting::Setting;
 use crate::input::Pattern;
-use crate::metric::{Metric, PartContact};
+use crate::metric::{Locators, Metric, PartContact};
 use crate::poses::pose::Pose;
 use crate::results::ranking::{Fixture, TopK};
 use crate::results::report::Counts;
@@ -127,6 +127,10 @@ struct SetupContext<'a> {
     only_rotation: Option<u8>,
     /// The locator contacts in the part frame, as the metric takes them.
     part_locators: [PartContact; 3],
+    /// What the metric works out from the locators alone, shared by the
+    /// locator floor and every candidate's score: worked out at the
+    /// first candidate, as `count_only`.
+    metric_locators: std::cell::OnceCell<Locators>,
     /// Top-k mode, and the locators alone score above the k-th fixture:
     /// candidates are only counted. Worked out at the setup's first
     /// candidate (the k-th fixture cannot change before it), so setups
@@ -140,9 +144,15 @@ impl SetupContext<'_> {
         if let Some(weak) = self.count_only.get() {
             return weak;
         }
-        let weak = acc.prune && search.locators_too_weak(&self.part_locators, acc, hint);
+        let weak = acc.prune && search.locators_too_weak(self.metric_locators(search), acc, hint);
         self.count_only.set(Some(weak));
         weak
+    }
+
+    /// See `metric_locators`.
+    fn metric_locators(&self, search: &ClampSearch) -> &Locators {
+        self.metric_locators
+            .get_or_init(|| search.metric.locators(&self.part_locators))
     }
 }
 
@@ -250,6 +260,7 @@ impl ClampSearch<'_> {
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
             part_locators,
+            metric_locators: std::cell::OnceCell::new(),
             count_only: std::cell::Cell::new(None),
         };
         scratch.reset_pose();
@@ -290,12 +301,12 @@ impl ClampSearch<'_> {
     /// top-k held: the metric's floor for them is above the k-th score.
     fn locators_too_weak(
         &self,
-        locators: &[PartContact; 3],
+        locators: &Locators,
         acc: &mut Accumulator,
         hint: &mut usize,
     ) -> bool {
         let bound = acc.top.score_bound();
-        let weak = bound.is_finite() && self.metric.locators_exceed(locators, bound, hint);
+        let weak = bound.is_finite() && self.metric.prepared_locators_exceed(locators, bound, hint);
         acc.work.setups_floored += weak as u64;
         weak
     }
@@ -496,7 +507,8 @@ impl ClampSearch<'_> {
     }
 
     /// The metric's score of the four contacts (exact when at most
-    /// `bound`, otherwise above it, see [`crate::metric::Metric::score_bounded`]).
+    /// `bound`, otherwise above it, see [`crate::metric::Metric::score_bounded`]);
+    /// the locators' part of the solve is the setup's, worked out once.
     #[inline]
     fn score(
         &self,
@@ -505,17 +517,16 @@ impl ClampSearch<'_> {
         scratch: &mut Scratch,
         bound: f64,
     ) -> f64 {
-        let [a, b, c] = ctx.part_locators;
-        let contacts = [
-            a,
-            b,
-            c,
-            self.part_contact(&ctx.setup.pose, cand.q, cand.segment),
-        ];
+        let clamp = self.part_contact(&ctx.setup.pose, cand.q, cand.segment);
         let clock = scratch.timing.is_some().then(std::time::Instant::now);
         let score = self
             .metric
-            .score_bounded(&contacts, bound, &mut scratch.metric_hint)
+            .score_with_locators(
+                ctx.metric_locators(self),
+                &clamp,
+                bound,
+                &mut scratch.metric_hint,
+            )
             .unwrap_or(f64::INFINITY);
         let ns = lap(clock);
         if let Some(tm) = scratch.timing.as_mut() {

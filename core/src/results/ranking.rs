@@ -87,16 +87,34 @@ impl Ord for Ranked {
 #[derive(Debug, Clone, Default)]
 pub struct TopK {
     k: usize,
-    heap: BinaryHeap<Ranked>,
+    held: Held,
+}
+
+/// The fixtures a [`TopK`] holds: all of them in the order seen (a full
+/// enumeration ranks them once at the end), or the best `k` in a heap
+/// whose top is the k-th.
+#[derive(Debug, Clone)]
+enum Held {
+    /// `k == 0`.
+    All(Vec<Fixture>),
+    /// `k > 0`.
+    Best(BinaryHeap<Ranked>),
+}
+
+impl Default for Held {
+    fn default() -> Self {
+        Held::All(Vec::new())
+    }
 }
 
 impl TopK {
     /// Empty, keeping the best `k` (0: all).
     pub fn new(k: usize) -> Self {
-        TopK {
-            k,
-            heap: BinaryHeap::new(),
-        }
+        let held = match k {
+            0 => Held::All(Vec::new()),
+            _ => Held::Best(BinaryHeap::new()),
+        };
+        TopK { k, held }
     }
 
     /// Offers a fixture; it stays only while among the best `k`, so memory
@@ -105,21 +123,29 @@ impl TopK {
         if !self.could_enter(&f) {
             return;
         }
-        if self.kth().is_some() {
-            self.heap.pop();
+        match &mut self.held {
+            Held::All(all) => all.push(f),
+            Held::Best(heap) => {
+                if heap.len() >= self.k {
+                    heap.pop();
+                }
+                heap.push(Ranked(f));
+            }
         }
-        self.heap.push(Ranked(f));
     }
 
     /// Fixtures held: a part's fixture cap counts them (each an
     /// admissible fixture of what was seen).
     pub fn len(&self) -> usize {
-        self.heap.len()
+        match &self.held {
+            Held::All(all) => all.len(),
+            Held::Best(heap) => heap.len(),
+        }
     }
 
     /// Whether none is held.
     pub fn is_empty(&self) -> bool {
-        self.heap.is_empty()
+        self.len() == 0
     }
 
     /// The score above which nothing can enter: the k-th fixture's once
@@ -138,28 +164,46 @@ impl TopK {
     /// The worst fixture held, once there are `k` (`None` when keeping
     /// all).
     fn kth(&self) -> Option<&Fixture> {
-        if self.k == 0 || self.heap.len() < self.k {
-            return None;
+        match &self.held {
+            Held::Best(heap) if heap.len() >= self.k => heap.peek().map(|r| &r.0),
+            _ => None,
         }
-        self.heap.peek().map(|r| &r.0)
     }
 
     /// Sorted best first.
     pub fn into_sorted(self) -> Vec<Fixture> {
-        sorted_by_rank(self.heap.into_iter().map(|r| r.0).collect())
+        match self.held {
+            Held::All(all) => sorted_by_rank(all),
+            Held::Best(heap) => sorted_by_rank(heap.into_iter().map(|r| r.0).collect()),
+        }
     }
+}
+
+/// `score`'s place in [`f64::total_cmp`]'s order, as an integer (the
+/// transformation `total_cmp` itself makes).
+fn total_order_key(score: f64) -> i64 {
+    let bits = score.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
 }
 
 /// `fixtures` sorted best first, as `sort_by(Fixture::rank_cmp)` sorts
 /// them (a stable sort: the same order, ties included). A fixture is a
 /// few hundred bytes, so the sort moves their indices and each fixture
 /// moves once: sorting the 3,874 fixtures of `housing-57`'s full
-/// enumeration by moving them cost 4% of it.
+/// enumeration by moving them cost 4% of it. The scores, the first key,
+/// sit beside the indices, so most comparisons read no fixture.
 fn sorted_by_rank(fixtures: Vec<Fixture>) -> Vec<Fixture> {
-    let mut order: Vec<usize> = (0..fixtures.len()).collect();
-    order.sort_by(|&a, &b| fixtures[a].rank_cmp(&fixtures[b]));
+    let mut order: Vec<(i64, usize)> = fixtures
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (total_order_key(f.score), i))
+        .collect();
+    order.sort_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then_with(|| fixtures[a.1].key_cmp(&fixtures[b.1]))
+    });
     let mut slots: Vec<Option<Fixture>> = fixtures.into_iter().map(Some).collect();
-    order.iter().filter_map(|&i| slots[i].take()).collect()
+    order.iter().filter_map(|&(_, i)| slots[i].take()).collect()
 }
 
 /// Merges ranked lists into the best `k` (all when `k == 0`), sorted.
@@ -221,6 +265,33 @@ mod tests {
                 .filter(|w| w[0].rank_cmp(&w[1]) == Ordering::Equal)
                 .count();
             assert!(len < 300 || ties > 0, "no whole-key ties to keep in order");
+        }
+    }
+
+    /// Keeping all and keeping the best `k` hold the first `k` of the
+    /// same order.
+    #[test]
+    fn top_k_is_the_head_of_keeping_all() {
+        let mut rng = crate::test_rng::Xorshift::new(0x70b_4ead);
+        let fixtures: Vec<Fixture> = (0..200).map(|i| fixture(&mut rng, i)).collect();
+        let mut all = TopK::new(0);
+        fixtures.iter().for_each(|f| all.push(f.clone()));
+        assert_eq!(all.len(), 200);
+        assert_eq!(all.score_bound(), f64::INFINITY);
+        let all = all.into_sorted();
+        for k in [1, 7, 199, 200, 300] {
+            let mut top = TopK::new(k);
+            fixtures.iter().for_each(|f| top.push(f.clone()));
+            assert_eq!(top.len(), k.min(200));
+            let top = top.into_sorted();
+            // Whole-key ties may come in either order.
+            let n = k.min(200);
+            assert!(
+                top.iter()
+                    .zip(&all[..n])
+                    .all(|(a, b)| a.rank_cmp(b) == Ordering::Equal),
+                "k {k}"
+            );
         }
     }
 

@@ -1,0 +1,245 @@
+//! The max-force metrics' loops over the applied wrenches, laid out for
+//! the vector unit: the wrenches in blocks of [`LANES`] (structure of
+//! arrays), each lane one wrench going through the very operations, in
+//! the very order, of the one-wrench formula, so each wrench's force is
+//! the same bits whether the lanes run as SSE2 pairs or AVX quads.
+//! Nothing here multiplies and adds in one rounding (no FMA), and a
+//! maximum does not depend on the order its terms come in (see
+//! [`fmax`]), so the scores are those of a plain loop bit for bit.
+
+// A lane index reads several arrays in step: the loops stay index loops.
+#![allow(clippy::needless_range_loop)]
+
+/// Wrenches per block: two AVX registers (four SSE2 ones) per
+/// coordinate, independent lanes to keep the divider busy.
+pub(crate) const LANES: usize = 8;
+
+/// [`LANES`] applied wrenches, coordinate by coordinate.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Block {
+    x: [f64; LANES],
+    y: [f64; LANES],
+    z: [f64; LANES],
+}
+
+/// Applied wrenches in blocks; the last block is filled up with copies of
+/// the last wrench (a maximum over a repeated term is the same).
+pub(crate) fn blocks(wrenches: &[[f64; 3]]) -> Vec<Block> {
+    let Some(last) = wrenches.last() else {
+        return Vec::new();
+    };
+    wrenches
+        .chunks(LANES)
+        .map(|chunk| {
+            let at = |j: usize| chunk.get(j).unwrap_or(last);
+            Block {
+                x: std::array::from_fn(|j| at(j)[0]),
+                y: std::array::from_fn(|j| at(j)[1]),
+                z: std::array::from_fn(|j| at(j)[2]),
+            }
+        })
+        .collect()
+}
+
+/// The larger of `a` and `b` as one `maxsd` (`maxpd` in lanes):
+/// `f64::max`'s NaN rule costs several instructions, and here the
+/// accumulator `a` is never NaN (a NaN `b` is ignored, as `f64::max`
+/// would). Accumulators start at `+0.0` and only take values above them,
+/// so a `-0.0` never gets in and the largest value is the same bits in
+/// whatever order the terms come.
+#[inline(always)]
+pub(crate) fn fmax(a: f64, b: f64) -> f64 {
+    if b > a {
+        b
+    } else {
+        a
+    }
+}
+
+/// The rows of `W^-1` (the inverse of the locator wrench matrix) and
+/// `mu = (-W^-1 w4, 1)` for a fourth wrench, as the loops take them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Solve {
+    /// `rows[i][j]` is `W^-1`'s entry `(i, j)`.
+    pub(crate) rows: [[f64; 3]; 3],
+    /// The ray direction's first three entries (the fourth is 1).
+    pub(crate) mu: [f64; 3],
+}
+
+/// `W^-1 p` for each lane's `p`, rows summed left to right as nalgebra's
+/// matrix-vector product sums them: `(r0 x + r1 y) + r2 z`.
+#[inline(always)]
+fn solved(rows: &[[f64; 3]; 3], b: &Block) -> [[f64; LANES]; 3] {
+    let mut out = [[0.0; LANES]; 3];
+    for (i, row) in rows.iter().enumerate() {
+        for j in 0..LANES {
+            out[i][j] = row[0] * b.x[j] + row[1] * b.y[j] + row[2] * b.z[j];
+        }
+    }
+    out
+}
+
+/// Each lane's largest contact force: the smallest non-negative point of
+/// the ray `lambda0 + s mu` with `lambda0 = (-W^-1 p, 0)`, the one-wrench
+/// formula's operations in its order.
+#[inline(always)]
+fn forces(solve: &Solve, b: &Block) -> [f64; LANES] {
+    let y = solved(&solve.rows, b);
+    let mu = [solve.mu[0], solve.mu[1], solve.mu[2], 1.0];
+    let mut out = [0.0; LANES];
+    for j in 0..LANES {
+        let l0 = [-y[0][j], -y[1][j], -y[2][j], 0.0];
+        let mut s = f64::NEG_INFINITY;
+        for i in 0..4 {
+            s = fmax(s, -l0[i] / mu[i]);
+        }
+        let mut worst = 0.0f64;
+        for i in 0..4 {
+            worst = fmax(worst, l0[i] + s * mu[i]);
+        }
+        out[j] = worst;
+    }
+    out
+}
+
+/// The largest force over `blocks`, taken from block `*start` on
+/// (wrapping around), stopping at the first block whose largest force
+/// is above `bound` (then `*start` is left there and the largest so far
+/// returned: above `bound`, at most the full maximum).
+#[inline(always)]
+fn largest_portable(solve: &Solve, blocks: &[Block], bound: f64, start: &mut usize) -> f64 {
+    let first = if *start < blocks.len() { *start } else { 0 };
+    let (tail, head) = blocks.split_at(first);
+    let mut worst = [0.0f64; LANES];
+    for (i, b) in head.iter().chain(tail).enumerate() {
+        let f = forces(solve, b);
+        for j in 0..LANES {
+            worst[j] = fmax(worst[j], f[j]);
+        }
+        if worst.iter().any(|&w| w > bound) {
+            *start = (first + i) % blocks.len();
+            break;
+        }
+    }
+    worst.into_iter().fold(0.0, fmax)
+}
+
+/// Whether some lane's locator force with the clamp's share at zero
+/// (`lambda0_i = -(W^-1 p)_i`) is above `bound`, from block `*start` on;
+/// `*start` is left at the block that told.
+#[inline(always)]
+fn floor_exceeds_portable(
+    rows: &[[f64; 3]; 3],
+    blocks: &[Block],
+    bound: f64,
+    start: &mut usize,
+) -> bool {
+    let first = if *start < blocks.len() { *start } else { 0 };
+    let (tail, head) = blocks.split_at(first);
+    for (i, b) in head.iter().chain(tail).enumerate() {
+        let y = solved(rows, b);
+        let mut above = false;
+        for yi in &y {
+            for &v in yi {
+                above |= -v > bound;
+            }
+        }
+        if above {
+            *start = (first + i) % blocks.len();
+            return true;
+        }
+    }
+    false
+}
+
+/// [`largest_portable`] compiled for AVX (four lanes a register; no FMA,
+/// so the same roundings).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn largest_avx(solve: &Solve, blocks: &[Block], bound: f64, start: &mut usize) -> f64 {
+    largest_portable(solve, blocks, bound, start)
+}
+
+/// [`floor_exceeds_portable`] compiled for AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn floor_exceeds_avx(
+    rows: &[[f64; 3]; 3],
+    blocks: &[Block],
+    bound: f64,
+    start: &mut usize,
+) -> bool {
+    floor_exceeds_portable(rows, blocks, bound, start)
+}
+
+/// Whether this processor has AVX (detected once, then a load).
+#[cfg(target_arch = "x86_64")]
+fn has_avx() -> bool {
+    std::arch::is_x86_feature_detected!("avx")
+}
+
+/// The largest contact force over the applied wrenches in `blocks`, with
+/// the early stop above `bound` of [`largest_portable`].
+pub(crate) fn largest_force(solve: &Solve, blocks: &[Block], bound: f64, start: &mut usize) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if has_avx() {
+        // SAFETY: the processor has AVX, the one feature the function
+        // is compiled for.
+        return unsafe { largest_avx(solve, blocks, bound, start) };
+    }
+    largest_portable(solve, blocks, bound, start)
+}
+
+/// Whether some applied wrench in `blocks` needs a locator force above
+/// `bound` with the clamp's share at zero.
+pub(crate) fn floor_exceeds(
+    rows: &[[f64; 3]; 3],
+    blocks: &[Block],
+    bound: f64,
+    start: &mut usize,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if has_avx() {
+        // SAFETY: as in `largest_force`.
+        return unsafe { floor_exceeds_avx(rows, blocks, bound, start) };
+    }
+    floor_exceeds_portable(rows, blocks, bound, start)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The portable loops and the dispatched ones (AVX where the
+    /// processor has it) give the same bits and answers, from any start.
+    #[test]
+    fn portable_and_dispatched_loops_agree() {
+        let mut rng = crate::test_rng::Xorshift::new(0x7a11_b10c);
+        let mut rnd = || rng.signed_unit();
+        let wrenches: Vec<[f64; 3]> = (0..61).map(|_| [rnd(), rnd(), rnd()]).collect();
+        let blocks = blocks(&wrenches);
+        assert_eq!(blocks.len(), 8);
+        for _ in 0..300 {
+            let solve = Solve {
+                rows: std::array::from_fn(|_| [rnd(), rnd(), rnd()]),
+                mu: [rnd().abs(), rnd().abs(), rnd().abs()],
+            };
+            let full = largest_portable(&solve, &blocks, f64::INFINITY, &mut 0);
+            for bound in [f64::INFINITY, full, full * 0.5, 0.0] {
+                for first in [0, 3, 7, 9] {
+                    let (mut a, mut b) = (first, first);
+                    let portable = largest_portable(&solve, &blocks, bound, &mut a);
+                    let dispatched = largest_force(&solve, &blocks, bound, &mut b);
+                    assert_eq!(portable.to_bits(), dispatched.to_bits());
+                    assert_eq!(a, b);
+                    let (mut a, mut b) = (first, first);
+                    assert_eq!(
+                        floor_exceeds_portable(&solve.rows, &blocks, bound, &mut a),
+                        floor_exceeds(&solve.rows, &blocks, bound, &mut b)
+                    );
+                    assert_eq!(a, b);
+                }
+            }
+        }
+    }
+}
