@@ -29,7 +29,6 @@ use crate::poses::pose::Pose;
 use crate::poses::TripleContacts;
 use crate::segments::{PairBounds, PairTable, Segment};
 use crate::sweeps::{LocatorSweep, PivotPair, PivotPoint, SweepScratch, SweptSegment};
-use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
 use std::sync::{Arc, OnceLock};
 
@@ -255,7 +254,7 @@ impl SetupSearch<'_> {
         // A pivot pair without pivot points gives no setup whatever the
         // third segment: most combinations of a small part end here,
         // before their sweep is built.
-        let known = pivots.range(p, q);
+        let known = pivots.range(self.segments.len(), p, q);
         if known.as_ref().is_some_and(std::ops::Range::is_empty) {
             return;
         }
@@ -531,21 +530,42 @@ const PIVOT_CACHE_POINTS: usize = 1 << 15;
 /// depend on the third segment.
 #[derive(Debug, Default)]
 struct PivotCache {
-    /// Where each pair's points lie in `points`.
-    pairs: FxHashMap<(usize, usize), std::ops::Range<usize>>,
+    /// Where each ordered pair's points lie in `points`, `first * width +
+    /// second`, [`UNKNOWN`] before they are worked out: a dense table, as
+    /// a hash lookup cost about 2% of `gluegun-28`.
+    ranges: Vec<(usize, usize)>,
+    /// The number of segments `ranges` is laid out for.
+    width: usize,
     /// Every pair's points, one after the other: one allocation for all.
     points: Vec<LatticePivot>,
 }
 
+/// Marks a pair of [`PivotCache`] whose points are not worked out.
+const UNKNOWN: (usize, usize) = (usize::MAX, usize::MAX);
+
 impl PivotCache {
-    /// Where the pivot points of `(first, second)` lie in `points`, when
-    /// already worked out.
-    fn range(&self, first: usize, second: usize) -> Option<std::ops::Range<usize>> {
-        self.pairs.get(&(first, second)).cloned()
+    /// Where the pivot points of `(first, second)` of a part with `count`
+    /// segments lie in `points`, when already worked out.
+    fn range(
+        &mut self,
+        count: usize,
+        first: usize,
+        second: usize,
+    ) -> Option<std::ops::Range<usize>> {
+        if self.width != count {
+            // A scratch's first combination (or another part's).
+            self.width = count;
+            self.ranges.clear();
+            self.ranges.resize(count * count, UNKNOWN);
+            self.points.clear();
+        }
+        let (start, end) = self.ranges[first * count + second];
+        ((start, end) != UNKNOWN).then_some(start..end)
     }
 
     /// Works out the pivot points of `(first, second)` by `push` and
-    /// says where they lie in `points`.
+    /// says where they lie in `points` (after [`PivotCache::range`], which
+    /// lays the table out).
     fn insert(
         &mut self,
         first: usize,
@@ -553,13 +573,13 @@ impl PivotCache {
         push: impl FnOnce(&mut Vec<LatticePivot>),
     ) -> std::ops::Range<usize> {
         if self.points.len() > PIVOT_CACHE_POINTS {
-            self.pairs.clear();
+            self.ranges.fill(UNKNOWN);
             self.points.clear();
         }
         let start = self.points.len();
         push(&mut self.points);
         let r = start..self.points.len();
-        self.pairs.insert((first, second), r.clone());
+        self.ranges[first * self.width + second] = (r.start, r.end);
         r
     }
 }

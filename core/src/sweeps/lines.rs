@@ -31,6 +31,21 @@ const TARGET_MARGIN: f64 = 0.25;
 /// Beyond this many pieces for one `L2` the annuli are cheaper.
 const MAX_PIECES: usize = 48;
 
+/// [`TARGET_MARGIN`] when `c` is an arc. Arcs are mostly grown rounded
+/// corners a fraction of a lattice step long, whose swept region is thin:
+/// most of its lattice points lay in the margin and each cost an arc pose
+/// solution (tens of thousands of instructions) for nothing, where a piece
+/// costs a few hundred. On the voron2 deck panel (ci profile, top-10) 0.25
+/// and 0.05 solved 107 and 70 thousand triples with two lines pivoting
+/// and an arc third for the same 50,672 setups (5,900 and 5,603 M
+/// instructions in all); 0.02 saved under 1% more there and cost 0.5% on
+/// the voron0 motor panel.
+const ARC_THIRD_TARGET_MARGIN: f64 = 0.05;
+
+/// [`MAX_PIECES`] when `c` is an arc: the finer pieces are about twice as
+/// many (the step goes as the square root of the margin).
+const ARC_THIRD_MAX_PIECES: usize = 200;
+
 /// `|u_a x u_b|` at or below which lines `a` and `b` count as parallel:
 /// the part then slides without turning. Between this and
 /// [`NEAR_PARALLEL`] neither model is accurate enough and the caller falls
@@ -268,13 +283,18 @@ fn turning_region(
     // |F''| <= |p - p1| + 2 |p1'| + |p1''| for F = R (p - p1); the widened
     // angles may carry p1 past a's ends by `ANGLE_SLACK h`.
     let k2 = dmax_ac + c.margin + 3.0 * h + ANGLE_SLACK * h + 1e-6;
-    let step = (8.0 * TARGET_MARGIN / k2).sqrt();
+    let (target, max_pieces) = if c.curved {
+        (ARC_THIRD_TARGET_MARGIN, ARC_THIRD_MAX_PIECES)
+    } else {
+        (TARGET_MARGIN, MAX_PIECES)
+    };
+    let step = (8.0 * target / k2).sqrt();
     let (sin_p, cos_p) = phi_a_sc;
     let mut pieces = 0;
     for (&[t0, t1], &[sc0, sc1]) in angles.intervals().iter().zip(ends_sc) {
         let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
         pieces += n;
-        if pieces > MAX_PIECES {
+        if pieces > max_pieces {
             return false;
         }
         let w = (t1 - t0) / n as f64;

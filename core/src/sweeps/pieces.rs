@@ -66,12 +66,15 @@ pub(super) struct ThirdPiece {
     pts: [V2; MAX_CHORDS + 1],
     chords: usize,
     pub(super) margin: f64,
+    /// Whether the segment is an arc: its sweep is covered more finely
+    /// (see `lines::ARC_THIRD_TARGET_MARGIN`).
+    pub(super) curved: bool,
 }
 
 impl ThirdPiece {
     /// A line segment: itself, one chord.
     pub(super) fn straight(seg: &Segment) -> ThirdPiece {
-        ThirdPiece::of_chords(seg, 1, 0.0)
+        ThirdPiece::of_chords(seg, 1, 0.0, false)
     }
 
     /// A segment of `arc`: chords of at most an eighth of a turn, within
@@ -81,11 +84,12 @@ impl ThirdPiece {
         let eighth = arc.radius * std::f64::consts::FRAC_PI_4;
         let count = ((len / eighth).ceil() as usize).clamp(1, MAX_CHORDS);
         let half_angle = len / count as f64 / arc.radius / 2.0;
-        ThirdPiece::of_chords(seg, count, arc.radius * (1.0 - half_angle.cos()) + 1e-9)
+        let sagitta = arc.radius * (1.0 - half_angle.cos()) + 1e-9;
+        ThirdPiece::of_chords(seg, count, sagitta, true)
     }
 
     /// `chords` equal pieces of `seg` (by its parameter), `margin` from it.
-    fn of_chords(seg: &Segment, chords: usize, margin: f64) -> ThirdPiece {
+    fn of_chords(seg: &Segment, chords: usize, margin: f64, curved: bool) -> ThirdPiece {
         let mut pts = [V2::zeros(); MAX_CHORDS + 1];
         for (j, p) in pts.iter_mut().enumerate().take(chords + 1) {
             let s = if j == chords {
@@ -99,6 +103,7 @@ impl ThirdPiece {
             pts,
             chords,
             margin,
+            curved,
         }
     }
 

@@ -25,12 +25,12 @@ pub fn quad_spans(quad: &Quad, grid_step: i64, out: &mut Vec<Span>) {
     let x_min = xs.iter().copied().fold(f64::INFINITY, f64::min) - e;
     let x_max = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
     // Most regions are slivers between lattice columns or rows.
-    if (x_min / gf).ceil() * gf > x_max {
+    if ceil(x_min / gf) * gf > x_max {
         return;
     }
     let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min) - e;
     let y_max = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
-    let mut y = (y_min / gf).ceil() as i64 * grid_step;
+    let mut y = ceil_i64(y_min / gf) * grid_step;
     while (y as f64) <= y_max {
         let (s_lo, s_hi) = (y as f64 - e, y as f64 + e);
         let mut lo = f64::INFINITY;
@@ -51,6 +51,31 @@ pub fn quad_spans(quad: &Quad, grid_step: i64, out: &mut Vec<Span>) {
             });
         }
         y += grid_step;
+    }
+}
+
+/// `x.ceil() as i64` without libm's `ceil`, a call on the baseline x86-64
+/// target (the spans take one per quadrilateral and per row): the same
+/// value for every `x`, infinities and NaN included, as the cast
+/// saturates either way.
+#[inline(always)]
+fn ceil_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// `x.ceil()` by [`ceil_i64`], the same value for every `x` (up to the
+/// sign of a zero): from `2^52` on every `f64` is an integer.
+#[inline(always)]
+fn ceil(x: f64) -> f64 {
+    if x.abs() < 4_503_599_627_370_496.0 {
+        ceil_i64(x) as f64
+    } else {
+        x
     }
 }
 
@@ -101,11 +126,45 @@ pub(super) fn scan_quads(
             row = s.y;
             next_x = i64::MIN;
         }
-        let mut x = ((s.lo / gf).ceil() as i64 * grid_step).max(next_x);
+        let mut x = (ceil_i64(s.lo / gf) * grid_step).max(next_x);
         while (x as f64) <= s.hi {
             visit([x, s.y]);
             x += grid_step;
         }
         next_x = next_x.max(x);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ceil, ceil_i64};
+
+    #[test]
+    fn ceil_without_libm_matches_std() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            2.5e-300,
+            -2.5e-300,
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            9.3e18,
+            -9.3e18,
+            1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        let mut rng = crate::test_rng::Xorshift::new(7);
+        values.extend((0..2000).map(|k| rng.signed_unit() * 10f64.powi(k % 20 - 4)));
+        for x in values {
+            assert_eq!(ceil_i64(x), x.ceil() as i64, "{x}");
+            let (ours, std) = (ceil(x), x.ceil());
+            assert!(ours == std || (ours.is_nan() && std.is_nan()), "{x}");
+        }
     }
 }

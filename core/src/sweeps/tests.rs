@@ -192,3 +192,96 @@ fn hull_distance(pts: &[V2; 4], p: V2) -> f64 {
     }
     best
 }
+
+/// Whether some pose puts the locators `locs` strictly inside the three
+/// segments, as the setup search keeps a pose (every angle solved).
+fn has_setup(segs: [&Segment; 3], locs: &[V2; 3]) -> bool {
+    let contacts = crate::poses::TripleContacts::of(segs.map(|s| &s.feature));
+    let mut found = false;
+    contacts.solve_at_angles(
+        locs,
+        |_| true,
+        &|_, _| true,
+        |pose, _| {
+            found |= (0..3).all(|k| {
+                let s = segs[k].param_of(pose.inverse_apply(locs[k]));
+                segs[k].inner_margin(s) > 0.0
+            });
+        },
+    );
+    found
+}
+
+/// The lattice points a sweep lists for `L2 = l2`; `None` when it has no
+/// pivot point there or sends the caller to the annuli.
+fn listed(sweep: &LocatorSweep<'_>, l2: [i64; 2]) -> Option<Vec<[i64; 2]>> {
+    let pt = sweep.pivot_point(v2(l2[0] as f64, l2[1] as f64))?;
+    let mut out = Vec::new();
+    let mut scratch = SweepScratch::default();
+    sweep
+        .for_each_third_locator(&pt, 1, &mut scratch, |l3, _| out.push(l3))
+        .then_some(out)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 600,
+        failure_persistence: None,
+        ..Default::default()
+    })]
+
+    /// The finer pieces of two lines pivoting with an arc third
+    /// (`ARC_THIRD_TARGET_MARGIN`) keep every lattice point of the cover
+    /// they replaced (the straight segments' margin) that gives a setup:
+    /// the old cover is the oracle, `L2` a lattice point near a posed
+    /// triple's.
+    #[test]
+    fn the_finer_arc_cover_keeps_every_setup_of_the_coarser(
+        o in proptest::array::uniform3((-5.0f64..5.0, -5.0f64..5.0)),
+        dirs in proptest::array::uniform3(0.0f64..std::f64::consts::TAU),
+        lens in proptest::array::uniform3(0.5f64..8.0),
+        fr in proptest::array::uniform2(0.0f64..1.0),
+        theta in 0.0f64..std::f64::consts::TAU,
+        sweep in -6.0f64..6.0,
+        nudge in (-1i64..=1, -1i64..=1),
+    ) {
+        proptest::prop_assume!(sweep.abs() > 1e-3);
+        let seg = |k: usize| line(v2(o[k].0, o[k].1), dirs[k], 0.0, lens[k]);
+        let arc = crate::geometry::arc::GrownArc {
+            center: v2(o[2].0, o[2].1),
+            radius: lens[2] / 4.0,
+            start_angle: dirs[2],
+            sweep,
+        };
+        let c = Segment {
+            edge: 0,
+            s0: 0.1 * arc.length(),
+            s1: 0.9 * arc.length(),
+            feature: Feature::Arc(arc),
+        };
+        let (a, b) = (seg(0), seg(1));
+        let swept = [&a, &b, &c].map(SweptSegment::of);
+        let mut coarse_third = swept[2];
+        coarse_third.third.curved = false;
+        let dmax = crate::segments::PairBounds::between(&a, &c).dmax;
+        let fine = LocatorSweep::new([&swept[0], &swept[1], &swept[2]], false, dmax);
+        let coarse = LocatorSweep::new([&swept[0], &swept[1], &coarse_third], false, dmax);
+        let (Some(fine), Some(coarse)) = (fine, coarse) else {
+            return Ok(()); // nearly parallel: annuli
+        };
+        let (p, q) = (a.point(fr[0] * lens[0]), b.point(fr[1] * lens[1]));
+        let (sin, cos) = theta.sin_cos();
+        let l2 = rot(cos, sin, q - p);
+        let l2 = [l2.x.round() as i64 + nudge.0, l2.y.round() as i64 + nudge.1];
+        let (Some(old), Some(new)) = (listed(&coarse, l2), listed(&fine, l2)) else {
+            return Ok(());
+        };
+        let locs = |l3: [i64; 2]| [[0, 0], l2, l3].map(|p| v2(p[0] as f64, p[1] as f64));
+        for l3 in old.iter().filter(|l3| !new.contains(l3)) {
+            proptest::prop_assert!(
+                !has_setup([&a, &b, &c], &locs(*l3)),
+                "L2 {l2:?} L3 {l3:?} dropped"
+            );
+        }
+    }
+}
