@@ -30,6 +30,7 @@
 mod classify;
 mod half_angle;
 mod limits;
+mod lu3;
 mod root_search;
 mod taylor5;
 mod trig;
@@ -688,7 +689,7 @@ fn polish(
             converged = true;
             break;
         }
-        let Some(step) = j.lu().solve(&(-f)) else {
+        let Some(step) = lu3::solve(&j, &(-f)) else {
             // Exactly singular: a tangency hit exactly.
             converged = true;
             break;
