@@ -208,6 +208,17 @@ pub fn scaled_jacobian_det(
     let mut j = Matrix3::zeros();
     for k in 0..3 {
         let (row, _) = jacobian_row(&contacts[k], locs[k], cos, sin, w);
+        j.set_row(k, &row.transpose());
+    }
+    scaled_det(&j)
+}
+
+/// [`scaled_jacobian_det`] of the Jacobian `jacobian` (rows as
+/// [`system`] builds them): Newton's last iterate has it at hand.
+fn scaled_det(jacobian: &Matrix3<f64>) -> f64 {
+    let mut j = Matrix3::zeros();
+    for k in 0..3 {
+        let row = Vector3::new(jacobian[(k, 0)], jacobian[(k, 1)], jacobian[(k, 2)]);
         let n = row.norm();
         if n == 0.0 {
             return 0.0;
@@ -220,9 +231,15 @@ pub fn scaled_jacobian_det(
 /// Largest `|residual|` of the three equations for a reported pose, using
 /// exactly the cosine and sine it reports.
 fn max_residual(contacts: &[Contact; 3], locs: &[V2; 3], cos: f64, sin: f64, w: V2) -> f64 {
-    (0..3)
-        .map(|k| contacts[k].residual(rot_t(cos, sin, locs[k]) - w).abs())
-        .fold(0.0, f64::max)
+    largest_abs(&Vector3::from_fn(|k, _| {
+        contacts[k].residual(rot_t(cos, sin, locs[k]) - w)
+    }))
+}
+
+/// Largest `|residual|` of residuals computed already ([`system`] computes
+/// each as [`Contact::residual`] does), as [`max_residual`] folds them.
+fn largest_abs(residuals: &Vector3<f64>) -> f64 {
+    residuals.iter().map(|r| r.abs()).fold(0.0, f64::max)
 }
 
 /// Every isolated pose `(theta, w)` that puts `locs[k]` (plate frame) on
@@ -331,7 +348,7 @@ fn two_line_poses(
     let handled = two.starts(within, |start| {
         let got = if start.exact {
             let iterate = Vector3::new(start.theta, start.w.x, start.w.y);
-            polished(contacts, locs, iterate, start.cs)
+            polished(contacts, locs, iterate, start.cs, None)
         } else {
             polish(contacts, locs, start.theta, start.cs, start.w)
         };
@@ -682,6 +699,7 @@ fn polish(
     if best.2.is_nan() || best.2 > START_RESIDUAL {
         return None;
     }
+    let mut best_system = (f, j);
     let mut stale = 0;
     let mut converged = false;
     for _ in 0..60 {
@@ -704,6 +722,7 @@ fn polish(
         let r = f.amax();
         if r < best.2 {
             best = (x, cs, r);
+            best_system = (f, j);
             stale = 0;
         } else {
             stale += 1;
@@ -716,31 +735,39 @@ fn polish(
     if !converged {
         return None;
     }
-    polished(contacts, locs, best.0, best.1)
+    polished(contacts, locs, best.0, best.1, Some(&best_system))
 }
 
 /// The pose at Newton's best `iterate` (whose angle has cosine and sine
-/// `cs`), if it satisfies every equation to `eps`, with its residual. The
-/// angle is wrapped into `[0, 2 pi)`; only a wrap that moves it needs its
-/// cosine and sine anew.
+/// `cs`, and where the three equations have residuals and Jacobian `at`,
+/// when known), if it satisfies every equation to `eps`, with its
+/// residual. The angle is wrapped into `[0, 2 pi)`; only a wrap that moves
+/// it needs its cosine and sine, residuals and Jacobian anew (the same
+/// numbers: what is known was computed from the same angle, cosine, sine
+/// and `w` by the same operations).
 fn polished(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
     iterate: Vector3<f64>,
     cs: (f64, f64),
+    at: Option<&(Vector3<f64>, Matrix3<f64>)>,
 ) -> Option<(ContactPose, f64)> {
     let theta = wrap_angle(iterate[0]);
-    let (cos, sin) = if theta.to_bits() == iterate[0].to_bits() {
-        cs
-    } else {
-        cos_sin(theta)
-    };
+    let unmoved = theta.to_bits() == iterate[0].to_bits();
+    let (cos, sin) = if unmoved { cs } else { cos_sin(theta) };
     let w = v2(iterate[1], iterate[2]);
-    let res = max_residual(contacts, locs, cos, sin, w);
+    let known = at.filter(|_| unmoved);
+    let res = match known {
+        Some((f, _)) => largest_abs(f),
+        None => max_residual(contacts, locs, cos, sin, w),
+    };
     if res.is_nan() || res > EPS {
         return None;
     }
-    let det = scaled_jacobian_det(contacts, locs, cos, sin, w);
+    let det = match known {
+        Some((_, j)) => scaled_det(j),
+        None => scaled_jacobian_det(contacts, locs, cos, sin, w),
+    };
     let pose = ContactPose {
         pose: Pose {
             theta,

@@ -23,7 +23,7 @@
 
 use super::trig::{bracketed_root, Angles, Trig, Within};
 use crate::geometry::angle_set::rem_tau;
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// `P`, `P'` and `P''` at `t` (coefficients in ascending powers).
 fn eval(p: &[f64; 5], t: f64) -> (f64, f64, f64) {
@@ -201,6 +201,31 @@ const ANGLE_SLACK: f64 = 1e-6;
 /// near misses), pushed onto `out`; `noise` bounds the error of the
 /// coefficients, as for `root_search::roots`.
 pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut Angles) {
+    roots_of_halves(f, (tol, noise), within, out, true);
+}
+
+/// A half turn's angles `theta0 + 2 atan t` (`|t| <= 1`) lie within a
+/// quarter turn of `theta0`, and each is pushed only if `within` wants
+/// some angle `ANGLE_SLACK` either side of it: all of them lie in the
+/// quarter turns either side widened by this, a margin far above their
+/// rounding.
+const HALF_REACH: f64 = FRAC_PI_2 + 1e-3;
+
+/// [`roots`], with `skip`: a half turn none of whose angles `within`
+/// wants is not searched. It would push nothing: every angle it pushes is
+/// one `within` wants (to `ANGLE_SLACK`), and a `within` that wants none
+/// in a stretch wants none in a part of it (as an angle set's `meets`
+/// does), so the output is the same to the bit. The setup sweep's angles
+/// (where both line contacts stay on their segments) are mostly a narrow
+/// band, so one half turn of many calls is skipped. The tests compare
+/// with `skip` off.
+fn roots_of_halves(
+    f: &Trig,
+    (tol, noise): (f64, f64),
+    within: &Within,
+    out: &mut Angles,
+    skip: bool,
+) {
     // P = (1 + t^2)^2 F with the factor at most 4 on |t| <= 1; evaluating
     // the quartic adds a few ulps of the sum of its coefficients'
     // magnitudes, which is at most 16 times that of F's.
@@ -208,7 +233,9 @@ pub(super) fn roots(f: &Trig, tol: f64, noise: f64, within: &Within, out: &mut A
     let noise = 4.0 * noise + 64.0 * 16.0 * f64::EPSILON * mag;
     let band = (4.0 * tol + noise, 20.0 * noise);
     for (theta0, flip) in [(0.0, false), (PI, true)] {
-        quartic_angles(&quartic(f, flip), theta0, band, within, out);
+        if !skip || within(theta0 - HALF_REACH, theta0 + HALF_REACH) {
+            quartic_angles(&quartic(f, flip), theta0, band, within, out);
+        }
     }
 }
 
@@ -294,18 +321,68 @@ mod tests {
         assert!(found(&f, 1e-12).is_empty());
     }
 
+    /// A trigonometric polynomial of degree 2 with coefficients in `[-1, 1]`.
+    fn random_quadratic(rng: &mut crate::test_rng::Xorshift) -> Trig {
+        let mut f = Trig::default();
+        f.a[0] = rng.signed_unit();
+        for j in 1..=2 {
+            f.a[j] = rng.signed_unit();
+            f.b[j] = rng.signed_unit();
+        }
+        f
+    }
+
+    /// Skipping the half turns `within` rejects changes nothing: random
+    /// polynomials of degree 2 (some with double roots) and angle sets
+    /// (one or two sinusoid bands, as the setup sweep builds them, turned
+    /// by quarter turns as `Allowed::meets` turns them), the same angles
+    /// to the bit with and without skipping.
+    #[test]
+    fn skipping_rejected_half_turns_changes_nothing() {
+        use crate::geometry::angle_set::AngleSet;
+        let mut rng = crate::test_rng::Xorshift::new(0x2f8c_51d3_a9e0_7b41);
+        let mut skipped = 0;
+        for case in 0..4000 {
+            let mut f = random_quadratic(&mut rng);
+            if case % 4 == 0 {
+                // 1 - cos(t - u): a double root, the tangency case.
+                let u = 4.0 * rng.signed_unit();
+                f = Trig {
+                    a: [1.0, -u.cos(), 0.0, 0.0, 0.0],
+                    b: [0.0, -u.sin(), 0.0, 0.0, 0.0],
+                };
+            }
+            let mut band = || {
+                let (alpha, amp) = (rng.signed_unit(), rng.signed_unit().abs());
+                let (lo, phi) = (rng.signed_unit(), 4.0 * rng.signed_unit());
+                let hi = lo + rng.signed_unit().abs();
+                AngleSet::sinusoid_band(alpha, amp, phi, lo, hi, 1e-6)
+            };
+            let mut set = band();
+            if case % 3 == 0 {
+                set = set.intersect(&band());
+            }
+            let back = f64::from((case % 4) as u8) * FRAC_PI_2;
+            let within = |lo: f64, hi: f64| set.meets(lo - back, hi - back);
+            let (tol, noise) = (1e-12, 1e-15);
+            let (mut got, mut want) = (Angles::new(), Angles::new());
+            roots_of_halves(&f, (tol, noise), &within, &mut got, true);
+            roots_of_halves(&f, (tol, noise), &within, &mut want, false);
+            let bits = |a: &Angles| a.as_slice().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&got), bits(&want), "{f:?} {set:?} {back}");
+            skipped += usize::from(!within(-HALF_REACH, HALF_REACH))
+                + usize::from(!within(PI - HALF_REACH, PI + HALF_REACH));
+        }
+        assert!(skipped > 1000, "{skipped}");
+    }
+
     /// Against the general certified search on random polynomials of
     /// degree 2: the same roots.
     #[test]
     fn agrees_with_the_general_search() {
         let mut rng = crate::test_rng::Xorshift::new(0x5851_f42d_4c95_7f2d);
         for _ in 0..3000 {
-            let mut f = Trig::default();
-            f.a[0] = rng.signed_unit();
-            for j in 1..=2 {
-                f.a[j] = rng.signed_unit();
-                f.b[j] = rng.signed_unit();
-            }
+            let f = random_quadratic(&mut rng);
             let mine = found(&f, 1e-13);
             let mut general = Angles::new();
             super::super::root_search::roots(&f, 1e-13, 0.0, &|_, _| true, &mut general);

@@ -359,3 +359,30 @@ fn slot_end_tangency_is_exact() {
     let want = circle.centre + v2(0.0, if p.y > 0.0 { h } else { -h });
     assert!((p - want).norm() <= 1e-14, "{p:?} vs {want:?}");
 }
+
+/// What `polished` reuses of Newton's last iterate is what it computed
+/// before: the largest residual and the scaled Jacobian determinant from
+/// [`system`]'s residuals and rows are those of `max_residual` and
+/// `scaled_jacobian_det` to the bit (a locator at a circle's centre, a zero
+/// row, included).
+#[test]
+fn reused_residuals_and_determinant_are_the_recomputed_ones() {
+    let mut state = 0x51a7_c3e9_0d24_8b6fu64;
+    for case in 0..3000 {
+        let (mut contacts, locs) = random_contacts(&mut state, case % 4);
+        let theta = TAU * rnd(&mut state);
+        let (c, s) = cos_sin(theta);
+        let mut w = v2(6.0 * rnd(&mut state) - 3.0, 6.0 * rnd(&mut state) - 3.0);
+        if case % 7 == 0 {
+            // The last locator exactly at its circle's centre.
+            if let Contact::Circle(circle) = &mut contacts[2] {
+                w = rot_t(c, s, locs[2]) - circle.centre;
+            }
+        }
+        let (f, j) = system(&contacts, &locs, (c, s), w);
+        let res = max_residual(&contacts, &locs, c, s, w);
+        assert_eq!(largest_abs(&f).to_bits(), res.to_bits(), "{case}");
+        let det = scaled_jacobian_det(&contacts, &locs, c, s, w);
+        assert_eq!(scaled_det(&j).to_bits(), det.to_bits(), "{case}");
+    }
+}
