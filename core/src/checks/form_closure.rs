@@ -59,6 +59,153 @@ impl LocatorWrenches {
     }
 }
 
+/// How far, relative to the sizes involved, rounding can carry the
+/// computed `lambda` of a clamp contact from its exact value: a few
+/// units in the last place in the analysis of [`ForceCone`], taken a
+/// couple of hundred times over.
+const CONE_ROUNDING: f64 = 1e-13;
+
+/// An absolute allowance for underflow (products of tiny entries).
+const CONE_UNDERFLOW: f64 = 1e-280;
+
+/// The clamp forces that can complete form closure with one setup's
+/// locators, as at most two half-planes of force directions: a test of
+/// the force alone, before any position, so that a setup can drop at
+/// once the segments whose normals no position along them could make a
+/// clamp force of, before solving their intervals.
+///
+/// With `M = -W^-1` (rows `A_i | b_i`, `A_i` the force columns), a clamp
+/// contact's `lambda_i = A_i . f + b_i tau` where `tau = q x f`. Two
+/// rows `p`, `m` with `b_p > 0 > b_m` both exceed `eps` at some `tau`
+/// only if `D(f) = (b_p A_m - b_m A_p) . f > eps (b_p - b_m)`: scaling
+/// them by `-b_m` and `b_p` and adding cancels `tau`. Rounding moves the
+/// computed `lambda` by at most a few ulps of `|A_i|_1 + |b_i| |tau|`
+/// (and of `eps`), so [`LocatorWrenches::clamp_interval`] and
+/// [`LocatorWrenches::lambda`] (`> eps`) can only accept a force with
+/// `D(f)` above that bound less the allowance scaled by `|b_p|`,
+/// `|b_m|`: the cone excludes a force only below it. Rows of one sign
+/// give no side: a large `|tau|` lifts them all.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ForceCone {
+    sides: [ConeSide; 2],
+}
+
+/// One half-plane of a [`ForceCone`]: `D(f) = g . f` must not fall below
+/// `-(slack + per_reach * reach)`, `reach` bounding `|tau|`.
+#[derive(Debug, Clone, Copy)]
+struct ConeSide {
+    gx: f64,
+    gy: f64,
+    slack: f64,
+    per_reach: f64,
+}
+
+impl ConeSide {
+    /// No condition.
+    const OPEN: ConeSide = ConeSide {
+        gx: 0.0,
+        gy: 0.0,
+        slack: f64::INFINITY,
+        per_reach: 0.0,
+    };
+
+    /// The side of rows `p` (`b_p > 0`) and `m` (`b_m < 0`) of `M`.
+    fn of(neg_inv: &Matrix3<f64>, p: usize, m: usize) -> ConeSide {
+        let row = |i: usize| (neg_inv[(i, 0)], neg_inv[(i, 1)], neg_inv[(i, 2)]);
+        let ((px, py, bp), (mx, my, bm)) = (row(p), row(m));
+        let (bp, bm) = (bp.abs(), bm.abs());
+        let (ap, am) = (px.abs() + py.abs(), mx.abs() + my.abs());
+        ConeSide {
+            // b_p A_m - b_m A_p with b_m = -|b_m|.
+            gx: bp * mx + bm * px,
+            gy: bp * my + bm * py,
+            // The rounding allowance, less the `eps` every `lambda` must
+            // exceed: forces on the cone's edge (`D = 0`, a clamp pushing
+            // straight against locators on a parallel edge) are excluded.
+            slack: CONE_ROUNDING * (bm * (EPS + ap) + bp * (EPS + am)) + CONE_UNDERFLOW
+                - EPS * (bp + bm),
+            per_reach: 2.0 * CONE_ROUNDING * bp * bm + CONE_UNDERFLOW,
+        }
+    }
+
+    /// Whether force `f` is below this side, `reach` bounding `|tau|`.
+    #[inline(always)]
+    fn excludes(&self, f: V2, reach: f64) -> bool {
+        self.gx * f.x + self.gy * f.y < -(self.slack + self.per_reach * reach)
+    }
+}
+
+impl ForceCone {
+    /// No condition: every force passes (the search without its filters).
+    pub(crate) fn open() -> ForceCone {
+        ForceCone {
+            sides: [ConeSide::OPEN; 2],
+        }
+    }
+
+    /// Whether no contact whose normal `f` has `f . mid >= cos` (`mid` a
+    /// unit vector, `cos >= 0`: a cap of at most a quarter turn either
+    /// side) and whose `|tau|` is at most `reach` is in form closure:
+    /// then [`LocatorWrenches::lambda`] of every such contact has a
+    /// component at most `eps`. On the cap `f` is `mid cos(phi) +
+    /// mid_perp sin(phi)`, `|phi| <= acos(cos)`: where `g . mid < 0` a
+    /// maximum of `g . f` inside would have `g . mid > 0`, so `g . f` is
+    /// largest at an edge, `g . mid cos + |g . mid_perp| sin`. The
+    /// allowance covers the rounding of those products and `f`'s length.
+    #[inline]
+    pub(crate) fn excludes_cap(&self, mid: V2, cos: f64, reach: f64) -> bool {
+        if cos.is_nan() || cos < 0.0 {
+            return false;
+        }
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        self.sides.iter().any(|s| {
+            let along = s.gx * mid.x + s.gy * mid.y;
+            let across = s.gx * mid.y - s.gy * mid.x;
+            let limit = -(s.slack + s.per_reach * reach);
+            let rounding = 1e-14 * (s.gx.abs() + s.gy.abs() + limit.abs());
+            along < 0.0 && along * cos + across.abs() * sin < limit - rounding
+        })
+    }
+
+    /// Whether no contact with inward normal `f` (a unit vector) and
+    /// `|tau|` at most `reach` is in form closure. On the line `q0 + s dq`,
+    /// `s` in `(lo, hi)`, `reach` at least `|q0|_1 + |dq|_1 max(|lo|, |hi|)`:
+    /// then [`LocatorWrenches::clamp_interval`] is `None` (its computed
+    /// bounds are within rounding of the exact ones: an `s` between them
+    /// has every exact `lambda` above `eps` less a few ulps), and
+    /// [`LocatorWrenches::lambda`] has a component at most `eps` at every
+    /// contact on it.
+    #[inline]
+    pub(crate) fn excludes(&self, f: V2, reach: f64) -> bool {
+        self.sides.iter().any(|side| side.excludes(f, reach))
+    }
+}
+
+impl LocatorWrenches {
+    /// The setup's [`ForceCone`].
+    pub(crate) fn force_cone(&self) -> ForceCone {
+        let m = &self.neg_inv;
+        let mut sides = [ConeSide::OPEN; 2];
+        let mut taken = 0;
+        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+            let (bi, bj) = (m[(i, 2)], m[(j, 2)]);
+            let side = if bi > 0.0 && bj < 0.0 {
+                ConeSide::of(m, i, j)
+            } else if bi < 0.0 && bj > 0.0 {
+                ConeSide::of(m, j, i)
+            } else {
+                continue;
+            };
+            // Three numbers of two signs make at most two such pairs.
+            if let Some(slot) = sides.get_mut(taken) {
+                *slot = side;
+                taken += 1;
+            }
+        }
+        ForceCone { sides }
+    }
+}
+
 /// Independent check (no `W^-1`): the four wrenches positively span R^3 iff
 /// the origin lies strictly inside their convex hull, i.e. strictly on the
 /// inner side of each face of the tetrahedron they span.
@@ -79,6 +226,7 @@ pub fn positively_spanning(w: &[Vector3<f64>; 4], tol: f64) -> bool {
 mod tests {
     use super::*;
     use crate::geometry::v2;
+    use std::f64::consts::PI;
 
     #[test]
     fn interval_matches_pointwise_lambda() {
@@ -109,6 +257,119 @@ mod tests {
         }
         // lambda_1 = (0.3 - s) / 0.4: the clamp must be below y = 0.3.
         assert!(lo == -10.0 && (hi - 0.3).abs() < 1e-6, "({lo}, {hi})");
+    }
+
+    /// Unit vector at angle `a`.
+    fn unit(a: f64) -> V2 {
+        v2(a.cos(), a.sin())
+    }
+
+    /// Locator wrenches from angles and points in `[-1, 1]`, scaled by
+    /// `size`: with `pinch` the second normal is within `10^-pinch` rad
+    /// of the first, and the third contact's line of action nearly
+    /// through the others' crossing (W nearly singular).
+    fn locators(angles: [f64; 3], points: [f64; 6], size: f64, pinch: Option<f64>) -> [V2; 6] {
+        let mut n = angles.map(|a| unit(a * PI));
+        let mut q = [0, 1, 2].map(|k| v2(points[2 * k], points[2 * k + 1]) * size);
+        if let Some(exp) = pinch {
+            n[1] = unit(angles[0] * PI + 10f64.powf(-exp) * angles[1]);
+            // Through where the first two lines of action (nearly) cross.
+            let tilt = 10f64.powf(-exp) * angles[2];
+            q[2] = q[0] + v2(-n[2].y, n[2].x) * (points[4] * size) + n[2] * tilt;
+        }
+        [q[0], q[1], q[2], n[0], n[1], n[2]]
+    }
+
+    /// A force direction: at `angle`, or (`near` = Some(side, exp)) within
+    /// `10^-exp` rad of an edge of that side of the cone (where it
+    /// excludes forces along a line through the origin).
+    fn clamp_force(cone: &ForceCone, angle: f64, near: Option<(usize, f64)>) -> V2 {
+        match near {
+            Some((side, exp)) => {
+                let s = cone.sides[side];
+                let size = s.gx.hypot(s.gy);
+                let edge = (-s.slack / size).clamp(-1.0, 1.0).acos();
+                let boundary = s.gy.atan2(s.gx) + edge * angle.signum();
+                // Either way off the edge, whichever edge.
+                unit(boundary + 10f64.powf(-exp) * (2.0 * angle.abs() - 1.0))
+            }
+            None => unit(angle * PI),
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
+
+        /// The cone excludes only forces `clamp_interval` (and the
+        /// pointwise `lambda > eps` test) reject, with the same inputs:
+        /// random locators (some with W nearly singular), line segments
+        /// along or across the force, forces at random or a hair from
+        /// either edge of the cone, positions up to 1e4 from the origin.
+        #[test]
+        fn force_cone_excludes_only_what_the_exact_tests_reject(
+            angles in proptest::array::uniform3(-1.0f64..1.0),
+            points in proptest::array::uniform6(-1.0f64..1.0),
+            size_exp in -1.0f64..3.0,
+            pinch in proptest::option::weighted(0.3, 2.0f64..12.0),
+            force_angle in -1.0f64..1.0,
+            near in proptest::option::weighted(0.7, (0usize..2, 1.0f64..16.0)),
+            along_force in proptest::bool::ANY,
+            line in proptest::array::uniform5(-1.0f64..1.0),
+            reach_exp in -1.0f64..4.0,
+        ) {
+            let size = 10f64.powf(size_exp);
+            let [q1, q2, q3, n1, n2, n3] = locators(angles, points, size, pinch);
+            let Some(lw) = LocatorWrenches::new([wrench(q1, n1), wrench(q2, n2), wrench(q3, n3)]) else {
+                return Ok(());
+            };
+            let cone = lw.force_cone();
+            let f = clamp_force(&cone, force_angle, near);
+            // A line segment's normal is across it; the interval takes any.
+            let dq = if along_force { v2(-f.y, f.x) } else { unit(line[0] * PI) };
+            let reach = 10f64.powf(reach_exp);
+            let q0 = v2(line[1], line[2]) * reach;
+            let (lo, hi) = (line[3].min(line[4]) * reach, line[3].max(line[4]) * reach);
+            let reach = q0.x.abs() + q0.y.abs() + (dq.x.abs() + dq.y.abs()) * lo.abs().max(hi.abs());
+            if cone.excludes(f, reach) {
+                proptest::prop_assert_eq!(lw.clamp_interval(q0, dq, f, lo, hi), None);
+                for s in [lo, hi, 0.5 * (lo + hi)] {
+                    let lam = lw.lambda(&wrench(q0 + dq * s, f));
+                    proptest::prop_assert!(lam.min() <= EPS, "{lam}");
+                }
+            }
+        }
+    }
+
+    /// The cone is not empty-handed: over random setups and forces it
+    /// excludes most of what the interval rejects, and near its edges
+    /// it keeps forces the interval accepts.
+    #[test]
+    fn force_cone_excludes_most_rejected_forces() {
+        let mut rng = crate::test_rng::Xorshift::new(0x3c6e_f372_fe94_f82b);
+        let (mut rejected, mut excluded, mut kept_near) = (0u64, 0u64, 0u64);
+        for case in 0..20_000 {
+            let mut r = || rng.signed_unit();
+            let angles = [r(), r(), r()];
+            let points = [r(), r(), r(), r(), r(), r()];
+            let [q1, q2, q3, n1, n2, n3] = locators(angles, points, 50.0, None);
+            let Some(lw) = LocatorWrenches::new([wrench(q1, n1), wrench(q2, n2), wrench(q3, n3)])
+            else {
+                continue;
+            };
+            let cone = lw.force_cone();
+            let near = (case % 2 == 0).then_some((case / 2 % 2, 12.0));
+            let f = clamp_force(&cone, r(), near);
+            let dq = v2(-f.y, f.x);
+            let (q0, lo, hi) = (v2(r(), r()) * 50.0, -1e4, 1e4);
+            let interval = lw.clamp_interval(q0, dq, f, lo, hi);
+            if cone.excludes(f, q0.x.abs() + q0.y.abs() + 1.5 * hi) {
+                excluded += 1;
+            }
+            rejected += u64::from(interval.is_none());
+            kept_near += u64::from(near.is_some() && interval.is_some());
+        }
+        assert!(excluded * 2 > rejected, "{excluded} of {rejected}");
+        assert!(kept_near > 1000, "{kept_near}");
     }
 
     #[test]

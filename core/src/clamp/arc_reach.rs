@@ -201,6 +201,17 @@ impl PosedPiece {
         sign * along(k, self.mid) < self.reach
     }
 
+    /// The inward normals `f` of contacts that can pass the inner test, as
+    /// a cap `f . mid >= cos` about the piece's middle normal `mid`
+    /// (`-mid` of the directions on a `convex` arc): the piece widened by
+    /// `err` as [`Self::offsets`] widens it. `None` where `err` is not
+    /// small enough to decide ([`REACH_ERR`], as for [`Self::misses`]).
+    #[inline]
+    pub(crate) fn normal_cap(&self, convex: bool) -> Option<(V2, f64)> {
+        let sign = if convex { -1.0 } else { 1.0 };
+        (self.err <= REACH_ERR).then(|| (self.mid * sign, self.cos_half - self.err))
+    }
+
     /// The axis lines that can give a contact passing the angle and inner
     /// tests for clamp rotation `k` (window centre `n`: `-d` on a `convex`
     /// arc, `d` on a concave one, see the module doc), as bounds
@@ -269,6 +280,7 @@ impl PosedPiece {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::checks::form_closure::{wrench, LocatorWrenches};
     use crate::geometry::arc::GrownArc;
     use crate::geometry::rot90;
     use crate::segments::arc_inward_normal;
@@ -381,6 +393,95 @@ mod tests {
         }
         // Both outcomes, many times.
         assert!(seen[0] > 10_000 && seen[1] > 10_000, "{seen:?}");
+    }
+
+    /// Locators whose force cone has an edge near `edge` (a force
+    /// direction): the first normal is `-edge` turned by `10^-exp` rad,
+    /// the others turned further the same way, so `-edge` is near the
+    /// cone's boundary; points within 30 of the origin.
+    fn locators_near(rng: &mut Xorshift, edge: V2, exp: f64) -> Option<LocatorWrenches> {
+        let base = (-edge.y).atan2(-edge.x);
+        let turn = rng.signed_unit().signum();
+        let tilt = 10f64.powf(-exp) * turn;
+        let angles = [
+            tilt,
+            tilt + turn * 1.5 * (rng.signed_unit() + 1.0),
+            rng.signed_unit() * PI,
+        ];
+        let ws = angles.map(|a| {
+            let n = v2((base + a).cos(), (base + a).sin());
+            wrench(v2(rng.signed_unit(), rng.signed_unit()) * 30.0, n)
+        });
+        LocatorWrenches::new(ws)
+    }
+
+    /// [`ForceCone::excludes_cap`] with [`PosedPiece::normal_cap`] drops an
+    /// arc only where no contact on its posed circle passes both the
+    /// inner test and the form-closure test (`lambda > eps`) as the clamp
+    /// search computes them: random arcs, poses and locators, many with
+    /// a cone edge a hair from the cap's edge, contacts near the piece's
+    /// ends and at random.
+    #[test]
+    fn force_cone_drops_only_arcs_without_a_closing_contact() {
+        let mut rng = Xorshift::new(0xbb67_ae85_84ca_a73b);
+        let window = ClampWindow::new(f64::to_radians(45.0).cos());
+        let (mut dropped, mut closing) = (0u64, 0u64);
+        for case in 0..40_000 {
+            let seg = random_segment(&mut rng);
+            let Feature::Arc(arc) = seg.feature else {
+                unreachable!()
+            };
+            let theta = PI * (rng.signed_unit() + 1.0);
+            let pose = Pose {
+                theta,
+                cos: theta.cos(),
+                sin: theta.sin(),
+                t: v2(20.0 * rng.signed_unit(), 20.0 * rng.signed_unit()),
+            };
+            let reach = ArcReach::of(&seg).expect("an arc");
+            let (rho, convex) = (arc.radius, arc.is_convex());
+            let piece = reach.posed(&pose, arc.center, rho, &window);
+            let Some((mid, cos)) = piece.normal_cap(convex) else {
+                continue;
+            };
+            // A cap edge, or a random force direction.
+            let edge = if case % 4 == 0 {
+                let a = PI * rng.signed_unit();
+                v2(a.cos(), a.sin())
+            } else {
+                let half = cos.clamp(-1.0, 1.0).acos() * rng.signed_unit().signum();
+                let a = mid.y.atan2(mid.x) + half;
+                v2(a.cos(), a.sin())
+            };
+            let exp = 3.0 + 13.0 * rng.signed_unit().abs();
+            let Some(lw) = locators_near(&mut rng, edge, exp) else {
+                continue;
+            };
+            let centre = pose.apply(arc.center);
+            let excluded =
+                lw.force_cone()
+                    .excludes_cap(mid, cos, centre.x.abs() + centre.y.abs() + 2.0 * rho);
+            dropped += u64::from(excluded);
+            // Contacts at the piece's ends (a hair either side) and inside.
+            let (a0, a1) = (arc.angle_at(seg.s0), arc.angle_at(seg.s1));
+            for i in 0..24 {
+                let a = match i % 3 {
+                    0 => a0 + 1e-9 * rng.signed_unit(),
+                    1 => a1 + 1e-9 * rng.signed_unit(),
+                    _ => a0 + (a1 - a0) * 0.5 * (rng.signed_unit() + 1.0),
+                } + theta;
+                let q = centre + v2(a.cos(), a.sin()) * rho;
+                let f = arc_inward_normal(centre, rho, convex, q);
+                let inner = seg.inner_margin(seg.param_of(pose.inverse_apply(q)));
+                let lam = lw.lambda(&wrench(q, f)).min() - EPS;
+                if inner > 0.0 && lam > 0.0 {
+                    closing += 1;
+                    assert!(!excluded, "case {case}: q {q} f {f} lambda {lam}");
+                }
+            }
+        }
+        // Both outcomes, many times.
+        assert!(dropped > 5_000 && closing > 5_000, "{dropped} {closing}");
     }
 
     /// [`PosedPiece::misses`] gives a rotation up only where

@@ -25,6 +25,20 @@ impl ClampSearch<'_> {
     ) {
         let pose = ctx.setup.pose;
         let f = -pose.rotate(line.n);
+        let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
+        // No force along this normal completes form closure: the interval
+        // below would be empty, for every rotation. `|q0|_1 + |dq|_1 |s|`
+        // bounds `|tau|` along the segment (see `ForceCone::excludes`):
+        // rotating keeps a vector's length, so `1.5 |v|_1` bounds the
+        // posed one's `|.|_1` (and `dq` is a unit vector).
+        let reach = pose.t.x.abs()
+            + pose.t.y.abs()
+            + 1.5 * (line.origin.x.abs() + line.origin.y.abs() + s_lo.abs().max(s_hi.abs()));
+        if ctx.cone.excludes(f, reach) {
+            return;
+        }
+        let q0 = pose.apply(line.origin);
+        let dq = pose.rotate(line.u);
         let mut angle_margins = [None; 4];
         let mut any = false;
         for (k, m) in (0..4u8).zip(angle_margins.iter_mut()) {
@@ -36,9 +50,6 @@ impl ClampSearch<'_> {
         if !any {
             return;
         }
-        let q0 = pose.apply(line.origin);
-        let dq = pose.rotate(line.u);
-        let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
         // No axis line across the whole segment, none across its interval
         // (within it, see `axis_span`): the interval need not be solved.
         let crossed = (0..4u8).zip(angle_margins).any(|(k, m)| {

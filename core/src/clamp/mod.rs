@@ -12,7 +12,7 @@ mod line_candidates;
 pub(crate) use arc_reach::{ArcReach, ClampWindow};
 
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
-use crate::checks::form_closure::{wrench, LocatorWrenches};
+use crate::checks::form_closure::{wrench, ForceCone, LocatorWrenches};
 use crate::checks::plate::Placement;
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::setting::Setting;
@@ -121,6 +121,9 @@ struct SetupContext<'a> {
     /// Inward normals of the three locator contacts, plate frame.
     normals: [V2; 3],
     lw: LocatorWrenches,
+    /// The clamp forces `lw` can balance: segments whose normals lie
+    /// outside are dropped before their intervals are solved.
+    cone: ForceCone,
     /// Smallest decision margin of the setup itself (contacts, `det W`).
     base_margin: f64,
     /// Only this clamp rotation (re-deriving one fixture).
@@ -196,7 +199,9 @@ pub(crate) struct ClampSearch<'a> {
     /// Part, access regions and locators, for the clearance checks.
     pub(crate) obstacles: Obstacles<'a>,
     /// Each segment's [`ArcReach`] (`None` for a line), numbered as
-    /// `segments`; empty, arcs try every axis line across their circle.
+    /// `segments`; empty, the search runs without its filters (a test's
+    /// reference): arcs try every axis line across their circle, and no
+    /// segment is dropped for its normal ([`ForceCone`]).
     pub(crate) arc_pieces: &'a [Option<ArcReach>],
     /// The directions the setting's angle test can accept.
     pub(crate) window: ClampWindow,
@@ -257,6 +262,11 @@ impl ClampSearch<'_> {
             setup,
             normals,
             lw,
+            cone: if self.arc_pieces.is_empty() {
+                ForceCone::open()
+            } else {
+                lw.force_cone()
+            },
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
             part_locators,
