@@ -143,6 +143,24 @@ impl ForceCone {
         }
     }
 
+    /// The cone for normals `n` of a part posed with rotation `(cos, sin)`,
+    /// in the part frame: `excludes(n)` is `excludes(f)` for the posed
+    /// inward normal `f = -R n`, since `g . f = (-R^T g) . n`. The two
+    /// computed products differ by a few ulps of `|g|_1`, at most
+    /// `b_p |A_m|_1 + |b_m| |A_p|_1`, which the allowance covers many
+    /// times over. A line segment is then tested before its normal is
+    /// posed.
+    pub(crate) fn unposed(&self, cos: f64, sin: f64) -> ForceCone {
+        ForceCone {
+            sides: self.sides.map(|s| ConeSide {
+                // -R^T g.
+                gx: -(cos * s.gx + sin * s.gy),
+                gy: -(cos * s.gy - sin * s.gx),
+                ..s
+            }),
+        }
+    }
+
     /// Whether no contact whose normal `f` has `f . mid >= cos` (`mid` a
     /// unit vector, `cos >= 0`: a cap of at most a quarter turn either
     /// side) and whose `|tau|` is at most `reach` is in form closure:
@@ -225,7 +243,7 @@ pub fn positively_spanning(w: &[Vector3<f64>; 4], tol: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::v2;
+    use crate::geometry::{rot, rot_t, v2};
     use std::f64::consts::PI;
 
     #[test]
@@ -304,7 +322,8 @@ mod tests {
         /// pointwise `lambda > eps` test) reject, with the same inputs:
         /// random locators (some with W nearly singular), line segments
         /// along or across the force, forces at random or a hair from
-        /// either edge of the cone, positions up to 1e4 from the origin.
+        /// either edge of the cone, positions up to 1e4 from the origin;
+        /// and the same cone unposed, for the part's normal of the force.
         #[test]
         fn force_cone_excludes_only_what_the_exact_tests_reject(
             angles in proptest::array::uniform3(-1.0f64..1.0),
@@ -316,6 +335,7 @@ mod tests {
             along_force in proptest::bool::ANY,
             line in proptest::array::uniform5(-1.0f64..1.0),
             reach_exp in -1.0f64..4.0,
+            theta in -PI..PI,
         ) {
             let size = 10f64.powf(size_exp);
             let [q1, q2, q3, n1, n2, n3] = locators(angles, points, size, pinch);
@@ -323,14 +343,18 @@ mod tests {
                 return Ok(());
             };
             let cone = lw.force_cone();
-            let f = clamp_force(&cone, force_angle, near);
+            // The force as the clamp search poses a part's normal `n`.
+            let (cos, sin) = (theta.cos(), theta.sin());
+            let n = -rot_t(cos, sin, clamp_force(&cone, force_angle, near));
+            let f = -rot(cos, sin, n);
             // A line segment's normal is across it; the interval takes any.
             let dq = if along_force { v2(-f.y, f.x) } else { unit(line[0] * PI) };
             let reach = 10f64.powf(reach_exp);
             let q0 = v2(line[1], line[2]) * reach;
             let (lo, hi) = (line[3].min(line[4]) * reach, line[3].max(line[4]) * reach);
             let reach = q0.x.abs() + q0.y.abs() + (dq.x.abs() + dq.y.abs()) * lo.abs().max(hi.abs());
-            if cone.excludes(f, reach) {
+            let part_frame = cone.unposed(cos, sin).excludes(n, reach);
+            if cone.excludes(f, reach) || part_frame {
                 proptest::prop_assert_eq!(lw.clamp_interval(q0, dq, f, lo, hi), None);
                 for s in [lo, hi, 0.5 * (lo + hi)] {
                     let lam = lw.lambda(&wrench(q0 + dq * s, f));

@@ -24,7 +24,6 @@ impl ClampSearch<'_> {
         scratch: &mut Scratch,
     ) {
         let pose = ctx.setup.pose;
-        let f = -pose.rotate(line.n);
         let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
         // No force along this normal completes form closure: the interval
         // below would be empty, for every rotation. `|q0|_1 + |dq|_1 |s|`
@@ -34,9 +33,10 @@ impl ClampSearch<'_> {
         let reach = pose.t.x.abs()
             + pose.t.y.abs()
             + 1.5 * (line.origin.x.abs() + line.origin.y.abs() + s_lo.abs().max(s_hi.abs()));
-        if ctx.cone.excludes(f, reach) {
+        if ctx.line_cone.excludes(line.n, reach) {
             return;
         }
+        let f = -pose.rotate(line.n);
         let q0 = pose.apply(line.origin);
         let dq = pose.rotate(line.u);
         let mut angle_margins = [None; 4];

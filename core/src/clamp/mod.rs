@@ -124,6 +124,8 @@ struct SetupContext<'a> {
     /// The clamp forces `lw` can balance: segments whose normals lie
     /// outside are dropped before their intervals are solved.
     cone: ForceCone,
+    /// `cone` for line normals in the part frame ([`ForceCone::unposed`]).
+    line_cone: ForceCone,
     /// Smallest decision margin of the setup itself (contacts, `det W`).
     base_margin: f64,
     /// Only this clamp rotation (re-deriving one fixture).
@@ -258,15 +260,17 @@ impl ClampSearch<'_> {
             return;
         };
         let part_locators = self.part_locators(setup);
+        let cone = if self.arc_pieces.is_empty() {
+            ForceCone::open()
+        } else {
+            lw.force_cone()
+        };
         let ctx = SetupContext {
             setup,
             normals,
             lw,
-            cone: if self.arc_pieces.is_empty() {
-                ForceCone::open()
-            } else {
-                lw.force_cone()
-            },
+            cone,
+            line_cone: cone.unposed(pose.cos, pose.sin),
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
             part_locators,
