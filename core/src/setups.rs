@@ -23,6 +23,7 @@
 //! exactly SPEC's; the brute-force tests enumerate without pruning.
 
 use crate::geometry::angle_set::{wrap_angle, AngleSet};
+use crate::geometry::rounding::floor_i64;
 use crate::geometry::{v2, V2};
 use crate::input::Pattern;
 use crate::poses::pose::Pose;
@@ -302,7 +303,7 @@ impl SetupSearch<'_> {
     fn quadrant_points(&self, pair: PairBounds, mut visit: impl FnMut([i64; 2])) {
         let g = self.grid_step;
         let (lo2, hi2) = annulus_sq(pair);
-        let imax = pair.dmax.floor() as i64 + 1;
+        let imax = floor_i64(pair.dmax) + 1;
         let mut i = g;
         while i <= imax {
             let mut j = 0;
@@ -631,7 +632,7 @@ fn annulus_points(
     let p2 = v2(l2[0] as f64, l2[1] as f64);
     let x_lo = (-ac.dmax).max(p2.x - bc.dmax) - 1.0;
     let x_hi = ac.dmax.min(p2.x + bc.dmax) + 1.0;
-    let mut x = (x_lo / grid_step as f64).floor() as i64 * grid_step;
+    let mut x = floor_i64(x_lo / grid_step as f64) * grid_step;
     while (x as f64) <= x_hi {
         let xf = x as f64;
         // y range from the outer circle around the origin and around L2.
@@ -641,7 +642,7 @@ fn annulus_points(
             let (ya, yb) = (ra.sqrt(), rb.sqrt());
             let y_lo = (-ya).max(p2.y - yb);
             let y_hi = ya.min(p2.y + yb);
-            let mut y = (y_lo / grid_step as f64).floor() as i64 * grid_step;
+            let mut y = floor_i64(y_lo / grid_step as f64) * grid_step;
             while (y as f64) <= y_hi {
                 let da = (x * x + y * y) as f64;
                 let db = (v2(xf, y as f64) - p2).norm_squared();

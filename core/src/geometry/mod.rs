@@ -11,6 +11,7 @@
 pub(crate) mod angle_set;
 pub(crate) mod arc;
 pub(crate) mod polygon;
+pub(crate) mod rounding;
 
 use nalgebra::Vector2;
 

@@ -18,6 +18,7 @@
 
 use super::pieces::{LinePiece, Quad, ThirdPiece, MAX_CHORDS, QUAD_SLACK, S_SLACK};
 use crate::geometry::angle_set::{AngleSet, CAPACITY as ANGLE_SET_CAPACITY};
+use crate::geometry::rounding::ceil;
 use crate::geometry::{cross, rot, EPS, V2};
 
 /// Angle slack of the angle sets, radians.
@@ -292,7 +293,7 @@ fn turning_region(
     let (sin_p, cos_p) = phi_a_sc;
     let mut pieces = 0;
     for (&[t0, t1], &[sc0, sc1]) in angles.intervals().iter().zip(ends_sc) {
-        let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
+        let n = ceil((t1 - t0) / step).max(1.0) as usize;
         pieces += n;
         if pieces > max_pieces {
             return false;

@@ -2,6 +2,7 @@
 //! by row and each once: what every kind of sweep hands the setup search.
 
 use super::pieces::Quad;
+use crate::geometry::rounding::{ceil, ceil_i64};
 use crate::geometry::V2;
 
 /// A horizontal run of the plate, `y` a lattice row, `x` in `[lo, hi]`.
@@ -31,16 +32,20 @@ pub fn quad_spans(quad: &Quad, grid_step: i64, out: &mut Vec<Span>) {
     let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min) - e;
     let y_max = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max) + e;
     let mut y = ceil_i64(y_min / gf) * grid_step;
+    if (y as f64) > y_max {
+        return;
+    }
+    let p = &quad.pts;
+    let pairs =
+        [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)].map(|(i, j)| StripPair::of(p[i], p[j]));
     while (y as f64) <= y_max {
         let (s_lo, s_hi) = (y as f64 - e, y as f64 + e);
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
-        for i in 0..4 {
-            for j in i + 1..4 {
-                if let Some((x0, x1)) = clip_to_strip(quad.pts[i], quad.pts[j], s_lo, s_hi) {
-                    lo = lo.min(x0);
-                    hi = hi.max(x1);
-                }
+        for pair in &pairs {
+            if let Some((x0, x1)) = pair.clip(s_lo, s_hi) {
+                lo = lo.min(x0);
+                hi = hi.max(x1);
             }
         }
         if lo <= hi {
@@ -54,48 +59,49 @@ pub fn quad_spans(quad: &Quad, grid_step: i64, out: &mut Vec<Span>) {
     }
 }
 
-/// `x.ceil() as i64` without libm's `ceil`, a call on the baseline x86-64
-/// target (the spans take one per quadrilateral and per row): the same
-/// value for every `x`, infinities and NaN included, as the cast
-/// saturates either way.
-#[inline(always)]
-fn ceil_i64(x: f64) -> i64 {
-    let t = x as i64;
-    if (t as f64) < x {
-        t.saturating_add(1)
-    } else {
-        t
-    }
+/// Segment `a b` of a quadrilateral (two of its corners) with what
+/// [`StripPair::clip`] needs of it that does not change from row to row,
+/// worked out once per quadrilateral: the same operations on the same
+/// values as clipping from the corners each row, so the same spans.
+#[derive(Debug, Clone, Copy)]
+struct StripPair {
+    a: V2,
+    dx: f64,
+    dy: f64,
+    /// `dy` too small to divide by: the segment is horizontal.
+    flat: bool,
 }
 
-/// `x.ceil()` by [`ceil_i64`], the same value for every `x` (up to the
-/// sign of a zero): from `2^52` on every `f64` is an integer.
-#[inline(always)]
-fn ceil(x: f64) -> f64 {
-    if x.abs() < 4_503_599_627_370_496.0 {
-        ceil_i64(x) as f64
-    } else {
-        x
+impl StripPair {
+    fn of(a: V2, b: V2) -> StripPair {
+        let dy = b.y - a.y;
+        StripPair {
+            a,
+            dx: b.x - a.x,
+            dy,
+            flat: dy.abs() < 1e-300,
+        }
     }
-}
 
-/// The x range of the part of segment `a b` with `y` in `[y0, y1]`.
-fn clip_to_strip(a: V2, b: V2, y0: f64, y1: f64) -> Option<(f64, f64)> {
-    let dy = b.y - a.y;
-    let (t0, t1) = if dy.abs() < 1e-300 {
-        if a.y < y0 || a.y > y1 {
+    /// The x range of the part of the segment with `y` in `[y0, y1]`.
+    #[inline(always)]
+    fn clip(&self, y0: f64, y1: f64) -> Option<(f64, f64)> {
+        let (a, dy) = (self.a, self.dy);
+        let (t0, t1) = if self.flat {
+            if a.y < y0 || a.y > y1 {
+                return None;
+            }
+            (0.0, 1.0)
+        } else {
+            let (ta, tb) = ((y0 - a.y) / dy, (y1 - a.y) / dy);
+            (ta.min(tb).max(0.0), ta.max(tb).min(1.0))
+        };
+        if t0 > t1 {
             return None;
         }
-        (0.0, 1.0)
-    } else {
-        let (ta, tb) = ((y0 - a.y) / dy, (y1 - a.y) / dy);
-        (ta.min(tb).max(0.0), ta.max(tb).min(1.0))
-    };
-    if t0 > t1 {
-        return None;
+        let (xa, xb) = (a.x + self.dx * t0, a.x + self.dx * t1);
+        Some((xa.min(xb), xa.max(xb)))
     }
-    let (xa, xb) = (a.x + (b.x - a.x) * t0, a.x + (b.x - a.x) * t1);
-    Some((xa.min(xb), xa.max(xb)))
 }
 
 /// Buffers of [`super::LocatorSweep::for_each_third_locator`], reused across `L2`.
@@ -132,39 +138,5 @@ pub(super) fn scan_quads(
             x += grid_step;
         }
         next_x = next_x.max(x);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{ceil, ceil_i64};
-
-    #[test]
-    fn ceil_without_libm_matches_std() {
-        let mut values = vec![
-            0.0,
-            -0.0,
-            0.5,
-            -0.5,
-            1.0,
-            -1.0,
-            2.5e-300,
-            -2.5e-300,
-            4_503_599_627_370_495.5,
-            -4_503_599_627_370_495.5,
-            9.3e18,
-            -9.3e18,
-            1e300,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NAN,
-        ];
-        let mut rng = crate::test_rng::Xorshift::new(7);
-        values.extend((0..2000).map(|k| rng.signed_unit() * 10f64.powi(k % 20 - 4)));
-        for x in values {
-            assert_eq!(ceil_i64(x), x.ceil() as i64, "{x}");
-            let (ours, std) = (ceil(x), x.ceil());
-            assert!(ours == std || (ours.is_nan() && std.is_nan()), "{x}");
-        }
     }
 }
