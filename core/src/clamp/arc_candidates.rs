@@ -4,10 +4,11 @@
 //! crosses the posed grown circle is tested on its own normal.
 
 use super::axes::along;
-use super::{ceil_i64, Accumulator, Candidate, ClampSearch, SetupContext};
+use super::{Accumulator, Candidate, ClampSearch, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::arc::GrownArc;
+use crate::geometry::rounding::ceil_i64;
 use crate::geometry::{rot90, v2, EPS, V2};
 use crate::segments::{arc_inward_normal, Segment};
 

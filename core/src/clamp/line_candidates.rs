@@ -4,9 +4,10 @@
 //! form-closure interval is exact; [`super::ClampSearch`] picks this or
 //! [`super::arc_candidates`] by the segment's feature, in one place.
 
-use super::{ceil_i64, Accumulator, Candidate, ClampSearch, SetupContext};
+use super::{Accumulator, Candidate, ClampSearch, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
+use crate::geometry::rounding::ceil_i64;
 use crate::geometry::{rot90, v2, EPS, V2};
 use crate::segments::{LineFeature, Segment};
 

@@ -14,6 +14,7 @@ pub(crate) use arc_reach::{ArcReach, ClampWindow};
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, ForceCone, LocatorWrenches};
 use crate::checks::plate::Placement;
+use crate::geometry::rounding::{ceil_i64, floor_i64};
 use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
 use crate::input::setting::Setting;
 use crate::input::Pattern;
@@ -547,66 +548,5 @@ impl ClampSearch<'_> {
             tm.metric_ns += ns;
         }
         score
-    }
-}
-
-/// `x.ceil() as i64`, the same value for every `x` (NaN and out of range
-/// included) without a call to libm's `ceil` (no SSE4.1 in the baseline
-/// target): the loops over axis lines and mounts run it per setup.
-#[inline(always)]
-fn ceil_i64(x: f64) -> i64 {
-    let t = x as i64;
-    if (t as f64) < x {
-        t.saturating_add(1)
-    } else {
-        t
-    }
-}
-
-/// `x.floor() as i64`, see [`ceil_i64`].
-#[inline(always)]
-fn floor_i64(x: f64) -> i64 {
-    let t = x as i64;
-    if (t as f64) > x {
-        t.saturating_sub(1)
-    } else {
-        t
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{ceil_i64, floor_i64};
-
-    /// The integer ceil and floor against the libm ones cast, at the
-    /// places casts and rounding differ: halves, integers, signed zeros,
-    /// the edges of exact integers and of `i64`, infinities and NaN.
-    #[test]
-    fn integer_ceil_and_floor_match_the_cast_libm_ones() {
-        let mut xs = vec![
-            0.0,
-            -0.0,
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::MAX,
-            f64::MIN,
-            f64::MIN_POSITIVE,
-            -f64::MIN_POSITIVE,
-            i64::MAX as f64,
-            i64::MIN as f64,
-            2f64.powi(63) * 2.0,
-            2f64.powi(52) - 0.5,
-            2f64.powi(53) + 2.0,
-        ];
-        let mut rng = crate::test_rng::Xorshift::new(0x51_7cc1_b727_220a);
-        for i in 0..20_000 {
-            let x = rng.signed_unit() * 10f64.powi(i % 22 - 3);
-            xs.extend([x, x.round(), x.round() + 0.5, x.round() - 0.5]);
-        }
-        for x in xs {
-            assert_eq!(ceil_i64(x), x.ceil() as i64, "ceil {x:e}");
-            assert_eq!(floor_i64(x), x.floor() as i64, "floor {x:e}");
-        }
     }
 }
