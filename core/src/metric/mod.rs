@@ -382,11 +382,12 @@ fn max_force_floor_exceeds(
     if 0.0 > bound {
         return true;
     }
-    let rows = (0..3).map(|i| inv.row(i).norm()).fold(0.0, f64::max);
+    let norms: [f64; 3] = std::array::from_fn(|i| inv.row(i).norm());
+    let rows = norms.into_iter().fold(0.0, f64::max);
     if rows * applied.max_norm * (1.0 + 1e-12) <= bound {
         return false;
     }
-    lanes::floor_exceeds(&rows_of(inv), &applied.blocks, bound, start)
+    lanes::floor_exceeds(&rows_of(inv), &norms, &applied.blocks, bound, start)
 }
 
 #[cfg(test)]
