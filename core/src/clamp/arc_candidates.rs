@@ -4,7 +4,7 @@
 //! crosses the posed grown circle is tested on its own normal.
 
 use super::axes::along;
-use super::{Accumulator, Candidate, ClampSearch, SetupContext};
+use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::arc::GrownArc;
@@ -41,7 +41,10 @@ impl ClampSearch<'_> {
         let y0 = self.setting.clamp.y0;
         // Without pieces (a test's reference search) every line across
         // the circle is tried.
-        let piece = self.arc_pieces.get(j).copied().flatten();
+        let piece = match self.arc_pieces.get(j) {
+            Some(SegmentReach::Arc(piece)) => Some(*piece),
+            _ => None,
+        };
         let middle = piece.map(|p| p.posed_middle(&pose, arc.center, rho));
         // No normal of the piece makes a force the locators balance: every
         // point below would fail the form-closure test. A contact is
