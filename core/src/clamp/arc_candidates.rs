@@ -4,7 +4,7 @@
 //! crosses the posed grown circle is tested on its own normal.
 
 use super::axes::along;
-use super::{Accumulator, Candidate, ClampSearch, SetupContext};
+use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::arc::GrownArc;
@@ -41,16 +41,23 @@ impl ClampSearch<'_> {
         let y0 = self.setting.clamp.y0;
         // Without pieces (a test's reference search) every line across
         // the circle is tried.
-        let piece = self.arc_pieces.get(j).copied().flatten();
-        let posed = piece.map(|p| p.posed(&pose, arc.center, rho, &self.window));
+        let piece = match self.arc_pieces.get(j) {
+            Some(SegmentReach::Arc(piece)) => Some(*piece),
+            _ => None,
+        };
+        let middle = piece.map(|p| p.posed_middle(&pose, arc.center, rho));
         // No normal of the piece makes a force the locators balance: every
         // point below would fail the form-closure test. A contact is
         // within `2 rho` of the centre along each axis, hence `|tau|`.
-        let cap = posed.and_then(|p| p.normal_cap(convex));
+        // Tested before the rest of the piece is posed.
+        let cap = middle.and_then(|m| m.normal_cap(convex));
         let reach = centre.x.abs() + centre.y.abs() + 2.0 * rho;
         if cap.is_some_and(|(mid, cos)| ctx.cone.excludes_cap(mid, cos, reach)) {
             return;
         }
+        let posed = piece
+            .zip(middle)
+            .map(|(p, m)| m.piece(&p, &pose, &self.window));
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;

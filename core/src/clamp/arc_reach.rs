@@ -128,8 +128,9 @@ impl ArcReach {
     /// The piece in the plate frame for one setup. `center` is the arc's
     /// centre in the part frame and `rho` its grown radius: with the pose
     /// they size the rounding the widening must cover. `window` gives
-    /// [`PosedPiece::misses`] its threshold.
-    #[inline]
+    /// [`PosedPiece::misses`] its threshold. The search takes the two
+    /// steps apart, the force cone between them.
+    #[cfg(test)]
     pub(crate) fn posed(
         &self,
         pose: &Pose,
@@ -137,6 +138,16 @@ impl ArcReach {
         rho: f64,
         window: &ClampWindow,
     ) -> PosedPiece {
+        self.posed_middle(pose, center, rho)
+            .piece(self, pose, window)
+    }
+
+    /// The first step of [`Self::posed`]: the middle and the rounding
+    /// bound, all [`PosedMiddle::normal_cap`] needs, so that an arc the
+    /// force cone drops is never posed further. The two steps make the
+    /// same roundings as one.
+    #[inline]
+    pub(crate) fn posed_middle(&self, pose: &Pose, center: V2, rho: f64) -> PosedMiddle {
         let posed_center = pose.apply(center);
         let scale = posed_center.x.abs()
             + posed_center.y.abs()
@@ -145,23 +156,57 @@ impl ArcReach {
             + center.x.abs()
             + center.y.abs()
             + rho;
-        let err = 1e-12 + 1e-14 * scale * self.inv_rho;
+        PosedMiddle {
+            mid: pose.rotate(self.mid),
+            cos_half: self.cos_half,
+            err: 1e-12 + 1e-14 * scale * self.inv_rho,
+        }
+    }
+}
+
+/// An [`ArcReach`]'s middle posed for one setup (see
+/// [`ArcReach::posed_middle`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PosedMiddle {
+    mid: V2,
+    cos_half: f64,
+    /// [`PosedPiece`]'s `err`.
+    err: f64,
+}
+
+impl PosedMiddle {
+    /// The rest of [`ArcReach::posed`]: the piece's ends and the
+    /// threshold of [`PosedPiece::misses`].
+    #[inline]
+    pub(crate) fn piece(&self, reach: &ArcReach, pose: &Pose, window: &ClampWindow) -> PosedPiece {
+        let err = self.err;
         // Where `offsets` decides nothing (`err` above the window's
         // tolerance), neither does `misses`.
         let decides = err <= REACH_ERR && err <= window.tolerance;
-        let reach = if decides && self.half + window.reach <= REACH_MAX {
+        let threshold = if decides && reach.half + window.reach <= REACH_MAX {
             // cos(half + reach), a few ulps off.
-            self.cos_half * window.reach_cos - self.sin_half * window.reach_sin
+            reach.cos_half * window.reach_cos - reach.sin_half * window.reach_sin
         } else {
             f64::NEG_INFINITY
         };
         PosedPiece {
-            mid: pose.rotate(self.mid),
+            mid: self.mid,
             cos_half: self.cos_half,
-            ends: [pose.rotate(self.ends[0]), pose.rotate(self.ends[1])],
+            ends: [pose.rotate(reach.ends[0]), pose.rotate(reach.ends[1])],
             err,
-            reach,
+            reach: threshold,
         }
+    }
+
+    /// The inward normals `f` of contacts that can pass the inner test, as
+    /// a cap `f . mid >= cos` about the piece's middle normal `mid`
+    /// (`-mid` of the directions on a `convex` arc): the piece widened by
+    /// `err` as [`PosedPiece::offsets`] widens it. `None` where `err` is not
+    /// small enough to decide ([`REACH_ERR`], as for [`PosedPiece::misses`]).
+    #[inline]
+    pub(crate) fn normal_cap(&self, convex: bool) -> Option<(V2, f64)> {
+        let sign = if convex { -1.0 } else { 1.0 };
+        (self.err <= REACH_ERR).then(|| (self.mid * sign, self.cos_half - self.err))
     }
 }
 
@@ -199,17 +244,6 @@ impl PosedPiece {
     pub(crate) fn misses(&self, k: u8, convex: bool) -> bool {
         let sign = if convex { -1.0 } else { 1.0 };
         sign * along(k, self.mid) < self.reach
-    }
-
-    /// The inward normals `f` of contacts that can pass the inner test, as
-    /// a cap `f . mid >= cos` about the piece's middle normal `mid`
-    /// (`-mid` of the directions on a `convex` arc): the piece widened by
-    /// `err` as [`Self::offsets`] widens it. `None` where `err` is not
-    /// small enough to decide ([`REACH_ERR`], as for [`Self::misses`]).
-    #[inline]
-    pub(crate) fn normal_cap(&self, convex: bool) -> Option<(V2, f64)> {
-        let sign = if convex { -1.0 } else { 1.0 };
-        (self.err <= REACH_ERR).then(|| (self.mid * sign, self.cos_half - self.err))
     }
 
     /// The axis lines that can give a contact passing the angle and inner
@@ -415,7 +449,7 @@ mod tests {
         LocatorWrenches::new(ws)
     }
 
-    /// [`ForceCone::excludes_cap`] with [`PosedPiece::normal_cap`] drops an
+    /// [`ForceCone::excludes_cap`] with [`PosedMiddle::normal_cap`] drops an
     /// arc only where no contact on its posed circle passes both the
     /// inner test and the form-closure test (`lambda > eps`) as the clamp
     /// search computes them: random arcs, poses and locators, many with
@@ -424,7 +458,6 @@ mod tests {
     #[test]
     fn force_cone_drops_only_arcs_without_a_closing_contact() {
         let mut rng = Xorshift::new(0xbb67_ae85_84ca_a73b);
-        let window = ClampWindow::new(f64::to_radians(45.0).cos());
         let (mut dropped, mut closing) = (0u64, 0u64);
         for case in 0..40_000 {
             let seg = random_segment(&mut rng);
@@ -440,8 +473,10 @@ mod tests {
             };
             let reach = ArcReach::of(&seg).expect("an arc");
             let (rho, convex) = (arc.radius, arc.is_convex());
-            let piece = reach.posed(&pose, arc.center, rho, &window);
-            let Some((mid, cos)) = piece.normal_cap(convex) else {
+            let Some((mid, cos)) = reach
+                .posed_middle(&pose, arc.center, rho)
+                .normal_cap(convex)
+            else {
                 continue;
             };
             // A cap edge, or a random force direction.

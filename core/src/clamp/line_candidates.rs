@@ -4,7 +4,7 @@
 //! form-closure interval is exact; [`super::ClampSearch`] picks this or
 //! [`super::arc_candidates`] by the segment's feature, in one place.
 
-use super::{Accumulator, Candidate, ClampSearch, SetupContext};
+use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::rounding::ceil_i64;
@@ -30,10 +30,14 @@ impl ClampSearch<'_> {
         // below would be empty, for every rotation. `|q0|_1 + |dq|_1 |s|`
         // bounds `|tau|` along the segment (see `ForceCone::excludes`):
         // rotating keeps a vector's length, so `1.5 |v|_1` bounds the
-        // posed one's `|.|_1` (and `dq` is a unit vector).
-        let reach = pose.t.x.abs()
-            + pose.t.y.abs()
-            + 1.5 * (line.origin.x.abs() + line.origin.y.abs() + s_lo.abs().max(s_hi.abs()));
+        // posed one's `|.|_1` (and `dq` is a unit vector): the part's
+        // share is [`SegmentReach::Line`]'s (none in a test's reference
+        // search, whose cone excludes nothing).
+        let own = match self.arc_pieces.get(j) {
+            Some(SegmentReach::Line(own)) => *own,
+            _ => 0.0,
+        };
+        let reach = pose.t.x.abs() + pose.t.y.abs() + own;
         if ctx.line_cone.excludes(line.n, reach) {
             return;
         }

@@ -9,7 +9,9 @@ mod arc_candidates;
 mod arc_reach;
 mod axes;
 mod line_candidates;
-pub(crate) use arc_reach::{ArcReach, ClampWindow};
+mod segment_reach;
+pub(crate) use arc_reach::ClampWindow;
+pub(crate) use segment_reach::SegmentReach;
 
 use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, ForceCone, LocatorWrenches};
@@ -201,11 +203,11 @@ pub(crate) struct ClampSearch<'a> {
     pub(crate) metric: &'a dyn Metric,
     /// Part, access regions and locators, for the clearance checks.
     pub(crate) obstacles: Obstacles<'a>,
-    /// Each segment's [`ArcReach`] (`None` for a line), numbered as
+    /// Each segment's [`SegmentReach`] (an arc's [`arc_reach::ArcReach`]), numbered as
     /// `segments`; empty, the search runs without its filters (a test's
     /// reference): arcs try every axis line across their circle, and no
     /// segment is dropped for its normal ([`ForceCone`]).
-    pub(crate) arc_pieces: &'a [Option<ArcReach>],
+    pub(crate) arc_pieces: &'a [SegmentReach],
     /// The directions the setting's angle test can accept.
     pub(crate) window: ClampWindow,
 }

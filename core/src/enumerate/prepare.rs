@@ -7,7 +7,7 @@
 //! loop of [`Stages`]) the pieces that stage reads.
 
 use crate::checks::admissibility::{Obstacles, Scratch};
-use crate::clamp::{Accumulator, ArcReach, ClampSearch, ClampWindow};
+use crate::clamp::{Accumulator, ClampSearch, ClampWindow, SegmentReach};
 use crate::enumerate::combinations::combination_count;
 use crate::enumerate::shards::{EnumerateOptions, Enumeration, PartialResult, Stages};
 use crate::geometry::polygon::validate_polygon;
@@ -68,8 +68,9 @@ pub struct PreparedPart {
     /// Each segment as the setup sweep uses it, so that choosing a
     /// combination's pivot costs no trig per combination.
     swept: Vec<SweptSegment>,
-    /// Each arc segment's piece of circle, for the clamp search.
-    arc_pieces: Vec<Option<ArcReach>>,
+    /// What the clamp search reads of each segment (an arc's piece of
+    /// circle, a line's share of its contacts' reach).
+    arc_pieces: Vec<SegmentReach>,
     setting: Setting,
 }
 
@@ -88,7 +89,7 @@ pub fn prepare(
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
     let swept = segments.iter().map(SweptSegment::of).collect();
-    let arc_pieces = segments.iter().map(ArcReach::of).collect();
+    let arc_pieces = segments.iter().map(SegmentReach::of).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
         spacing: l,

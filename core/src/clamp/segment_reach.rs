@@ -1,0 +1,34 @@
+//! What the clamp search's filters read of each segment, worked out once
+//! per part (the prepared part holds the table): a setup then only adds
+//! its pose's share.
+
+use super::arc_reach::ArcReach;
+use crate::geometry::EPS;
+use crate::segments::{Feature, Segment};
+
+/// What the clamp search's filters read of one segment, worked out once
+/// per part so that a setup does not redo it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum SegmentReach {
+    /// A line: `1.5 (|origin|_1 + max(|s0 + eps|, |s1 - eps|))`, the
+    /// part's share of the bound on its contacts' `|tau|` that
+    /// the line candidates' search gives the force cone.
+    Line(f64),
+    /// An arc: its piece of the circle.
+    Arc(ArcReach),
+}
+
+impl SegmentReach {
+    /// The reach of a segment.
+    pub(crate) fn of(seg: &Segment) -> SegmentReach {
+        match &seg.feature {
+            Feature::Line(line) => {
+                let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
+                SegmentReach::Line(
+                    1.5 * (line.origin.x.abs() + line.origin.y.abs() + s_lo.abs().max(s_hi.abs())),
+                )
+            }
+            Feature::Arc(_) => ArcReach::of(seg).map_or(SegmentReach::Line(0.0), SegmentReach::Arc),
+        }
+    }
+}
