@@ -41,7 +41,7 @@ impl ClampSearch<'_> {
         let y0 = self.setting.clamp.y0;
         // Without pieces (a test's reference search) every line across
         // the circle is tried.
-        let piece = match self.arc_pieces.get(j) {
+        let piece = match self.reaches.get(j) {
             Some(SegmentReach::Arc(piece)) => Some(*piece),
             _ => None,
         };

@@ -21,9 +21,10 @@
 //! `d . f <= 0` in floating point too (see `ClampSearch::arc_candidates`).
 
 use super::axes::along;
+use crate::geometry::arc::GrownArc;
 use crate::geometry::{v2, EPS, V2};
 use crate::poses::pose::Pose;
-use crate::segments::{Feature, Segment};
+use crate::segments::Segment;
 use std::f64::consts::PI;
 
 /// How much wider, in angle, the filter's window is than the angle
@@ -106,23 +107,30 @@ pub(crate) struct ArcReach {
 
 impl ArcReach {
     /// The piece of an arc segment, `None` for a line.
+    #[cfg(test)]
     pub(crate) fn of(seg: &Segment) -> Option<ArcReach> {
-        let Feature::Arc(arc) = &seg.feature else {
-            return None;
-        };
+        use crate::segments::Feature;
+        match &seg.feature {
+            Feature::Arc(arc) => Some(Self::on(seg, arc)),
+            Feature::Line(_) => None,
+        }
+    }
+
+    /// The piece of `seg`, an arc segment on `arc`.
+    pub(crate) fn on(seg: &Segment, arc: &GrownArc) -> ArcReach {
         let dir = |s: f64| {
             let (sn, cs) = arc.angle_at(s).sin_cos();
             v2(cs, sn)
         };
         let half = 0.5 * (seg.s1 - seg.s0) / arc.radius;
-        Some(ArcReach {
+        ArcReach {
             mid: dir(0.5 * (seg.s0 + seg.s1)),
             cos_half: if half >= PI { -1.0 } else { half.cos() },
             half,
             sin_half: half.sin(),
             ends: [dir(seg.s0), dir(seg.s1)],
             inv_rho: 1.0 / arc.radius,
-        })
+        }
     }
 
     /// The piece in the plate frame for one setup. `center` is the arc's
@@ -315,9 +323,9 @@ impl PosedPiece {
 mod tests {
     use super::*;
     use crate::checks::form_closure::{wrench, LocatorWrenches};
-    use crate::geometry::arc::GrownArc;
     use crate::geometry::rot90;
     use crate::segments::arc_inward_normal;
+    use crate::segments::Feature;
     use crate::test_rng::Xorshift;
 
     /// A random arc segment: centre up to 1000 from the origin, radius from

@@ -33,7 +33,7 @@ impl ClampSearch<'_> {
         // posed one's `|.|_1` (and `dq` is a unit vector): the part's
         // share is [`SegmentReach::Line`]'s (none in a test's reference
         // search, whose cone excludes nothing).
-        let own = match self.arc_pieces.get(j) {
+        let own = match self.reaches.get(j) {
             Some(SegmentReach::Line(own)) => *own,
             _ => 0.0,
         };

@@ -207,7 +207,7 @@ pub(crate) struct ClampSearch<'a> {
     /// `segments`; empty, the search runs without its filters (a test's
     /// reference): arcs try every axis line across their circle, and no
     /// segment is dropped for its normal ([`ForceCone`]).
-    pub(crate) arc_pieces: &'a [SegmentReach],
+    pub(crate) reaches: &'a [SegmentReach],
     /// The directions the setting's angle test can accept.
     pub(crate) window: ClampWindow,
 }
@@ -263,7 +263,7 @@ impl ClampSearch<'_> {
             return;
         };
         let part_locators = self.part_locators(setup);
-        let cone = if self.arc_pieces.is_empty() {
+        let cone = if self.reaches.is_empty() {
             ForceCone::open()
         } else {
             lw.force_cone()

@@ -28,7 +28,7 @@ impl SegmentReach {
                     1.5 * (line.origin.x.abs() + line.origin.y.abs() + s_lo.abs().max(s_hi.abs())),
                 )
             }
-            Feature::Arc(_) => ArcReach::of(seg).map_or(SegmentReach::Line(0.0), SegmentReach::Arc),
+            Feature::Arc(arc) => SegmentReach::Arc(ArcReach::on(seg, arc)),
         }
     }
 }

@@ -45,7 +45,7 @@ fn filtered_clamp_search_keeps_every_fixture() {
     assert!(setups.len() > 1000, "{}", setups.len());
     let filtered = part.clamp_search();
     let unfiltered = ClampSearch {
-        arc_pieces: &[],
+        reaches: &[],
         ..filtered
     };
     for acc in [Accumulator::new(0), Accumulator::top_k_mode(10)] {

@@ -70,7 +70,7 @@ pub struct PreparedPart {
     swept: Vec<SweptSegment>,
     /// What the clamp search reads of each segment (an arc's piece of
     /// circle, a line's share of its contacts' reach).
-    arc_pieces: Vec<SegmentReach>,
+    reaches: Vec<SegmentReach>,
     setting: Setting,
 }
 
@@ -89,7 +89,7 @@ pub fn prepare(
     let trim = params.edge_trim_or_default(units) / l;
     let segments = usable_segments(&outline, &access, r, trim);
     let swept = segments.iter().map(SweptSegment::of).collect();
-    let arc_pieces = segments.iter().map(SegmentReach::of).collect();
+    let reaches = segments.iter().map(SegmentReach::of).collect();
     let metric = metric(params.wrenches.as_deref(), &outline, l);
     Ok(PreparedPart {
         spacing: l,
@@ -104,7 +104,7 @@ pub fn prepare(
         pairs: PairTable::default(),
         pivot_ranks: PivotRanks::default(),
         swept,
-        arc_pieces,
+        reaches,
         setting,
     })
 }
@@ -343,7 +343,7 @@ impl PreparedPart {
                 clamp: &self.setting.clamp,
                 min_clearance: self.setting.min_clearance,
             },
-            arc_pieces: &self.arc_pieces,
+            reaches: &self.reaches,
             window: ClampWindow::new(self.setting.cos_max_angle),
         }
     }
