@@ -3,27 +3,29 @@
 //! which narrows its axis lines). Every point where a plunger axis line
 //! crosses the posed grown circle is tested on its own normal.
 
-use super::axes::along;
+use super::axes::{along, axis_normal, push_direction};
 use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::arc::GrownArc;
 use crate::geometry::rounding::ceil_i64;
-use crate::geometry::{rot90, v2, EPS, V2};
+use crate::geometry::{EPS, V2};
 use crate::segments::{arc_inward_normal, Segment};
 
 impl ClampSearch<'_> {
     /// Candidates on an arc segment (SPEC 8.5): the points where each
     /// plunger axis line crosses the posed grown circle, each tested for
-    /// span, angle and form closure on its own normal. Only the lines
-    /// [`arc_reach`] keeps are tried, and on each only the side facing
+    /// span, angle and form closure on its own normal. Where more than one
+    /// line crosses the circle only those [`arc_reach`] keeps are tried
+    /// (one line is tested for less than the filter costs), and on each
+    /// only the side facing
     /// the push: at the other point `q_d - C'_d` (along `d`, an axis) is
     /// `fl(C'_d + side half) - C'_d`, of the sign of `side` or zero since
     /// rounding is monotone, so `d . f <= 0 < eps` there (and at a
     /// tangency, `half = 0`, on both). The tests that remain are those of
     /// every point kept, the cheap form-closure test before the `atan2`
     /// of the inner one: the candidates are the same, in the same order.
-    /// The cheapest test first: [`super::arc_reach::PosedPiece::misses`]
+    /// The cheapest test first: [`super::arc_reach::PosedMiddle::misses`]
     /// (one comparison), then whether any axis line crosses the circle.
     pub(super) fn arc_candidates(
         &self,
@@ -42,7 +44,7 @@ impl ClampSearch<'_> {
         // Without pieces (a test's reference search) every line across
         // the circle is tried.
         let piece = match self.reaches.get(j) {
-            Some(SegmentReach::Arc(piece)) => Some(*piece),
+            Some(SegmentReach::Arc(piece)) => Some(piece),
             _ => None,
         };
         let middle = piece.map(|p| p.posed_middle(&pose, arc.center, rho));
@@ -55,14 +57,16 @@ impl ClampSearch<'_> {
         if cap.is_some_and(|(mid, cos)| ctx.cone.excludes_cap(mid, cos, reach)) {
             return;
         }
-        let posed = piece
-            .zip(middle)
-            .map(|(p, m)| m.piece(&p, &pose, &self.window));
+        let posed = piece.zip(middle);
+        let threshold = posed.map(|(p, m)| m.miss_threshold(p, &self.window));
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;
             }
-            if posed.is_some_and(|p| p.misses(k, convex)) {
+            if posed
+                .zip(threshold)
+                .is_some_and(|((_, m), t)| m.misses(t, k, convex))
+            {
                 continue;
             }
             // Axis line `line`: e . q - y0 = line. Whether one crosses the
@@ -74,12 +78,20 @@ impl ClampSearch<'_> {
             if first as f64 > across + rho {
                 continue;
             }
-            let d = rot90(k, v2(1.0, 0.0));
-            let e = rot90(k, v2(0.0, 1.0));
+            let d = push_direction(k);
+            let e = axis_normal(k);
             let gc = e.dot(&centre) - y0;
-            let lines = match &posed {
-                Some(posed) => posed.axis_lines(&self.window, k, convex, gc, rho),
-                None => Some((gc - rho, gc + rho)),
+            // One line at most across the circle: its point is tested for
+            // less than the filter costs (posing the piece's ends, a dozen
+            // products), and the filter only skips points the tests reject,
+            // so the candidates are the same.
+            let single = first.saturating_add(1) as f64 > across + rho;
+            let lines = match posed {
+                Some((p, m)) if !single => {
+                    m.piece(p, &pose)
+                        .axis_lines(&self.window, k, convex, gc, rho)
+                }
+                _ => Some((gc - rho, gc + rho)),
             };
             let Some((lo, hi)) = lines else {
                 continue;

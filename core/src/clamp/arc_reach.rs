@@ -35,13 +35,13 @@ const WINDOW_SLACK: f64 = 1e-6;
 
 /// How much further apart, in angle, than the window's and the piece's
 /// half-angles together a piece's middle and a window's centre must be
-/// before [`PosedPiece::misses`] gives the rotation up: above the angle
+/// before [`PosedMiddle::misses`] gives the rotation up: above the angle
 /// by which [`PosedPiece::offsets`]'s widening opens a piece (`err` in the
 /// cosine is at most `1.5 sqrt(2 err)` in angle, 6.7e-5 at
 /// [`REACH_ERR`]), and far above the rounding of one dot product.
 const REACH_SLACK: f64 = 1e-4;
 
-/// The largest `err` with which [`PosedPiece::misses`] decides.
+/// The largest `err` with which [`PosedMiddle::misses`] decides.
 const REACH_ERR: f64 = 1e-9;
 
 /// `misses` decides only when the half-angles and slack add up to at most
@@ -136,7 +136,7 @@ impl ArcReach {
     /// The piece in the plate frame for one setup. `center` is the arc's
     /// centre in the part frame and `rho` its grown radius: with the pose
     /// they size the rounding the widening must cover. `window` gives
-    /// [`PosedPiece::misses`] its threshold. The search takes the two
+    /// [`PosedMiddle::misses`] its threshold. The search takes the two
     /// steps apart, the force cone between them.
     #[cfg(test)]
     pub(crate) fn posed(
@@ -146,8 +146,11 @@ impl ArcReach {
         rho: f64,
         window: &ClampWindow,
     ) -> PosedPiece {
-        self.posed_middle(pose, center, rho)
-            .piece(self, pose, window)
+        let middle = self.posed_middle(pose, center, rho);
+        PosedPiece {
+            reach: middle.miss_threshold(self, window),
+            ..middle.piece(self, pose)
+        }
     }
 
     /// The first step of [`Self::posed`]: the middle and the rounding
@@ -183,34 +186,61 @@ pub(crate) struct PosedMiddle {
 }
 
 impl PosedMiddle {
-    /// The rest of [`ArcReach::posed`]: the piece's ends and the
-    /// threshold of [`PosedPiece::misses`].
+    /// The rest of [`ArcReach::posed`]: the piece's ends, for
+    /// [`PosedPiece::axis_lines`] (the search takes the threshold of
+    /// [`PosedMiddle::misses`] from [`Self::miss_threshold`]).
     #[inline]
-    pub(crate) fn piece(&self, reach: &ArcReach, pose: &Pose, window: &ClampWindow) -> PosedPiece {
-        let err = self.err;
-        // Where `offsets` decides nothing (`err` above the window's
-        // tolerance), neither does `misses`.
-        let decides = err <= REACH_ERR && err <= window.tolerance;
-        let threshold = if decides && reach.half + window.reach <= REACH_MAX {
-            // cos(half + reach), a few ulps off.
-            reach.cos_half * window.reach_cos - reach.sin_half * window.reach_sin
-        } else {
-            f64::NEG_INFINITY
-        };
+    pub(crate) fn piece(&self, reach: &ArcReach, pose: &Pose) -> PosedPiece {
         PosedPiece {
             mid: self.mid,
             cos_half: self.cos_half,
             ends: [pose.rotate(reach.ends[0]), pose.rotate(reach.ends[1])],
-            err,
-            reach: threshold,
+            err: self.err,
+            #[cfg(test)]
+            reach: f64::NEG_INFINITY,
         }
+    }
+
+    /// [`Self::misses`]'s threshold (a piece's `reach`), worked out without
+    /// posing the piece's ends: a search that tests a rotation's lines
+    /// without [`PosedPiece::axis_lines`] never needs them.
+    #[inline]
+    pub(crate) fn miss_threshold(&self, reach: &ArcReach, window: &ClampWindow) -> f64 {
+        let err = self.err;
+        // Where `offsets` decides nothing (`err` above the window's
+        // tolerance), neither does `misses`.
+        let decides = err <= REACH_ERR && err <= window.tolerance;
+        if decides && reach.half + window.reach <= REACH_MAX {
+            // cos(half + reach), a few ulps off.
+            reach.cos_half * window.reach_cos - reach.sin_half * window.reach_sin
+        } else {
+            f64::NEG_INFINITY
+        }
+    }
+
+    /// Whether rotation `k` (window centre `n`, as in [`PosedPiece::axis_lines`])
+    /// surely has no axis line, in one comparison where [`PosedPiece::offsets`]
+    /// makes a dozen: the piece's middle is further from `n` than the
+    /// window's widened half-angle `A`, the piece's `h` and [`REACH_SLACK`]
+    /// together. A direction `offsets` takes is within `A` of `n` (an end
+    /// or a window edge, `v . n >= cos A`, or `e` when `A >= 90` degrees)
+    /// and within `h + 1.5 sqrt(2 err)` of the middle (its widened piece
+    /// test, `err <= REACH_ERR`; above the window's tolerance `offsets`
+    /// takes every line, and `misses` none), so it would find none: the lines kept are
+    /// the same (`misses_only_where_offsets_finds_none`). The margin of
+    /// `REACH_SLACK` over those angles is at least 2.8e-9 in the cosine,
+    /// against a few ulps of rounding here.
+    /// `threshold` is [`Self::miss_threshold`].
+    #[inline]
+    pub(crate) fn misses(&self, threshold: f64, k: u8, convex: bool) -> bool {
+        misses(self.mid, threshold, k, convex)
     }
 
     /// The inward normals `f` of contacts that can pass the inner test, as
     /// a cap `f . mid >= cos` about the piece's middle normal `mid`
     /// (`-mid` of the directions on a `convex` arc): the piece widened by
     /// `err` as [`PosedPiece::offsets`] widens it. `None` where `err` is not
-    /// small enough to decide ([`REACH_ERR`], as for [`PosedPiece::misses`]).
+    /// small enough to decide ([`REACH_ERR`], as for [`PosedMiddle::misses`]).
     #[inline]
     pub(crate) fn normal_cap(&self, convex: bool) -> Option<(V2, f64)> {
         let sign = if convex { -1.0 } else { 1.0 };
@@ -231,27 +261,17 @@ pub(crate) struct PosedPiece {
     /// difference is `rho`), about 45 times the few roundings on the way.
     err: f64,
     /// Below this `n . mid`, the window about `n` misses the piece
-    /// (see [`Self::misses`]); minus infinity when that is not decided.
+    /// (see [`PosedMiddle::misses`]); minus infinity when that is not decided.
+    /// The search reads it off [`PosedMiddle::miss_threshold`] instead.
+    #[cfg(test)]
     reach: f64,
 }
 
 impl PosedPiece {
-    /// Whether rotation `k` (window centre `n`, as in [`Self::axis_lines`])
-    /// surely has no axis line, in one comparison where [`Self::offsets`]
-    /// makes a dozen: the piece's middle is further from `n` than the
-    /// window's widened half-angle `A`, the piece's `h` and [`REACH_SLACK`]
-    /// together. A direction `offsets` takes is within `A` of `n` (an end
-    /// or a window edge, `v . n >= cos A`, or `e` when `A >= 90` degrees)
-    /// and within `h + 1.5 sqrt(2 err)` of the middle (its widened piece
-    /// test, `err <= REACH_ERR`; above the window's tolerance `offsets`
-    /// takes every line, and `misses` none), so it would find none: the lines kept are
-    /// the same (`misses_only_where_offsets_finds_none`). The margin of
-    /// `REACH_SLACK` over those angles is at least 2.8e-9 in the cosine,
-    /// against a few ulps of rounding here.
-    #[inline]
+    /// [`PosedMiddle::misses`] with the threshold this piece holds.
+    #[cfg(test)]
     pub(crate) fn misses(&self, k: u8, convex: bool) -> bool {
-        let sign = if convex { -1.0 } else { 1.0 };
-        sign * along(k, self.mid) < self.reach
+        misses(self.mid, self.reach, k, convex)
     }
 
     /// The axis lines that can give a contact passing the angle and inner
@@ -317,6 +337,13 @@ impl PosedPiece {
         }
         (lo <= hi).then_some((lo - err, hi + err))
     }
+}
+
+/// [`PosedMiddle::misses`] of a piece whose middle direction is `mid`.
+#[inline(always)]
+fn misses(mid: V2, threshold: f64, k: u8, convex: bool) -> bool {
+    let sign = if convex { -1.0 } else { 1.0 };
+    sign * along(k, mid) < threshold
 }
 
 #[cfg(test)]
@@ -527,7 +554,7 @@ mod tests {
         assert!(dropped > 5_000 && closing > 5_000, "{dropped} {closing}");
     }
 
-    /// [`PosedPiece::misses`] gives a rotation up only where
+    /// [`PosedMiddle::misses`] gives a rotation up only where
     /// [`PosedPiece::offsets`] finds no line, so the lines tried are the
     /// same: random arcs, poses and clamp angles, and poses turning the
     /// piece's middle to just inside and outside the threshold angle

@@ -4,26 +4,44 @@
 //! tests take it that way instead of multiplying by a zero and a one that
 //! a rotation index only known at run time hides from the compiler.
 
-use crate::geometry::V2;
+use crate::geometry::{v2, V2};
 
 /// `rot90(k, (1, 0)) . v` (push direction `d_k`); `along(k + 1, v)` is
 /// `rot90(k, (0, 1)) . v` (axis line normal `e_k`). Equal to the dot
 /// product but for the sign of a zero (the product with the zero
 /// coordinate only adds a zero, and the sign of `1 * x` is `x`'s): callers
 /// compare the value, or add it to a non-zero number, where the two agree.
+/// Read off an array, not a `match`: the search's loops over rotations
+/// then load a value where a jump table branched (and hoist the array
+/// when `v` does not change within them).
 #[inline(always)]
 pub(super) fn along(k: u8, v: V2) -> f64 {
-    match k & 3 {
-        0 => v.x,
-        1 => v.y,
-        2 => -v.x,
-        _ => -v.y,
-    }
+    [v.x, v.y, -v.x, -v.y][usize::from(k & 3)]
+}
+
+/// `rot90(k, (1, 0))` and `rot90(k, (0, 1))` for each `k`, zeros' signs
+/// included (`rot90` negates a zero coordinate): the same vectors bit for
+/// bit, so products with them round the same.
+const PUSH: [[f64; 2]; 4] = [[1.0, 0.0], [-0.0, 1.0], [-1.0, -0.0], [0.0, -1.0]];
+const ACROSS: [[f64; 2]; 4] = [[0.0, 1.0], [-1.0, 0.0], [-0.0, -1.0], [1.0, -0.0]];
+
+/// The push direction `d_k = rot90(k, (1, 0))`, read off a table.
+#[inline(always)]
+pub(super) fn push_direction(k: u8) -> V2 {
+    let [x, y] = PUSH[usize::from(k & 3)];
+    v2(x, y)
+}
+
+/// The axis lines' normal `e_k = rot90(k, (0, 1))`, read off a table.
+#[inline(always)]
+pub(super) fn axis_normal(k: u8) -> V2 {
+    let [x, y] = ACROSS[usize::from(k & 3)];
+    v2(x, y)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::along;
+    use super::{along, axis_normal, push_direction};
     use crate::geometry::{rot90, v2};
     use crate::test_rng::Xorshift;
 
@@ -41,6 +59,21 @@ mod tests {
             for k in 0..8u8 {
                 assert_eq!(along(k, v), rot90(k, v2(1.0, 0.0)).dot(&v), "{k} {v}");
                 assert_eq!(along(k + 1, v), rot90(k, v2(0.0, 1.0)).dot(&v), "{k} {v}");
+            }
+        }
+    }
+
+    /// The tables are `rot90` of the unit vectors bit for bit, zeros'
+    /// signs included, for every rotation and its wrap past 3.
+    #[test]
+    fn tables_are_the_rotated_unit_vectors() {
+        for k in 0..8u8 {
+            for (got, want) in [
+                (push_direction(k), rot90(k, v2(1.0, 0.0))),
+                (axis_normal(k), rot90(k, v2(0.0, 1.0))),
+            ] {
+                assert_eq!(got.x.to_bits(), want.x.to_bits(), "{k}");
+                assert_eq!(got.y.to_bits(), want.y.to_bits(), "{k}");
             }
         }
     }

@@ -8,7 +8,7 @@ use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::rounding::ceil_i64;
-use crate::geometry::{rot90, v2, EPS, V2};
+use crate::geometry::{EPS, V2};
 use crate::segments::{LineFeature, Segment};
 
 impl ClampSearch<'_> {
@@ -110,7 +110,7 @@ impl ClampSearch<'_> {
     /// narrower `[lo, hi]` gives a range within this one, bit for bit.
     #[inline(always)]
     fn axis_span(&self, k: u8, q0: V2, dq: V2, lo: f64, hi: f64) -> (f64, f64, f64, f64) {
-        let e = rot90(k, v2(0.0, 1.0));
+        let e = super::axes::axis_normal(k);
         let g0 = e.dot(&q0) - self.setting.clamp.y0;
         let g1 = e.dot(&dq);
         let (ga, gb) = (g0 + g1 * lo, g0 + g1 * hi);

@@ -17,7 +17,7 @@ use crate::checks::admissibility::{lap, Obstacles, Scratch};
 use crate::checks::form_closure::{wrench, ForceCone, LocatorWrenches};
 use crate::checks::plate::Placement;
 use crate::geometry::rounding::{ceil_i64, floor_i64};
-use crate::geometry::{rot90, rot90i, v2, BORDERLINE, EPS, V2};
+use crate::geometry::{rot90i, BORDERLINE, EPS, V2};
 use crate::input::setting::Setting;
 use crate::input::Pattern;
 use crate::metric::{Locators, Metric, PartContact};
@@ -452,7 +452,7 @@ impl ClampSearch<'_> {
     #[inline]
     fn first_mount(&self, setup: &Setup, cand: &Candidate, scratch: &mut Scratch) -> Option<Mount> {
         let k = cand.rotation;
-        let d = rot90(k, v2(1.0, 0.0));
+        let d = axes::push_direction(k);
         let dq = d.dot(&cand.q);
         let c = &self.setting.clamp;
         let m_hi = floor_i64(dq - c.t_min + EPS);
