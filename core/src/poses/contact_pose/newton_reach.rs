@@ -86,22 +86,17 @@ pub(super) fn beyond_reach(
     (f, j): (&Vector3<f64>, &Matrix3<f64>),
     gap: &Gap<'_>,
 ) -> bool {
-    // The bound is worked out only for a start with a contact outside.
-    let mut radius = None;
-    for (k, &locator) in locs.iter().enumerate() {
-        let outside = gap(k, rot_t(c, s, locator) - w);
-        if outside.is_nan() || outside <= 0.0 {
-            continue;
-        }
-        let r = *radius.get_or_insert_with(|| newton_radius(centres, locs, (c, s), w, (f, j)));
-        let Some(r) = r else {
-            return false;
-        };
-        if outside > (locator.norm() + 1.0) * (r + CHAIN) + REACH_SLACK {
-            return true;
-        }
+    // Every contact's gap first: the bound is worked out only for a start
+    // with one outside (stopping at the first such contact costs more
+    // than the calls it saves).
+    let gaps: [f64; 3] = std::array::from_fn(|k| gap(k, rot_t(c, s, locs[k]) - w));
+    if gaps.iter().all(|&g| g.is_nan() || g <= 0.0) {
+        return false;
     }
-    false
+    let Some(r) = newton_radius(centres, locs, (c, s), w, (f, j)) else {
+        return false;
+    };
+    (0..3).any(|k| gaps[k] > (locs[k].norm() + 1.0) * (r + CHAIN) + REACH_SLACK)
 }
 
 /// The radius `r` of a ball round the start that holds every Newton
