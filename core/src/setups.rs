@@ -121,10 +121,11 @@ impl SetupSearch<'_> {
         if contacts.is_costly() && allowed.angles.is_some() && !self.in_annuli(combo, &locs) {
             return 0;
         }
-        contacts.solve_at_angles(
+        contacts.solve_kept_at_angles(
             &locs,
             |theta| allowed.keeps(theta),
             &|lo, hi| allowed.meets(lo, hi),
+            &|k, p| segs[k].distance_outside(p),
             |pose, tangential| {
                 self.visit_pose(combo, &segs, locs_i, &locs, pose, tangential, &mut visit);
             },

@@ -31,6 +31,7 @@ mod classify;
 mod half_angle;
 mod limits;
 mod lu3;
+mod newton_reach;
 mod root_search;
 mod taylor5;
 mod trig;
@@ -41,6 +42,7 @@ use crate::geometry::{cross, rot, rot_t, v2, BORDERLINE, EPS, V2};
 use crate::poses::pose::{solve_poses, Line, Pose};
 use limits::{CONTINUUM_REL, DEGENERATE_REL, NEAR_MISS, NEAR_PARALLEL_REL, ROUNDING_REL};
 use nalgebra::{Matrix3, Vector3};
+pub(crate) use newton_reach::Gap;
 use trig::{circ_dist, Angles, Trig, COS16, SAMPLES, SIN16};
 use two_lines::TwoLines;
 
@@ -266,22 +268,49 @@ pub fn solve_contact_poses_at_angles(
     locs: &[V2; 3],
     within: &dyn Fn(f64, f64) -> bool,
 ) -> ContactPoses {
+    let mut out = ContactPoses::new();
+    visit_contact_poses_at_angles(contacts, locs, within, None, |pose| out.push(*pose));
+    out
+}
+
+/// [`solve_contact_poses_at_angles`] handing each pose, in the same order,
+/// to `visit` rather than collecting them: the setup search looks at each
+/// pose once, and the closed forms of two lines need not copy their
+/// solutions into a list of their own first (a list is 520 bytes, moved
+/// several times a solve). With `gap`, two lines and a circle drop the
+/// starts whose pose `gap` shows the caller would reject (see
+/// `newton_reach`): the poses it keeps are the same, in the same order,
+/// to the bit, and others may be missing. Returns the number of poses.
+pub(crate) fn visit_contact_poses_at_angles(
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    within: &dyn Fn(f64, f64) -> bool,
+    gap: Option<&Gap<'_>>,
+    visit: impl FnMut(&ContactPose),
+) -> usize {
     if !valid(contacts, locs) {
-        return ContactPoses::new();
+        return 0;
     }
     let lines = contacts.map(|c| match c {
         Contact::Line(l) => Some(l),
         Contact::Circle(_) => None,
     });
     if let [Some(a), Some(b), Some(c)] = lines {
-        return line_poses(&[a, b, c], contacts, locs);
+        let poses = line_poses(&[a, b, c], contacts, locs);
+        poses.iter().for_each(visit);
+        return poses.len();
     }
-    if let Some(poses) =
-        two_lines_of(contacts, locs).and_then(|two| two_line_poses(&two, contacts, locs, within))
-    {
-        return poses;
+    if let Some(two) = two_lines_of(contacts, locs) {
+        let mut found = Found::new();
+        if two_line_poses(&two, contacts, locs, (within, gap), &mut found) {
+            let sorted = found.sorted();
+            sorted.iter().for_each(visit);
+            return sorted.len();
+        }
     }
-    eliminated_poses(contacts, locs, within)
+    let poses = eliminated_poses(contacts, locs, within);
+    poses.iter().for_each(visit);
+    poses.len()
 }
 
 /// The general elimination, for any triple with a circle (valid input).
@@ -334,29 +363,29 @@ fn two_lines_of(contacts: &[Contact; 3], locs: &[V2; 3]) -> Option<TwoLines> {
 }
 
 /// The poses of two lines and a circle from the closed forms of
-/// [`two_lines`]: each start is polished by Newton's method like the
+/// [`two_lines`], into `found` (empty; the caller's, so that it is not
+/// moved on return): each start is polished by Newton's method like the
 /// general elimination's, except exact tangencies, which are checked as
-/// they are. `None` when the closed forms leave the setup to the general
-/// elimination (nearly parallel lines).
+/// they are. `false`, having found nothing, when the closed forms leave
+/// the setup to the general elimination (nearly parallel lines).
 fn two_line_poses(
     two: &TwoLines,
     contacts: &[Contact; 3],
     locs: &[V2; 3],
-    within: &dyn Fn(f64, f64) -> bool,
-) -> Option<ContactPoses> {
-    let mut found = Found::new();
-    let handled = two.starts(within, |start| {
+    (within, gap): (&dyn Fn(f64, f64) -> bool, Option<&Gap<'_>>),
+    found: &mut Found<MAX_CONTACT_POSES>,
+) -> bool {
+    two.starts(within, |start| {
         let got = if start.exact {
             let iterate = Vector3::new(start.theta, start.w.x, start.w.y);
             polished(contacts, locs, iterate, start.cs, None)
         } else {
-            polish(contacts, locs, start.theta, start.cs, start.w)
+            polish_within(contacts, locs, (start.theta, start.cs, start.w), gap)
         };
         if let Some((pose, res)) = got {
             found.insert(pose, res);
         }
-    });
-    handled.then(|| found.finish())
+    })
 }
 
 /// Three lines: SPEC 3's closed form, with `w` and the tangency flag added.
@@ -693,11 +722,32 @@ fn polish(
     cs: (f64, f64),
     w: V2,
 ) -> Option<(ContactPose, f64)> {
+    polish_within(contacts, locs, (theta, cs, w), None)
+}
+
+/// [`polish`] from `(theta, (cos, sin), w)`, which with `gap` first drops
+/// a start that Newton's method cannot carry to a pose the caller keeps
+/// (`newton_reach`), from the residuals and Jacobian it starts with.
+fn polish_within(
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    (theta, cs, w): (f64, (f64, f64), V2),
+    gap: Option<&Gap<'_>>,
+) -> Option<(ContactPose, f64)> {
     let mut x = Vector3::new(theta, w.x, w.y);
     let (mut f, mut j) = system(contacts, locs, cs, v2(x[1], x[2]));
     let mut best = (x, cs, f.amax());
     if best.2.is_nan() || best.2 > START_RESIDUAL {
         return None;
+    }
+    if let Some(gap) = gap {
+        let centres = contacts.map(|contact| match contact {
+            Contact::Line(_) => None,
+            Contact::Circle(circle) => Some(circle.centre),
+        });
+        if newton_reach::beyond_reach(&centres, locs, cs, w, (&f, &j), gap) {
+            return None;
+        }
     }
     let mut best_system = (f, j);
     let mut stale = 0;
@@ -785,10 +835,16 @@ fn polished(
 /// angle yields at most three starting points, most converging together).
 const FOUND_CAP: usize = 24;
 
-/// Polished solutions, merged by SPEC 8.4's rules as they arrive.
-struct Found {
-    poses: [ContactPose; FOUND_CAP],
-    res: [f64; FOUND_CAP],
+/// Polished solutions, merged by SPEC 8.4's rules as they arrive, at most
+/// `CAP` distinct ones. Two lines and a circle take [`MAX_CONTACT_POSES`]:
+/// no setup has more isolated poses than a list of them holds, so the
+/// solutions of two lines, which were copied into such a list before the
+/// setup search looked at them, fit, and a smaller buffer is cheaper to
+/// set up (the general elimination's may hold near-duplicates before they
+/// merge).
+struct Found<const CAP: usize = FOUND_CAP> {
+    poses: [ContactPose; CAP],
+    res: [f64; CAP],
     n: usize,
 }
 
@@ -801,11 +857,11 @@ fn same_pose(pose: &ContactPose, other: &ContactPose) -> bool {
         || (pose.tangential && other.tangential && dt <= BORDERLINE && dw <= BORDERLINE)
 }
 
-impl Found {
-    fn new() -> Found {
+impl<const CAP: usize> Found<CAP> {
+    fn new() -> Found<CAP> {
         Found {
-            poses: [NO_POSE; FOUND_CAP],
-            res: [0.0; FOUND_CAP],
+            poses: [NO_POSE; CAP],
+            res: [0.0; CAP],
             n: 0,
         }
     }
@@ -824,16 +880,17 @@ impl Found {
                 return;
             }
         }
-        debug_assert!(self.n < FOUND_CAP, "too many distinct solutions");
-        if self.n < FOUND_CAP {
+        debug_assert!(self.n < CAP, "too many distinct solutions");
+        if self.n < CAP {
             self.poses[self.n] = pose;
             self.res[self.n] = res;
             self.n += 1;
         }
     }
 
-    /// Sorted by `theta`, then `w`, for a deterministic order.
-    fn finish(mut self) -> ContactPoses {
+    /// The solutions sorted by `theta`, then `w`, for a deterministic
+    /// order.
+    fn sorted(&mut self) -> &[ContactPose] {
         let v = &mut self.poses[..self.n];
         v.sort_by(|a, b| {
             a.pose
@@ -842,13 +899,20 @@ impl Found {
                 .then(a.w.x.total_cmp(&b.w.x))
                 .then(a.w.y.total_cmp(&b.w.y))
         });
+        v
+    }
+
+    /// [`Self::sorted`], as a list of poses.
+    fn finish(mut self) -> ContactPoses {
         let mut out = ContactPoses::new();
-        for p in v.iter() {
+        for p in self.sorted() {
             out.push(*p);
         }
         out
     }
 }
 
+#[cfg(test)]
+mod reach_tests;
 #[cfg(test)]
 mod tests;

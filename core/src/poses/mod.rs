@@ -12,7 +12,7 @@ pub(crate) mod pose;
 
 use crate::geometry::V2;
 use crate::segments::Feature;
-use contact_pose::{solve_contact_poses_at_angles, Circle, Contact};
+use contact_pose::{visit_contact_poses_at_angles, Circle, Contact, Gap};
 use pose::{solve_poses_at_angles, Line, Pose};
 
 /// What a locator centre touching a segment on `feature` lies on (part
@@ -65,12 +65,27 @@ impl TripleContacts {
     /// too): three lines ask `keeps(theta)` of each root, the elimination
     /// asks `meets(lo, hi)` of stretches of angles. Returns the number of
     /// pose solutions computed.
-    #[inline]
+    #[cfg(test)]
     pub(crate) fn solve_at_angles(
         &self,
         locs: &[V2; 3],
         keeps: impl Fn(f64) -> bool,
         meets: &dyn Fn(f64, f64) -> bool,
+        visit: impl FnMut(&Pose, bool),
+    ) -> usize {
+        self.solve_kept_at_angles(locs, keeps, meets, &|_, _| 0.0, visit)
+    }
+
+    /// [`Self::solve_at_angles`] for a caller that keeps a pose only with
+    /// its contacts where `gap` says (see [`Gap`]): poses it would reject
+    /// may be skipped, the others are the same to the bit.
+    #[inline]
+    pub(crate) fn solve_kept_at_angles(
+        &self,
+        locs: &[V2; 3],
+        keeps: impl Fn(f64) -> bool,
+        meets: &dyn Fn(f64, f64) -> bool,
+        gap: &Gap<'_>,
         mut visit: impl FnMut(&Pose, bool),
     ) -> usize {
         match self {
@@ -81,7 +96,7 @@ impl TripleContacts {
                 }
                 count
             }
-            TripleContacts::Curved(contacts) => solve_curved(contacts, locs, meets, visit),
+            TripleContacts::Curved(contacts) => solve_curved(contacts, locs, meets, gap, visit),
         }
     }
 }
@@ -93,11 +108,10 @@ fn solve_curved(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
     meets: &dyn Fn(f64, f64) -> bool,
+    gap: &Gap<'_>,
     mut visit: impl FnMut(&Pose, bool),
 ) -> usize {
-    let poses = solve_contact_poses_at_angles(contacts, locs, meets);
-    for found in poses.iter() {
+    visit_contact_poses_at_angles(contacts, locs, meets, Some(gap), |found| {
         visit(&found.pose, found.tangential);
-    }
-    poses.len()
+    })
 }

@@ -123,6 +123,40 @@ impl Segment {
         (s - self.s0).min(self.s1 - s) - EPS
     }
 
+    /// A lower bound on the distance from the part-frame point `p` to every
+    /// point whose contact parameter lies strictly inside (an
+    /// [`Self::inner_margin`] above 0), 0 when `p` may be one: how far a
+    /// contact at `p` is from being kept, which lets the pose solver drop a
+    /// start that cannot get there. On a line the kept points form a slab
+    /// across it, `-inner_margin` away. On an arc the parameter depends
+    /// only on the direction from the centre, so they form a wedge from
+    /// it, at least `d sin(alpha)` away, `d` the distance from the centre
+    /// and `alpha` (at most a quarter turn) the angle from the wedge's
+    /// directions the shorter way round: the parameter lies in a window of
+    /// one circumference that holds `[s0, s1]`, so the other way round is
+    /// the rest of the circumference.
+    pub fn distance_outside(&self, p: V2) -> f64 {
+        let s = self.param_of(p);
+        let outside = -self.inner_margin(s);
+        if outside.is_nan() || outside <= 0.0 {
+            return 0.0;
+        }
+        match &self.feature {
+            Feature::Line(_) => outside,
+            Feature::Arc(a) => {
+                let (lo, hi) = (self.s0 + EPS, self.s1 - EPS);
+                let period = std::f64::consts::TAU * a.radius;
+                let around = if s < lo {
+                    s + period - hi
+                } else {
+                    lo + period - s
+                };
+                let alpha = (outside.min(around) / a.radius).min(std::f64::consts::FRAC_PI_2);
+                (p - a.center).norm() * alpha.sin()
+            }
+        }
+    }
+
     /// First end (parameter `s0`); with [`Self::end`] it bounds the
     /// distances that prune locator positions.
     pub fn start(&self) -> V2 {
@@ -165,5 +199,65 @@ pub fn arc_inward_normal(center: V2, rho: f64, convex: bool, q: V2) -> V2 {
         (center - q) / rho
     } else {
         (q - center) / rho
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::v2;
+    use crate::test_rng::Xorshift;
+
+    fn random_segment(rng: &mut Xorshift) -> Segment {
+        let mut r = |k: f64| k * rng.signed_unit();
+        let feature = if r(1.0) > 0.0 {
+            let a = 4.0 * r(1.0);
+            let u = v2(a.cos(), a.sin());
+            Feature::Line(LineFeature::new(v2(r(5.0), r(5.0)), u, v2(u.y, -u.x)))
+        } else {
+            Feature::Arc(GrownArc {
+                center: v2(r(5.0), r(5.0)),
+                radius: 0.1 + r(3.0).abs(),
+                start_angle: 4.0 * r(1.0),
+                sweep: 6.0 * r(1.0),
+            })
+        };
+        let length = match &feature {
+            Feature::Line(_) => 5.0,
+            Feature::Arc(a) => a.length(),
+        };
+        let (x, y) = (r(1.0).abs() * length, r(1.0).abs() * length);
+        Segment {
+            edge: 0,
+            s0: x.min(y),
+            s1: x.max(y),
+            feature,
+        }
+    }
+
+    /// No point a contact is kept at (inner margin above 0) lies closer to
+    /// a point than `distance_outside` says: random segments, points and
+    /// points near them (most within twice the bound).
+    #[test]
+    fn no_kept_point_is_closer_than_distance_outside() {
+        let mut rng = Xorshift::new(0xbb67_ae85_84ca_a73b);
+        let mut tight = 0;
+        for _ in 0..3000 {
+            let segment = random_segment(&mut rng);
+            let p = v2(8.0 * rng.signed_unit(), 8.0 * rng.signed_unit());
+            let bound = segment.distance_outside(p);
+            assert!(bound >= 0.0);
+            for _ in 0..200 {
+                let reach = 2.0 * bound.max(0.01) * rng.signed_unit().abs();
+                let a = 4.0 * rng.signed_unit();
+                let q = p + v2(a.cos(), a.sin()) * reach;
+                if segment.inner_margin(segment.param_of(q)) > 0.0 {
+                    let d = (q - p).norm();
+                    assert!(d >= bound - 1e-12, "{segment:?} {p:?} {q:?} {bound} {d}");
+                    tight += usize::from(bound > 0.0 && d < 1.5 * bound);
+                }
+            }
+        }
+        assert!(tight > 100, "{tight}");
     }
 }

@@ -300,9 +300,11 @@ fn two_lines_keep_what_the_elimination_keeps() {
             _ => slot_case(&mut state),
         };
         let two = two_lines_of(&contacts, &locs).expect("two lines and a circle");
-        let Some(mine) = two_line_poses(&two, &contacts, &locs, &|_, _| true) else {
+        let mut found = Found::new();
+        if !two_line_poses(&two, &contacts, &locs, (&|_, _| true, None), &mut found) {
             continue; // nearly parallel: the elimination's
-        };
+        }
+        let mine = found.finish();
         let general = eliminated_poses(&contacts, &locs, &|_, _| true);
         for pose in general.iter() {
             assert!(
