@@ -60,9 +60,17 @@ fn quad_rows(quad: &Quad, grid_step: i64, mut row: impl FnMut(i64, f64, f64)) {
     if (y as f64) > y_max {
         return;
     }
-    let p = &quad.pts;
-    let pairs =
-        [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)].map(|(i, j)| StripPair::of(p[i], p[j]));
+    let [p0, p1, p2, p3] = quad.pts;
+    // Spelled out, not mapped from index pairs: the map was a call per
+    // quadrilateral, a fifth of the cost of a one-row one.
+    let pairs = [
+        StripPair::of(p0, p1),
+        StripPair::of(p0, p2),
+        StripPair::of(p0, p3),
+        StripPair::of(p1, p2),
+        StripPair::of(p1, p3),
+        StripPair::of(p2, p3),
+    ];
     while (y as f64) <= y_max {
         let (s_lo, s_hi) = (y as f64 - e, y as f64 + e);
         let mut lo = f64::INFINITY;
@@ -124,6 +132,7 @@ struct StripPair {
 }
 
 impl StripPair {
+    #[inline(always)]
     fn of(a: V2, b: V2) -> StripPair {
         let dy = b.y - a.y;
         StripPair {
