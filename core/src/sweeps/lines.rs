@@ -274,6 +274,25 @@ pub(super) fn refuses(a: &LinePiece, b: &LinePiece) -> bool {
 fn turning_region(
     sweep: &LineSweep,
     angles: &AngleSet,
+    motion: ([f64; 2], (f64, f64)),
+    ends_sc: &[[(f64, f64); 2]; ANGLE_SET_CAPACITY],
+    out: &mut Vec<Quad>,
+) -> bool {
+    // A line third (the polygons' only kind, most regions) poses two
+    // points: buffers of two, not of an arc's chord points, to fill and
+    // turn over for every piece.
+    if sweep.c.point_count() == 2 {
+        turning_pieces::<2>(sweep, angles, motion, ends_sc, out)
+    } else {
+        turning_pieces::<{ MAX_CHORDS + 1 }>(sweep, angles, motion, ends_sc, out)
+    }
+}
+
+/// [`turning_region`] with the third segment's points posed into buffers
+/// of `N` (at least its point count).
+fn turning_pieces<const N: usize>(
+    sweep: &LineSweep,
+    angles: &AngleSet,
     (sa, phi_a_sc): ([f64; 2], (f64, f64)),
     ends_sc: &[[(f64, f64); 2]; ANGLE_SET_CAPACITY],
     out: &mut Vec<Quad>,
@@ -292,6 +311,7 @@ fn turning_region(
     let step = (8.0 * target / k2).sqrt();
     let (sin_p, cos_p) = phi_a_sc;
     let mut pieces = 0;
+    let (mut first, mut second) = ([V2::zeros(); N], [V2::zeros(); N]);
     for (&[t0, t1], &[sc0, sc1]) in angles.intervals().iter().zip(ends_sc) {
         let n = ceil((t1 - t0) / step).max(1.0) as usize;
         pieces += n;
@@ -300,15 +320,14 @@ fn turning_region(
         }
         let w = (t1 - t0) / n as f64;
         let margin = w * w / 8.0 * k2 + QUAD_SLACK;
-        let posed = |(sin, cos): (f64, f64), out: &mut [V2; MAX_CHORDS + 1]| {
+        let posed = |(sin, cos): (f64, f64), out: &mut [V2; N]| {
             // cos(theta - phi) = cos cos_p + sin sin_p.
             let p1 = a.point(sa[0] + sa[1] * (cos * cos_p + sin * sin_p));
             c.map_into(|p| rot(cos, sin, p - p1), out);
         };
         let mut sc = sc0;
-        let mut prev = [V2::zeros(); MAX_CHORDS + 1];
-        let mut next = prev;
-        posed(sc, &mut prev);
+        let (mut prev, mut next) = (&mut first, &mut second);
+        posed(sc, prev);
         // Piece ends by turning the previous one: the rounding this adds,
         // n * 1e-16, is far below QUAD_SLACK.
         let step_sc = if n > 1 { w.sin_cos() } else { (0.0, 1.0) };
@@ -321,8 +340,8 @@ fn turning_region(
                     sc.1 * step_sc.1 - sc.0 * step_sc.0,
                 )
             };
-            posed(sc, &mut next);
-            c.push_quads(&prev, &next, margin, out);
+            posed(sc, next);
+            c.push_quads(prev, next, margin, out);
             std::mem::swap(&mut prev, &mut next);
         }
     }

@@ -210,13 +210,13 @@ impl<'s> LocatorSweep<'s> {
         scratch: &mut SweepScratch,
         mut visit: impl FnMut([i64; 2], Option<&AngleSet>),
     ) -> bool {
-        let SweepScratch { quads, spans } = scratch;
+        let SweepScratch { quads, runs } = scratch;
         quads.clear();
         if !self.region(pt, quads) {
             return false;
         }
         let angles = pt.angles();
-        scan_quads(quads, grid_step, spans, |l3| visit(l3, Some(angles)));
+        scan_quads(quads, grid_step, runs, |l3| visit(l3, Some(angles)));
         true
     }
 

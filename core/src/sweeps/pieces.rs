@@ -107,15 +107,14 @@ impl ThirdPiece {
         }
     }
 
+    /// How many chord points the segment has: 2 for a line.
+    pub(super) fn point_count(&self) -> usize {
+        self.chords + 1
+    }
+
     /// Pushes the quadrilaterals of every chord between two placements of
-    /// the chord points.
-    pub(super) fn push_quads(
-        &self,
-        from: &[V2; MAX_CHORDS + 1],
-        to: &[V2; MAX_CHORDS + 1],
-        margin: f64,
-        out: &mut Vec<Quad>,
-    ) {
+    /// the chord points (slices of at least [`ThirdPiece::point_count`]).
+    pub(super) fn push_quads(&self, from: &[V2], to: &[V2], margin: f64, out: &mut Vec<Quad>) {
         for j in 0..self.chords {
             out.push(Quad {
                 pts: [from[j], from[j + 1], to[j], to[j + 1]],
@@ -124,9 +123,10 @@ impl ThirdPiece {
         }
     }
 
-    /// The chord points under `map`, into `out`.
+    /// The chord points under `map`, into `out` (at least
+    /// [`ThirdPiece::point_count`] long).
     #[inline]
-    pub(super) fn map_into(&self, map: impl Fn(V2) -> V2, out: &mut [V2; MAX_CHORDS + 1]) {
+    pub(super) fn map_into(&self, map: impl Fn(V2) -> V2, out: &mut [V2]) {
         for (o, p) in out.iter_mut().zip(&self.pts).take(self.chords + 1) {
             *o = map(*p);
         }

@@ -2,7 +2,7 @@
 //! from its `L2`, for every kind of pivot, and the row scan lists every
 //! lattice point of a region.
 
-use super::scan::{quad_spans, Span};
+use super::scan::{quad_spans, run_points, scan_span_list, scan_spans, Span};
 use super::*;
 use crate::geometry::{cross, rot, v2};
 use crate::segments::{Feature, LineFeature};
@@ -282,6 +282,94 @@ proptest::proptest! {
                 !has_setup([&a, &b, &c], &locs(*l3)),
                 "L2 {l2:?} L3 {l3:?} dropped"
             );
+        }
+    }
+}
+
+/// A coordinate for the scan tests: on a lattice line, a hair off one
+/// (where rounding decides), or anywhere.
+fn scan_coordinate() -> impl proptest::strategy::Strategy<Value = f64> {
+    use proptest::prelude::*;
+    prop_oneof![
+        (-6i64..=6).prop_map(|k| k as f64),
+        ((-6i64..=6), -3i32..=3).prop_map(|(k, ulps)| {
+            let x = k as f64;
+            let step = if x == 0.0 {
+                1e-300
+            } else {
+                x.abs() * f64::EPSILON
+            };
+            x + f64::from(ulps) * step
+        }),
+        -6.5f64..6.5,
+    ]
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 4000,
+        failure_persistence: None,
+        ..Default::default()
+    })]
+
+    /// The scan by runs (empty spans dropped as they are made) lists the
+    /// same lattice points in the same order as the scan of every span:
+    /// corners and margins on, or an ulp off, lattice lines and steps.
+    #[test]
+    fn runs_scan_as_the_spans_did(
+        corners in proptest::collection::vec(
+            proptest::array::uniform4((scan_coordinate(), scan_coordinate())),
+            1..5,
+        ),
+        margins in proptest::collection::vec(
+            proptest::prop_oneof![
+                proptest::strategy::Just(0.0),
+                proptest::strategy::Just(0.25),
+                proptest::strategy::Just(0.5),
+                0.0f64..1.5,
+            ],
+            4,
+        ),
+        grid_step in 1i64..=3,
+    ) {
+        let quads: Vec<Quad> = corners
+            .iter()
+            .zip(&margins)
+            .map(|(pts, &margin)| Quad { pts: pts.map(|(x, y)| v2(x, y)), margin })
+            .collect();
+        let (mut by_spans, mut by_runs) = (Vec::new(), Vec::new());
+        scan_spans(&quads, grid_step, &mut Vec::new(), |p| by_spans.push(p));
+        scan_quads(&quads, grid_step, &mut Vec::new(), |p| by_runs.push(p));
+        proptest::prop_assert_eq!(by_runs, by_spans);
+    }
+}
+
+/// A span's run holds exactly the lattice points the span scan visits,
+/// at the places rounding decides: ends on a multiple of the step, an
+/// ulp either side, and quotients that round onto an integer.
+#[test]
+fn a_run_holds_the_points_its_span_scan_visits() {
+    let mut ends = vec![0.0, -0.0, f64::NAN, 1e-300, -1e-300];
+    for k in -40i64..=40 {
+        let x = k as f64;
+        let mut up = x;
+        let mut down = x;
+        for _ in 0..3 {
+            up = up.next_up();
+            down = down.next_down();
+            ends.extend([up, down]);
+        }
+        ends.extend([x, x + 0.5, x / 3.0, x * 0.1]);
+    }
+    for grid_step in 1..=3 {
+        for &lo in &ends {
+            for &hi in &ends {
+                let mut scanned = Vec::new();
+                let mut span = [Span { y: 0, lo, hi }];
+                scan_span_list(&mut span, grid_step, |p| scanned.push(p[0]));
+                let listed = run_points(lo, hi, grid_step);
+                assert_eq!(listed, scanned, "[{lo:e}, {hi:e}] step {grid_step}");
+            }
         }
     }
 }
