@@ -67,6 +67,12 @@ const REACH_SLACK: f64 = 1e-6;
 /// accurate enough to bound by).
 const MAX_CONDITION: f64 = 1e8;
 
+/// Locators and starts farther than this from the origin (lattice units)
+/// give no bound: the rounding argument of the module doc assumes
+/// coordinates of at most about 1e4, so bigger ones are polished as before
+/// rather than trusted to `REACH_SLACK`.
+const MAX_COORDINATE: f64 = 1e4;
+
 /// Which contacts a pose must keep where: `gap(k, p)` is a lower bound on
 /// the distance from the part-frame point `p` to every point at which
 /// contact `k` is kept (0 when `p` may be one). The solver drops starts
@@ -108,6 +114,10 @@ fn newton_radius(
     w: V2,
     (f, j): (&Vector3<f64>, &Matrix3<f64>),
 ) -> Option<f64> {
+    let coordinates = locs.iter().map(|l| l.amax()).fold(w.amax(), f64::max);
+    if coordinates.is_nan() || coordinates > MAX_COORDINATE {
+        return None;
+    }
     let inverse = j.try_inverse()?;
     let beta = inverse.norm() * (1.0 + 1e-6);
     let condition = beta * j.norm();
@@ -135,4 +145,29 @@ fn newton_radius(
         };
     }
     (beta * lip * eta <= 0.25).then_some(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::v2;
+
+    fn radius(far: f64) -> Option<f64> {
+        let locs = [v2(far, 0.0), v2(0.0, 1.0), v2(1.0, 0.0)];
+        let f = Vector3::new(1e-9, 0.0, 0.0);
+        newton_radius(
+            &[None; 3],
+            &locs,
+            (1.0, 0.0),
+            v2(0.0, 0.0),
+            (&f, &Matrix3::identity()),
+        )
+    }
+
+    #[test]
+    fn coordinates_beyond_the_rounding_argument_give_no_bound() {
+        assert!(radius(10.0).is_some());
+        assert!(radius(2.0 * MAX_COORDINATE).is_none());
+        assert!(radius(f64::NAN).is_none());
+    }
 }
