@@ -97,18 +97,16 @@ impl Taylor5 {
 
     /// Whether the subtree below this node is sure to push nothing, and an
     /// upper bound on how many intervals it would have examined: when
-    /// [`Taylor5::monotone_silent`] or [`Taylor5::empty_silent`] says so
-    /// (the smaller count when both do).
+    /// [`Taylor5::monotone_silent`] or else [`Taylor5::empty_silent`] says
+    /// so (the second test only when the first fails: it rarely gives a
+    /// smaller count, and the count only matters against the budget).
     fn silent(&self, bounds: &Bounds, width: f64) -> Option<usize> {
-        let monotone = self
-            .monotone_silent(bounds)
-            .then(|| levels_until(width, |half| self.monotone_at(bounds, half)));
-        let empty = self
-            .empty_silent(bounds)
-            .then(|| levels_until(width, |half| self.empty_at(bounds, half)));
-        let levels = match (monotone, empty) {
-            (Some(m), Some(e)) => m.min(e),
-            (one, other) => one.or(other)?,
+        let levels = if self.monotone_silent(bounds) {
+            levels_until(width, |half| self.monotone_at(bounds, half))
+        } else if self.empty_silent(bounds) {
+            levels_until(width, |half| self.empty_at(bounds, half))
+        } else {
+            return None;
         };
         Some((2usize << levels.min(30)) - 2)
     }
