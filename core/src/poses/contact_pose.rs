@@ -534,8 +534,17 @@ impl Reduced {
         ok.then_some(rem_tau(theta0))
     }
 
+    /// Both rows at one angle, written out rather than mapped over the
+    /// array: the sampling loop calls it sixteen times a solution, and the
+    /// map's closure was left out of line in some builds (about 1% of the
+    /// instructions of a motor mount sheet).
+    #[inline]
     fn rows_at(&self, cos: f64, sin: f64) -> [(V2, f64, f64); 2] {
-        self.rows.map(|r| r.eval(cos, sin, self.rho0))
+        let [first, second] = &self.rows;
+        [
+            first.eval(cos, sin, self.rho0),
+            second.eval(cos, sin, self.rho0),
+        ]
     }
 
     /// `F`, `D`, `N` sampled at 16 angles, `F` and `D` turned into

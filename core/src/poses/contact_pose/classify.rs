@@ -106,14 +106,34 @@ pub(super) enum Class {
     Empty,
     /// `f' != 0` throughout; carries `f(lo)` and `f(hi)` as far as the
     /// Taylor bound tells them (`None` when their sign is uncertain).
-    Monotone(Option<(f64, f64)>),
+    Monotone(Option<Ends>),
     /// `f'' != 0` throughout.
     Convex,
     /// `|f|` is within rounding of zero throughout: roots there cannot be
     /// told apart, so the interval is one candidate, not split further.
     Flat,
-    /// Nothing yet: split.
-    Split,
+    /// Nothing yet: split. Carries the midpoint's values when they were
+    /// computed (not for a node the fifth-order bounds decided).
+    Split(Option<Mid>),
+}
+
+/// Taylor estimates of `f` at the ends of a monotone interval.
+pub(super) struct Ends {
+    pub flo: f64,
+    pub fhi: f64,
+    /// Whether `f` computed at `lo` and at `hi` (as the root polishers
+    /// compute it) is sure to be nonzero with the signs of `flo` and
+    /// `fhi`: then those evaluations can be skipped.
+    pub computed_signs: bool,
+}
+
+/// The angle at which [`classify`] evaluated an interval (its midpoint),
+/// as cosine and sine, and `f`, `f'`, `f''` there: `Taylor5` starts from
+/// the same numbers instead of computing them again.
+pub(super) struct Mid {
+    pub cos: f64,
+    pub sin: f64,
+    pub f: [f64; 3],
 }
 
 /// The Taylor bounds of `root_search::roots`: `m3` bounds the third derivative, `tol`
@@ -132,6 +152,12 @@ pub(super) struct Bounds {
     pub tol: f64,
     pub noise1: f64,
     pub noise2: f64,
+    /// How far a Taylor estimate of `f` at an end of an interval (from the
+    /// values at its midpoint) can be from `f` computed at that end, beyond
+    /// the Taylor remainder: the evaluation errors at both angles, the
+    /// midpoint's rounding (it is within an ulp of `lo + h`, which moves
+    /// `f` by `|f'|` times that) and the rounding of the estimate.
+    pub end_err: f64,
 }
 
 impl Bounds {
@@ -145,6 +171,9 @@ impl Bounds {
             tol: tol + noise,
             noise1: 20.0 * noise + 64.0 * f64::EPSILON * poly.bound(1),
             noise2: 60.0 * noise + 64.0 * f64::EPSILON * poly.bound(2),
+            end_err: 128.0
+                * f64::EPSILON
+                * (poly.a[0].abs() + poly.bound(0) + poly.bound(1) + poly.bound(2)),
             eval_err: [
                 64.0 * f64::EPSILON * (poly.a[0].abs() + poly.bound(0)),
                 64.0 * f64::EPSILON * poly.bound(1),
@@ -171,14 +200,27 @@ pub(super) fn classify(poly: &Trig, bounds: &Bounds, start: usize, lo: f64, hi: 
     } else if f1.abs() - h * f2.abs() - 0.5 * bounds.m3 * h2 > bounds.noise1 {
         // Most monotone intervals hold no root, which the Taylor values at
         // the ends show without evaluating there.
-        let err = bounds.m3 * h2 * h / 6.0 + bounds.noise;
+        let remainder = bounds.m3 * h2 * h / 6.0;
+        let err = remainder + bounds.noise;
         let (flo, fhi) = (f0 - h * f1 + 0.5 * h2 * f2, f0 + h * f1 + 0.5 * h2 * f2);
         let sure = flo.abs() > err && fhi.abs() > err;
-        Class::Monotone(sure.then_some((flo, fhi)))
+        // Far enough from zero, the values computed at the ends have the
+        // estimates' signs (the 1e-9 covers the rounding of this test).
+        let computed = (remainder + bounds.end_err) * (1.0 + 1e-9);
+        let computed_signs = flo.abs() > computed && fhi.abs() > computed;
+        Class::Monotone(sure.then_some(Ends {
+            flo,
+            fhi,
+            computed_signs,
+        }))
     } else if f2.abs() - bounds.m3 * h > bounds.noise2 {
         Class::Convex
     } else {
-        Class::Split
+        Class::Split(Some(Mid {
+            cos: c,
+            sin: s,
+            f: [f0, f1, f2],
+        }))
     }
 }
 
@@ -200,6 +242,60 @@ mod tests {
             let (s, c) = START_MID[i].sin_cos();
             assert!((START_COS[i] - c).abs() <= 0.5 * f64::EPSILON, "{i}");
             assert!((START_SIN[i] - s).abs() <= 0.5 * f64::EPSILON, "{i}");
+        }
+    }
+
+    /// An interval of `depth` halvings of start interval `start`, the
+    /// `index`-th (modulo their number), built as the search builds it.
+    fn interval(start: usize, depth: u32, index: u64) -> (f64, f64) {
+        let (mut lo, mut hi) = (start as f64 * STEP, (start + 1) as f64 * STEP);
+        for level in (0..depth).rev() {
+            let m = 0.5 * (lo + hi);
+            if (index >> level) & 1 == 1 {
+                lo = m;
+            } else {
+                hi = m;
+            }
+        }
+        (lo, hi)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+
+        /// What the root search skips evaluating: where `classify` claims
+        /// the computed values at a monotone interval's ends have the
+        /// estimates' signs, `f` computed there (as the polisher does) has
+        /// them. The constant term is set so that `f(lo)` is tiny, where
+        /// the claim is hardest.
+        #[test]
+        fn computed_signs_are_the_computed_values_signs(
+            a in proptest::array::uniform5(-1.0f64..1.0),
+            b in proptest::array::uniform5(-1.0f64..1.0),
+            scale_exp in -6.0f64..6.0,
+            start in 0usize..START,
+            depth in 0u32..22,
+            index in proptest::num::u64::ANY,
+            offset_exp in -55.0f64..-1.0,
+            at_hi in proptest::bool::ANY,
+            tol_exp in -16.0f64..-6.0,
+        ) {
+            let scale = 10f64.powf(scale_exp);
+            let mut poly = Trig {
+                a: a.map(|x| x * scale),
+                b: [0.0, b[1], b[2], b[3], b[4]].map(|x| x * scale),
+            };
+            let (lo, hi) = interval(start, depth, index);
+            let end = if at_hi { hi } else { lo };
+            poly.a[0] -= poly.value(end) + offset_exp.exp2() * scale * (if at_hi { 1.0 } else { -1.0 });
+            let bounds = Bounds::new(&poly, poly.bound(3), scale * 10f64.powf(tol_exp), 0.0);
+            if let Class::Monotone(Some(ends)) = classify(&poly, &bounds, start, lo, hi) {
+                if ends.computed_signs {
+                    let (vlo, vhi) = (poly.value(lo), poly.value(hi));
+                    proptest::prop_assert!(vlo != 0.0 && (vlo < 0.0) == (ends.flo < 0.0));
+                    proptest::prop_assert!(vhi != 0.0 && (vhi < 0.0) == (ends.fhi < 0.0));
+                }
+            }
         }
     }
 

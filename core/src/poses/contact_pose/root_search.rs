@@ -6,7 +6,7 @@
 //! budget and its polishers read on their own; the interval tests are in
 //! `classify` and the fifth-order proofs in `taylor5`.
 
-use super::classify::{classify, Bounds, Class, LEAF, START, STEP};
+use super::classify::{classify, Bounds, Class, Ends, Mid, LEAF, START, STEP};
 use super::taylor5::{Below, Taylor5};
 use super::trig::{bracketed_root, Angles, Trig, Within};
 
@@ -30,6 +30,20 @@ fn sign_change_root(poly: &Trig, (a, fa): (f64, f64), (b, fb): (f64, f64), out: 
             (v, d)
         };
         out.push(bracketed_root(g, a, b, fa));
+    }
+}
+
+/// [`monotone_root`] on an interval whose ends' computed values are known
+/// to have the signs of `ends`' estimates ([`Ends::computed_signs`]):
+/// neither is zero, so the root is the bracketed sign change, found
+/// without evaluating the ends (the polisher only reads the sign at `lo`).
+fn estimated_root(poly: &Trig, ends: &Ends, lo: f64, hi: f64, out: &mut Angles) {
+    if (ends.flo < 0.0) != (ends.fhi < 0.0) {
+        let g = |t: f64| {
+            let (v, d, _) = poly.eval3(t);
+            (v, d)
+        };
+        out.push(bracketed_root(g, lo, hi, ends.flo));
     }
 }
 
@@ -143,20 +157,37 @@ pub(super) fn roots(poly: &Trig, tol: f64, noise: f64, within: &Within, out: &mu
 /// that is zero to within `tol` almost everywhere.
 const BUDGET: usize = 20_000;
 
-/// Intervals a call classifies before [`search`] starts proving (with
-/// `prove`). Most calls stop well before: a proof costs about three
-/// classifications whether it succeeds or not, and pays only in the long
-/// calls of a root cluster (on the deck panel, the 12% of calls that pass
-/// 100 intervals make 80% of its interval tests). Of 15, 30, 50, 100 and
-/// 300, 50 ran the fewest instructions on the deck, fury and motor panels
-/// (all within 0.5% of each other; proving from the start cost more).
-const PROVE_AFTER: usize = 50;
+/// Intervals a call classifies before [`search`] proves below every
+/// `Split` node (with [`Taylor5`]). Before, it proves only below nodes
+/// whose second-order Taylor estimate at the midpoint misses zero
+/// ([`worth_proving`]): those are mostly proved silent, while a proof
+/// below a node that holds a root fails and costs about as much as the
+/// classifications it could save; in the long calls of a root cluster,
+/// proofs pay everywhere. Callgrind, deck / motor mount sheets: proving
+/// below every node after 50 intervals (before) 4,493 / 108.9 M
+/// instructions; predicted nodes from the start and every node after 50,
+/// 300 or 1,000 intervals, or never: 4,475 / 109.0, 4,475 / 108.9,
+/// 4,468 / 108.9, 4,469 / 108.9 M.
+const PROVE_AFTER: usize = 1_000;
+
+/// Whether to prove what lies below a node `classify` found `Split`
+/// (`mid` its midpoint's values, `width` its width), `classified`
+/// intervals into a call that proves after `prove_after` (never when it
+/// is `usize::MAX`: the plain search).
+fn worth_proving(mid: &Mid, width: f64, classified: usize, prove_after: usize) -> bool {
+    if prove_after == usize::MAX {
+        return false;
+    }
+    let h = 0.5 * width;
+    let [f0, f1, f2] = mid.f.map(f64::abs);
+    classified > prove_after || f0 > h * f1 + 0.5 * h * h * f2
+}
 
 /// The subdivision of [`roots`]; the number of intervals classified.
 ///
-/// With `prove`, once the call has classified [`PROVE_AFTER`] intervals,
-/// what the fifth-order bounds of [`Taylor5`] decide below a `Split` node
-/// is not classified: see [`search_from`].
+/// With `prove`, what the fifth-order bounds of [`Taylor5`] decide below
+/// a `Split` node is not classified (below the nodes [`worth_proving`]
+/// picks): see [`search_from`].
 fn search(
     poly: &Trig,
     b: &Bounds,
@@ -168,8 +199,9 @@ fn search(
     search_from(poly, b, within, out, prove_after)
 }
 
-/// [`search`], proving once more than `prove_after` intervals have been
-/// classified: a subtree proved silent is dropped, and nodes proved `Split`
+/// [`search`], proving below the nodes [`worth_proving`] picks (all once
+/// more than `prove_after` intervals have been classified; none when it
+/// is `usize::MAX`): a subtree proved silent is dropped, and nodes proved `Split`
 /// are split unexamined (still counted against the budget). Each proof is
 /// about its own subtree only, so whenever proving starts the output is
 /// the plain search's, except that a dropped subtree's intervals no longer
@@ -198,21 +230,26 @@ fn search_from(
             let (lo, hi, known) = stack[n];
             budget = budget.saturating_sub(1);
             let class = if known > 0 {
-                Class::Split
+                Class::Split(None)
             } else {
                 classified += 1;
                 classify(poly, b, i, lo, hi)
             };
             match class {
                 Class::Empty => {}
-                Class::Monotone(Some((flo, fhi))) if (flo < 0.0) == (fhi < 0.0) => {}
+                Class::Monotone(Some(ends)) if (ends.flo < 0.0) == (ends.fhi < 0.0) => {}
+                Class::Monotone(Some(ends)) if ends.computed_signs => {
+                    estimated_root(poly, &ends, lo, hi, out);
+                }
                 Class::Monotone(_) => monotone_root(poly, lo, hi, out),
                 Class::Convex => convex_roots(poly, b.tol, lo, hi, out),
-                Class::Split if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
+                Class::Split(mid) if hi - lo > LEAF && n + 2 <= stack.len() && budget > 0 => {
                     let next = if known > 0 {
                         known - 1
-                    } else if classified > prove_after {
-                        match Taylor5::new(poly, b, i, lo, hi).below(b, hi - lo) {
+                    } else if let Some(mid) =
+                        mid.filter(|mid| worth_proving(mid, hi - lo, classified, prove_after))
+                    {
+                        match Taylor5::new(poly, b, &mid, hi - lo).below(b, hi - lo) {
                             Below::Silent(nodes) => {
                                 reserve += nodes;
                                 if BUDGET - budget + reserve >= BUDGET {
@@ -237,7 +274,7 @@ fn search_from(
                         n += 1;
                     }
                 }
-                Class::Split | Class::Flat => {
+                Class::Split(_) | Class::Flat => {
                     out.overflow |= budget == 0;
                     Run::add(&mut run, lo, hi, poly, out);
                 }
