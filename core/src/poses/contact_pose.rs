@@ -308,22 +308,39 @@ pub(crate) fn visit_contact_poses_at_angles(
             return sorted.len();
         }
     }
-    let poses = eliminated_poses(contacts, locs, within);
-    poses.iter().for_each(visit);
-    poses.len()
+    let mut found = Found::new();
+    if !eliminated_into(contacts, locs, within, &mut found) {
+        return 0;
+    }
+    let sorted = found.sorted();
+    sorted.iter().for_each(visit);
+    sorted.len()
 }
 
-/// The general elimination, for any triple with a circle (valid input).
+/// The general elimination, for any triple with a circle (valid input),
+/// into `found` (empty; the caller's, so that its solutions are visited
+/// where they lie rather than copied into a list first). `false` when it
+/// gives no pose (continua, a degenerate reduction); `found` may then hold
+/// candidates that must be ignored.
+fn eliminated_into(
+    contacts: &[Contact; 3],
+    locs: &[V2; 3],
+    within: &dyn Fn(f64, f64) -> bool,
+    found: &mut Found,
+) -> bool {
+    Reduced::new(contacts, locs).is_some_and(|red| red.candidates(contacts, locs, within, found))
+}
+
+/// [`eliminated_into`] as a list: what the closed forms' tests compare
+/// with.
+#[cfg(test)]
 fn eliminated_poses(
     contacts: &[Contact; 3],
     locs: &[V2; 3],
     within: &dyn Fn(f64, f64) -> bool,
 ) -> ContactPoses {
-    let Some(red) = Reduced::new(contacts, locs) else {
-        return ContactPoses::new();
-    };
     let mut found = Found::new();
-    if !red.candidates(contacts, locs, within, &mut found) {
+    if !eliminated_into(contacts, locs, within, &mut found) {
         return ContactPoses::new();
     }
     found.finish()
@@ -912,6 +929,7 @@ impl<const CAP: usize> Found<CAP> {
     }
 
     /// [`Self::sorted`], as a list of poses.
+    #[cfg(test)]
     fn finish(mut self) -> ContactPoses {
         let mut out = ContactPoses::new();
         for p in self.sorted() {
