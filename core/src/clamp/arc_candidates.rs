@@ -57,16 +57,15 @@ impl ClampSearch<'_> {
         if cap.is_some_and(|(mid, cos)| ctx.cone.excludes_cap(mid, cos, reach)) {
             return;
         }
-        let posed = piece.zip(middle);
-        let threshold = posed.map(|(p, m)| m.miss_threshold(p, &self.window));
+        // The piece, its posed middle and the middle's miss threshold.
+        let posed = piece
+            .zip(middle)
+            .map(|(p, m)| (p, m, m.miss_threshold(p, &self.window)));
         for k in 0..4u8 {
             if ctx.only_rotation.is_some_and(|ok| ok != k) {
                 continue;
             }
-            if posed
-                .zip(threshold)
-                .is_some_and(|((_, m), t)| m.misses(t, k, convex))
-            {
+            if posed.is_some_and(|(_, m, t)| m.misses(t, k, convex)) {
                 continue;
             }
             // Axis line `line`: e . q - y0 = line. Whether one crosses the
@@ -87,7 +86,7 @@ impl ClampSearch<'_> {
             // so the candidates are the same.
             let single = first.saturating_add(1) as f64 > across + rho;
             let lines = match posed {
-                Some((p, m)) if !single => {
+                Some((p, m, _)) if !single => {
                     m.piece(p, &pose)
                         .axis_lines(&self.window, k, convex, gc, rho)
                 }
