@@ -132,9 +132,10 @@ fn ratio(numerator: f64, denominator: f64) -> String {
 
 fn print_header() {
     println!(
-        "{:<40} {:>6} | {:>9} {:>10} {:>9} {:>8} | {:>9} {:>10} {:>9} {:>8} | {:>7} {:>7} {:>7} {:>7}",
+        "{:<40} {:>6} {:>7} | {:>9} {:>10} {:>9} {:>8} | {:>9} {:>10} {:>9} {:>8} | {:>7} {:>7} {:>7} {:>7}",
         "part",
         "edges",
+        "usable",
         "setups",
         "candidates",
         "ms",
@@ -149,19 +150,33 @@ fn print_header() {
         "cands"
     );
     println!(
-        "{:<40} {:>6} | {:^39} | {:^39} | {:^31}",
-        "", "(arcs)", "exact", "flattened", "ratios exact/flattened"
+        "{:<40} {:>6} {:>7} | {:^39} | {:^39} | {:^31}",
+        "", "(arcs)", "ex/fl", "exact", "flattened", "ratios exact/flattened"
     );
 }
 
-fn print_pair(id: &str, exact: &PreparedPart, exact_run: &TimedReading, flat_run: &TimedReading) {
+/// Prints one row. `usable` shows the usable segments (SPEC 2) of both
+/// readings: a chord shorter than the trim and the locator leaves no usable
+/// segment, so flattening can drop an arc from the problem altogether
+/// rather than approximate it, and the ratios compare two problems of
+/// different sizes (more combinations, and more segments for the clamp to
+/// try at every setup, exact).
+fn print_pair(
+    pair: [&PreparedPart; 2],
+    exact_run: &TimedReading,
+    flat_run: &TimedReading,
+    id: &str,
+) {
+    let [exact, flat] = pair;
     let (edges, arcs) = (exact.outline().edges().len(), arc_count(exact));
+    let usable = format!("{}/{}", exact.segments().len(), flat.segments().len());
     let (ec, fc) = (&exact_run.result.counts, &flat_run.result.counts);
     let us = |t: &TimedReading| t.wall as f64 / 1e3 / t.result.counts.setups.max(1) as f64;
     println!(
-        "{:<40} {:>6} | {:>9} {:>10} {:>9.2} {:>8} | {:>9} {:>10} {:>9.2} {:>8} | {:>7} {:>7} {:>7} {:>7}",
+        "{:<40} {:>6} {:>7} | {:>9} {:>10} {:>9.2} {:>8} | {:>9} {:>10} {:>9.2} {:>8} | {:>7} {:>7} {:>7} {:>7}",
         id,
         format!("{edges}({arcs})"),
+        usable,
         ec.setups,
         ec.candidates,
         exact_run.wall as f64 / 1e6,
@@ -192,7 +207,7 @@ pub fn run(pairs: &[FlattenPair], repeat: usize, top_k: usize) {
         };
         let e = time_top_k(exact, top_k, repeat);
         let f = time_top_k(flat, top_k, repeat);
-        print_pair(&p.exact.id, exact, &e, &f);
+        print_pair([exact, flat], &e, &f, &p.exact.id);
     }
 }
 

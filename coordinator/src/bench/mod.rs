@@ -45,8 +45,10 @@ pub struct PartsBenchArgs {
     /// exact arcs and flattened at the default chord tolerance (as
     /// `run --arcs flatten`), top-k mode only, with the ratios
     /// exact/flattened of time, time per setup kept, setups and
-    /// candidates. The real-files test set is the catalogue
-    /// examples/real/catalog.toml.
+    /// candidates. `usable` gives both readings' usable segments: chords
+    /// too short to hold a locator are not usable, so a flattened part can
+    /// lose its arcs altogether and be a smaller problem. The real-files
+    /// test set is the catalogue examples/real/catalog.toml.
     #[arg(long)]
     pub compare_flatten: bool,
     /// Print the README's speed table (counts, full-count and top-k
