@@ -43,7 +43,12 @@ impl LocatorWrenches {
     pub fn clamp_interval(&self, q0: V2, dq: V2, f: V2, lo: f64, hi: f64) -> Option<(f64, f64)> {
         // w(s) = w0 + s w1, both through -W^-1: lambda(s) = alpha + s beta.
         let alpha = self.lambda(&wrench(q0, f));
-        let beta = self.neg_inv * Vector3::new(0.0, 0.0, cross(dq, f));
+        // `-W^-1 (0, 0, dq x f)`: the last column times `dq x f`. The
+        // product's other terms are zeros (the entries are finite), which
+        // change at most the sign of a zero `b`, read below as a zero.
+        let tau = cross(dq, f);
+        let m = &self.neg_inv;
+        let beta = [m[(0, 2)] * tau, m[(1, 2)] * tau, m[(2, 2)] * tau];
         let (mut lo, mut hi) = (lo, hi);
         for i in 0..3 {
             let (a, b) = (alpha[i], beta[i]);
