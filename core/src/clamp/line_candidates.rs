@@ -4,6 +4,7 @@
 //! form-closure interval is exact; [`super::ClampSearch`] picks this or
 //! [`super::arc_candidates`] by the segment's feature, in one place.
 
+use super::axes::along;
 use super::{Accumulator, Candidate, ClampSearch, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
@@ -31,26 +32,18 @@ impl ClampSearch<'_> {
         let f = -pose.rotate(line.n);
         let q0 = pose.apply(line.origin);
         let dq = pose.rotate(line.u);
-        // The cosines that pass the angle test; the margins only for the
-        // candidates scored.
-        let mut cosines = [None; 4];
-        let mut any = false;
-        for (k, c) in (0..4u8).zip(cosines.iter_mut()) {
-            if ctx.only_rotation.is_none_or(|ok| ok == k) {
-                *c = self.angle_cos(k, f);
-                any |= c.is_some();
-            }
-        }
-        if !any {
+        // The rotations whose angle test passes, a bit each; the margins
+        // only for the candidates scored.
+        let passing = self.angle_passes(f, ctx.only_rotation);
+        if passing == 0 {
             return;
         }
+        let rotations = move || (0..4u8).filter(move |k| passing >> k & 1 != 0);
         // No axis line across the whole segment, none across its interval
         // (within it, see `axis_span`): the interval need not be solved.
-        let crossed = (0..4u8).zip(cosines).any(|(k, c)| {
-            c.is_some() && {
-                let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
-                ceil_i64(gmin) as f64 <= gmax
-            }
+        let crossed = rotations().any(|k| {
+            let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
+            ceil_i64(gmin) as f64 <= gmax
         });
         if !crossed {
             return;
@@ -58,10 +51,7 @@ impl ClampSearch<'_> {
         let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, s_lo, s_hi) else {
             return;
         };
-        for (k, cosine) in (0..4u8).zip(cosines) {
-            let Some(cosine) = cosine else {
-                continue;
-            };
+        for k in rotations() {
             let (g0, g1, gmin, gmax) = self.axis_span(k, q0, dq, lo, hi);
             let mut line = ceil_i64(gmin);
             while (line as f64) <= gmax {
@@ -83,13 +73,31 @@ impl ClampSearch<'_> {
                                 .base_margin
                                 .min(seg.inner_margin(s))
                                 .min(lam.min() - EPS)
-                                .min(self.angle_cos_margin(cosine)),
+                                .min(self.angle_cos_margin(along(k, f))),
                         };
                         self.offer(ctx, &cand, acc, scratch);
                     }
                 }
                 line += 1;
             }
+        }
+    }
+
+    /// The rotations `k` (bit `k`) whose push direction passes SPEC 4 (c)'s
+    /// angle test against the normal `f`, [`ClampSearch::angle_margin`]'s
+    /// test for the four at once: its cosines are `f`'s coordinates and
+    /// their negations. Only `only` if given (re-deriving one fixture).
+    #[inline(always)]
+    pub(super) fn angle_passes(&self, f: V2, only: Option<u8>) -> u8 {
+        let limit = self.setting.cos_max_angle - EPS;
+        let mut passing = 0;
+        for (k, c) in [f.x, f.y, -f.x, -f.y].into_iter().enumerate() {
+            passing |= u8::from(c > EPS && c >= limit) << k;
+        }
+        match only {
+            Some(k) if k < 4 => passing & 1 << k,
+            Some(_) => 0,
+            None => passing,
         }
     }
 
