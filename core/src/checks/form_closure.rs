@@ -43,7 +43,12 @@ impl LocatorWrenches {
     pub fn clamp_interval(&self, q0: V2, dq: V2, f: V2, lo: f64, hi: f64) -> Option<(f64, f64)> {
         // w(s) = w0 + s w1, both through -W^-1: lambda(s) = alpha + s beta.
         let alpha = self.lambda(&wrench(q0, f));
-        let beta = self.neg_inv * Vector3::new(0.0, 0.0, cross(dq, f));
+        // `-W^-1 (0, 0, dq x f)`: the last column times `dq x f`. The
+        // product's other terms are zeros (the entries are finite), which
+        // change at most the sign of a zero `b`, read below as a zero.
+        let tau = cross(dq, f);
+        let m = &self.neg_inv;
+        let beta = [m[(0, 2)] * tau, m[(1, 2)] * tau, m[(2, 2)] * tau];
         let (mut lo, mut hi) = (lo, hi);
         for i in 0..3 {
             let (a, b) = (alpha[i], beta[i]);
@@ -394,6 +399,72 @@ mod tests {
         }
         assert!(excluded * 2 > rejected, "{excluded} of {rejected}");
         assert!(kept_near > 1000, "{kept_near}");
+    }
+
+    /// [`LocatorWrenches::clamp_interval`] as first written, `beta`
+    /// through the whole product `-W^-1 (0, 0, dq x f)`: the reference
+    /// the last column's product must equal.
+    fn interval_by_whole_product(
+        lw: &LocatorWrenches,
+        q0: V2,
+        dq: V2,
+        f: V2,
+        lo: f64,
+        hi: f64,
+    ) -> Option<(f64, f64)> {
+        let alpha = lw.lambda(&wrench(q0, f));
+        let beta = lw.neg_inv * Vector3::new(0.0, 0.0, cross(dq, f));
+        let (mut lo, mut hi) = (lo, hi);
+        for i in 0..3 {
+            let (a, b) = (alpha[i], beta[i]);
+            if b > 0.0 {
+                lo = lo.max((EPS - a) / b);
+            } else if b < 0.0 {
+                hi = hi.min((EPS - a) / b);
+            } else if a <= EPS {
+                return None;
+            }
+        }
+        (lo < hi).then_some((lo, hi))
+    }
+
+    /// The interval is the whole product's bit for bit: random locators
+    /// (some with W nearly singular), lines at random, along the force
+    /// (`dq x f` zero or tiny) and on the axes (zero coordinates).
+    #[test]
+    fn interval_equals_the_whole_products() {
+        let mut rng = crate::test_rng::Xorshift::new(0x510e_527f_ade6_82d1);
+        let (mut some, mut none) = (0u64, 0u64);
+        for case in 0..50_000 {
+            let mut r = || rng.signed_unit();
+            let angles = [r(), r(), r()];
+            let points = [r(), r(), r(), r(), r(), r()];
+            let pinch = (case % 5 == 0).then_some(2.0 + 10.0 * r().abs());
+            let [q1, q2, q3, n1, n2, n3] = locators(angles, points, 50.0, pinch);
+            let Some(lw) = LocatorWrenches::new([wrench(q1, n1), wrench(q2, n2), wrench(q3, n3)])
+            else {
+                continue;
+            };
+            let f = match case % 3 {
+                0 => unit(r() * PI),
+                _ => [v2(1.0, 0.0), v2(0.0, -1.0), v2(-1.0, 0.0), v2(0.0, 1.0)][case % 4],
+            };
+            let dq = match case % 4 {
+                0 => f,
+                1 => unit(f.y.atan2(f.x) + 1e-12 * r()),
+                _ => unit(r() * PI),
+            };
+            let q0 = v2(r(), r()) * 50.0;
+            let (a, b) = (r() * 100.0, r() * 100.0);
+            let (lo, hi) = (a.min(b), a.max(b));
+            let got = lw.clamp_interval(q0, dq, f, lo, hi);
+            let want = interval_by_whole_product(&lw, q0, dq, f, lo, hi);
+            let bits = |i: Option<(f64, f64)>| i.map(|(l, h)| (l.to_bits(), h.to_bits()));
+            assert_eq!(bits(got), bits(want), "case {case}");
+            some += u64::from(got.is_some());
+            none += u64::from(got.is_none());
+        }
+        assert!(some > 5_000 && none > 5_000, "{some} {none}");
     }
 
     #[test]

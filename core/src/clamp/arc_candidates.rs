@@ -3,8 +3,9 @@
 //! which narrows its axis lines). Every point where a plunger axis line
 //! crosses the posed grown circle is tested on its own normal.
 
+use super::arc_reach::ArcReach;
 use super::axes::{along, axis_normal, push_direction};
-use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
+use super::{Accumulator, Candidate, ClampSearch, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::arc::GrownArc;
@@ -25,29 +26,26 @@ impl ClampSearch<'_> {
     /// tangency, `half = 0`, on both). The tests that remain are those of
     /// every point kept, the cheap form-closure test before the `atan2`
     /// of the inner one: the candidates are the same, in the same order.
-    /// The cheapest test first: [`super::arc_reach::PosedMiddle::misses`]
+    /// The cheapest test first: [`super::arc_reach::PosedMiddle::misses_each`]
     /// (one comparison), then whether any axis line crosses the circle.
+    #[inline(always)]
     pub(super) fn arc_candidates(
         &self,
         ctx: &SetupContext,
         j: usize,
         seg: &Segment,
-        arc: &GrownArc,
+        (arc, piece): (&GrownArc, Option<&ArcReach>),
         acc: &mut Accumulator,
         scratch: &mut Scratch,
     ) {
-        let pose = ctx.setup.pose;
+        let pose = &ctx.setup.pose;
         let centre = pose.apply(arc.center);
         let rho = arc.radius;
         let convex = arc.is_convex();
         let y0 = self.setting.clamp.y0;
-        // Without pieces (a test's reference search) every line across
+        // Without a piece (a test's reference search) every line across
         // the circle is tried.
-        let piece = match self.reaches.get(j) {
-            Some(SegmentReach::Arc(piece)) => Some(piece),
-            _ => None,
-        };
-        let middle = piece.map(|p| p.posed_middle(&pose, arc.center, rho));
+        let middle = piece.map(|p| p.posed_middle(pose, arc.center, rho));
         // No normal of the piece makes a force the locators balance: every
         // point below would fail the form-closure test. A contact is
         // within `2 rho` of the centre along each axis, hence `|tau|`.
@@ -61,11 +59,9 @@ impl ClampSearch<'_> {
         let posed = piece
             .zip(middle)
             .map(|(p, m)| (p, m, m.miss_threshold(p, &self.window)));
-        for k in 0..4u8 {
-            if ctx.only_rotation.is_some_and(|ok| ok != k) {
-                continue;
-            }
-            if posed.is_some_and(|(_, m, t)| m.misses(t, k, convex)) {
+        let missed = posed.map_or([false; 4], |(_, m, t)| m.misses_each(t, convex));
+        for (k, missed) in (0..4u8).zip(missed) {
+            if ctx.only_rotation.is_some_and(|ok| ok != k) || missed {
                 continue;
             }
             // Axis line `line`: e . q - y0 = line. Whether one crosses the
@@ -87,7 +83,7 @@ impl ClampSearch<'_> {
             let single = first.saturating_add(1) as f64 > across + rho;
             let lines = match posed {
                 Some((p, m, _)) if !single => {
-                    m.piece(p, &pose)
+                    m.piece(p, pose)
                         .axis_lines(&self.window, k, convex, gc, rho)
                 }
                 _ => Some((gc - rho, gc + rho)),

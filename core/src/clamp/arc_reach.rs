@@ -35,13 +35,13 @@ const WINDOW_SLACK: f64 = 1e-6;
 
 /// How much further apart, in angle, than the window's and the piece's
 /// half-angles together a piece's middle and a window's centre must be
-/// before [`PosedMiddle::misses`] gives the rotation up: above the angle
+/// before [`PosedMiddle::misses_each`] gives the rotation up: above the angle
 /// by which [`PosedPiece::offsets`]'s widening opens a piece (`err` in the
 /// cosine is at most `1.5 sqrt(2 err)` in angle, 6.7e-5 at
 /// [`REACH_ERR`]), and far above the rounding of one dot product.
 const REACH_SLACK: f64 = 1e-4;
 
-/// The largest `err` with which [`PosedMiddle::misses`] decides.
+/// The largest `err` with which [`PosedMiddle::misses_each`] decides.
 const REACH_ERR: f64 = 1e-9;
 
 /// `misses` decides only when the half-angles and slack add up to at most
@@ -136,7 +136,7 @@ impl ArcReach {
     /// The piece in the plate frame for one setup. `center` is the arc's
     /// centre in the part frame and `rho` its grown radius: with the pose
     /// they size the rounding the widening must cover. `window` gives
-    /// [`PosedMiddle::misses`] its threshold. The search takes the two
+    /// [`PosedMiddle::misses_each`] its threshold. The search takes the two
     /// steps apart, the force cone between them.
     #[cfg(test)]
     pub(crate) fn posed(
@@ -188,7 +188,7 @@ pub(crate) struct PosedMiddle {
 impl PosedMiddle {
     /// The rest of [`ArcReach::posed`]: the piece's ends, for
     /// [`PosedPiece::axis_lines`] (the search takes the threshold of
-    /// [`PosedMiddle::misses`] from [`Self::miss_threshold`]).
+    /// [`PosedMiddle::misses_each`] from [`Self::miss_threshold`]).
     #[inline]
     pub(crate) fn piece(&self, reach: &ArcReach, pose: &Pose) -> PosedPiece {
         PosedPiece {
@@ -201,7 +201,7 @@ impl PosedMiddle {
         }
     }
 
-    /// [`Self::misses`]'s threshold (a piece's `reach`), worked out without
+    /// [`Self::misses_each`]'s threshold (a piece's `reach`), worked out without
     /// posing the piece's ends: a search that tests a rotation's lines
     /// without [`PosedPiece::axis_lines`] never needs them.
     #[inline]
@@ -218,7 +218,7 @@ impl PosedMiddle {
         }
     }
 
-    /// Whether rotation `k` (window centre `n`, as in [`PosedPiece::axis_lines`])
+    /// Whether each rotation `k` (window centre `n`, as in [`PosedPiece::axis_lines`])
     /// surely has no axis line, in one comparison where [`PosedPiece::offsets`]
     /// makes a dozen: the piece's middle is further from `n` than the
     /// window's widened half-angle `A`, the piece's `h` and [`REACH_SLACK`]
@@ -230,17 +230,18 @@ impl PosedMiddle {
     /// the same (`misses_only_where_offsets_finds_none`). The margin of
     /// `REACH_SLACK` over those angles is at least 2.8e-9 in the cosine,
     /// against a few ulps of rounding here.
-    /// `threshold` is [`Self::miss_threshold`].
-    #[inline]
-    pub(crate) fn misses(&self, threshold: f64, k: u8, convex: bool) -> bool {
-        misses(self.mid, threshold, k, convex)
+    /// `threshold` is [`Self::miss_threshold`]. For the four rotations at
+    /// once (`k` a constant in each, the coordinate is read directly).
+    #[inline(always)]
+    pub(crate) fn misses_each(&self, threshold: f64, convex: bool) -> [bool; 4] {
+        [0u8, 1, 2, 3].map(|k| misses(self.mid, threshold, k, convex))
     }
 
     /// The inward normals `f` of contacts that can pass the inner test, as
     /// a cap `f . mid >= cos` about the piece's middle normal `mid`
     /// (`-mid` of the directions on a `convex` arc): the piece widened by
     /// `err` as [`PosedPiece::offsets`] widens it. `None` where `err` is not
-    /// small enough to decide ([`REACH_ERR`], as for [`PosedMiddle::misses`]).
+    /// small enough to decide ([`REACH_ERR`], as for [`PosedMiddle::misses_each`]).
     #[inline]
     pub(crate) fn normal_cap(&self, convex: bool) -> Option<(V2, f64)> {
         let sign = if convex { -1.0 } else { 1.0 };
@@ -261,14 +262,14 @@ pub(crate) struct PosedPiece {
     /// difference is `rho`), about 45 times the few roundings on the way.
     err: f64,
     /// Below this `n . mid`, the window about `n` misses the piece
-    /// (see [`PosedMiddle::misses`]); minus infinity when that is not decided.
+    /// (see [`PosedMiddle::misses_each`]); minus infinity when that is not decided.
     /// The search reads it off [`PosedMiddle::miss_threshold`] instead.
     #[cfg(test)]
     reach: f64,
 }
 
 impl PosedPiece {
-    /// [`PosedMiddle::misses`] with the threshold this piece holds.
+    /// [`PosedMiddle::misses_each`] with the threshold this piece holds.
     #[cfg(test)]
     pub(crate) fn misses(&self, k: u8, convex: bool) -> bool {
         misses(self.mid, self.reach, k, convex)
@@ -339,7 +340,7 @@ impl PosedPiece {
     }
 }
 
-/// [`PosedMiddle::misses`] of a piece whose middle direction is `mid`.
+/// [`PosedMiddle::misses_each`] of a piece whose middle direction is `mid`.
 #[inline(always)]
 fn misses(mid: V2, threshold: f64, k: u8, convex: bool) -> bool {
     let sign = if convex { -1.0 } else { 1.0 };
@@ -554,7 +555,7 @@ mod tests {
         assert!(dropped > 5_000 && closing > 5_000, "{dropped} {closing}");
     }
 
-    /// [`PosedMiddle::misses`] gives a rotation up only where
+    /// [`PosedMiddle::misses_each`] gives a rotation up only where
     /// [`PosedPiece::offsets`] finds no line, so the lines tried are the
     /// same: random arcs, poses and clamp angles, and poses turning the
     /// piece's middle to just inside and outside the threshold angle

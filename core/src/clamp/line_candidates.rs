@@ -4,7 +4,8 @@
 //! form-closure interval is exact; [`super::ClampSearch`] picks this or
 //! [`super::arc_candidates`] by the segment's feature, in one place.
 
-use super::{Accumulator, Candidate, ClampSearch, SegmentReach, SetupContext};
+use super::axes::along;
+use super::{Accumulator, Candidate, ClampSearch, SetupContext};
 use crate::checks::admissibility::Scratch;
 use crate::checks::form_closure::wrench;
 use crate::geometry::rounding::ceil_i64;
@@ -14,7 +15,9 @@ use crate::segments::{LineFeature, Segment};
 impl ClampSearch<'_> {
     /// Candidates on a straight segment: the form-closure interval is exact
     /// (SPEC 4), and the normal is the same all along, so the angle test
-    /// is made once per rotation.
+    /// is made once per rotation. The force cone test is the caller's
+    /// (`ClampSearch::segment_candidates`), made before the segment is read.
+    #[inline(always)]
     pub(super) fn line_candidates(
         &self,
         ctx: &SetupContext,
@@ -24,44 +27,23 @@ impl ClampSearch<'_> {
         acc: &mut Accumulator,
         scratch: &mut Scratch,
     ) {
-        let pose = ctx.setup.pose;
+        let pose = &ctx.setup.pose;
         let (s_lo, s_hi) = (seg.s0 + EPS, seg.s1 - EPS);
-        // No force along this normal completes form closure: the interval
-        // below would be empty, for every rotation. `|q0|_1 + |dq|_1 |s|`
-        // bounds `|tau|` along the segment (see `ForceCone::excludes`):
-        // rotating keeps a vector's length, so `1.5 |v|_1` bounds the
-        // posed one's `|.|_1` (and `dq` is a unit vector): the part's
-        // share is [`SegmentReach::Line`]'s (none in a test's reference
-        // search, whose cone excludes nothing).
-        let own = match self.reaches.get(j) {
-            Some(SegmentReach::Line(own)) => *own,
-            _ => 0.0,
-        };
-        let reach = pose.t.x.abs() + pose.t.y.abs() + own;
-        if ctx.line_cone.excludes(line.n, reach) {
-            return;
-        }
         let f = -pose.rotate(line.n);
         let q0 = pose.apply(line.origin);
         let dq = pose.rotate(line.u);
-        let mut angle_margins = [None; 4];
-        let mut any = false;
-        for (k, m) in (0..4u8).zip(angle_margins.iter_mut()) {
-            if ctx.only_rotation.is_none_or(|ok| ok == k) {
-                *m = self.angle_margin(k, f);
-                any |= m.is_some();
-            }
-        }
-        if !any {
+        // The rotations whose angle test passes, a bit each; the margins
+        // only for the candidates scored.
+        let passing = self.angle_passes(f, ctx.only_rotation);
+        if passing == 0 {
             return;
         }
+        let rotations = move || (0..4u8).filter(move |k| passing >> k & 1 != 0);
         // No axis line across the whole segment, none across its interval
         // (within it, see `axis_span`): the interval need not be solved.
-        let crossed = (0..4u8).zip(angle_margins).any(|(k, m)| {
-            m.is_some() && {
-                let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
-                ceil_i64(gmin) as f64 <= gmax
-            }
+        let crossed = rotations().any(|k| {
+            let (_, _, gmin, gmax) = self.axis_span(k, q0, dq, s_lo, s_hi);
+            ceil_i64(gmin) as f64 <= gmax
         });
         if !crossed {
             return;
@@ -69,10 +51,7 @@ impl ClampSearch<'_> {
         let Some((lo, hi)) = ctx.lw.clamp_interval(q0, dq, f, s_lo, s_hi) else {
             return;
         };
-        for (k, angle_margin) in (0..4u8).zip(angle_margins) {
-            let Some(angle_margin) = angle_margin else {
-                continue;
-            };
+        for k in rotations() {
             let (g0, g1, gmin, gmax) = self.axis_span(k, q0, dq, lo, hi);
             let mut line = ceil_i64(gmin);
             while (line as f64) <= gmax {
@@ -94,13 +73,31 @@ impl ClampSearch<'_> {
                                 .base_margin
                                 .min(seg.inner_margin(s))
                                 .min(lam.min() - EPS)
-                                .min(angle_margin),
+                                .min(self.angle_cos_margin(along(k, f))),
                         };
                         self.offer(ctx, &cand, acc, scratch);
                     }
                 }
                 line += 1;
             }
+        }
+    }
+
+    /// The rotations `k` (bit `k`) whose push direction passes SPEC 4 (c)'s
+    /// angle test against the normal `f`, [`ClampSearch::angle_margin`]'s
+    /// test for the four at once: its cosines are `f`'s coordinates and
+    /// their negations. Only `only` if given (re-deriving one fixture).
+    #[inline(always)]
+    pub(super) fn angle_passes(&self, f: V2, only: Option<u8>) -> u8 {
+        let limit = self.setting.cos_max_angle - EPS;
+        let mut passing = 0;
+        for (k, c) in [f.x, f.y, -f.x, -f.y].into_iter().enumerate() {
+            passing |= u8::from(c > EPS && c >= limit) << k;
+        }
+        match only {
+            Some(k) if k < 4 => passing & 1 << k,
+            Some(_) => 0,
+            None => passing,
         }
     }
 

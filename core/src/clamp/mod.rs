@@ -129,6 +129,9 @@ struct SetupContext<'a> {
     cone: ForceCone,
     /// `cone` for line normals in the part frame ([`ForceCone::unposed`]).
     line_cone: ForceCone,
+    /// `|t|_1` of the pose: the pose's share of every line's reach (the
+    /// bound on `|tau|` the cone takes), added to the line's own share.
+    t1: f64,
     /// Smallest decision margin of the setup itself (contacts, `det W`).
     base_margin: f64,
     /// Only this clamp rotation (re-deriving one fixture).
@@ -274,6 +277,7 @@ impl ClampSearch<'_> {
             lw,
             cone,
             line_cone: cone.unposed(pose.cos, pose.sin),
+            t1: pose.t.x.abs() + pose.t.y.abs(),
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
             part_locators,
@@ -281,14 +285,52 @@ impl ClampSearch<'_> {
             count_only: std::cell::Cell::new(None),
         };
         scratch.reset_pose();
-        for (j, seg) in self.segments.iter().enumerate() {
-            if only.is_some_and(|(oj, _)| oj != j) {
-                continue;
+        let range = match only {
+            Some((j, _)) => j..j.saturating_add(1).min(self.segments.len()),
+            None => 0..self.segments.len(),
+        };
+        for j in range {
+            // Empty reaches: a test's reference search, without filters.
+            let reach = self.reaches.get(j);
+            if let Some(seg) = self.segments.get(j) {
+                self.segment_candidates(&ctx, j, seg, reach, acc, scratch);
             }
-            match &seg.feature {
-                Feature::Line(line) => self.line_candidates(&ctx, j, seg, line, acc, scratch),
-                Feature::Arc(arc) => self.arc_candidates(&ctx, j, seg, arc, acc, scratch),
+        }
+    }
+
+    /// The candidates of segment `j`, by its feature; `reach` is its
+    /// [`SegmentReach`] (`None`: no filter). A line whose normal the force
+    /// cone excludes is dropped here, before the rest of the segment is
+    /// read: most lines of most setups are.
+    #[inline(always)]
+    fn segment_candidates(
+        &self,
+        ctx: &SetupContext,
+        j: usize,
+        seg: &Segment,
+        reach: Option<&SegmentReach>,
+        acc: &mut Accumulator,
+        scratch: &mut Scratch,
+    ) {
+        let (line_reach, piece) = match reach {
+            Some(SegmentReach::Line(lr)) => (Some(lr), None),
+            Some(SegmentReach::Arc(piece)) => (None, Some(piece)),
+            None => (None, None),
+        };
+        match &seg.feature {
+            Feature::Line(line) => {
+                // No force along this normal completes form closure: the
+                // interval would be empty, for every rotation. `|q0|_1 +
+                // |dq|_1 |s|` bounds `|tau|` along the segment (see
+                // `ForceCone::excludes`): rotating keeps a vector's length,
+                // so `1.5 |v|_1` bounds the posed one's `|.|_1` (and `dq` is
+                // a unit vector): the part's share is `lr.own`.
+                if line_reach.is_some_and(|lr| ctx.line_cone.excludes(lr.n, ctx.t1 + lr.own)) {
+                    return;
+                }
+                self.line_candidates(ctx, j, seg, line, acc, scratch);
             }
+            Feature::Arc(arc) => self.arc_candidates(ctx, j, seg, (arc, piece), acc, scratch),
         }
     }
 
@@ -304,14 +346,29 @@ impl ClampSearch<'_> {
 
     /// SPEC 4 (c): the push direction of rotation `k` against the inward
     /// normal `f`. `None` when the angle is too large, otherwise how far
-    /// the cosine is from the limits (the decision margin). The cosine
-    /// `d . f` is read off `f` ([`axes::along`]): a zero's sign aside it
-    /// is the product, and a zero fails `c > eps` either way.
+    /// the cosine is from the limits (the decision margin).
     #[inline]
     fn angle_margin(&self, k: u8, f: V2) -> Option<f64> {
+        self.angle_cos(k, f).map(|c| self.angle_cos_margin(c))
+    }
+
+    /// The test of [`Self::angle_margin`] alone: the cosine `d . f` when
+    /// the angle passes. The cosine is read off `f` ([`axes::along`]): a
+    /// zero's sign aside it is the product, and a zero fails `c > eps`
+    /// either way.
+    #[inline(always)]
+    fn angle_cos(&self, k: u8, f: V2) -> Option<f64> {
         let c = axes::along(k, f);
         let limit = self.setting.cos_max_angle;
-        (c > EPS && c >= limit - EPS).then(|| (c - limit.max(0.0)).abs().min(c - EPS))
+        (c > EPS && c >= limit - EPS).then_some(c)
+    }
+
+    /// The decision margin of [`Self::angle_margin`] from the cosine that
+    /// passed: worked out only for a candidate that is scored.
+    #[inline(always)]
+    fn angle_cos_margin(&self, c: f64) -> f64 {
+        let limit = self.setting.cos_max_angle;
+        (c - limit.max(0.0)).abs().min(c - EPS)
     }
 
     /// Whether no candidate of a setup with these locators can enter the
