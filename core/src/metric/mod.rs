@@ -4,14 +4,17 @@
 //! solve per fixture, whose part from the three locators alone
 //! ([`Locators`]) a setup works out once for all its clamp candidates,
 //! and a loop over the applied wrenches laid out for the vector unit
-//! ([`lanes`]).
+//! ([`lanes`]); the locator floor is mostly told by the few applied
+//! wrenches farthest along each row's direction ([`directions`]).
 
+mod directions;
 mod lanes;
 
 use crate::geometry::{cross, V2};
+use directions::Directions;
 use lanes::{Block, Solve};
 use nalgebra::{Matrix3, Vector3};
-use std::sync::{Arc, LazyLock};
+use std::sync::{Arc, LazyLock, OnceLock};
 
 /// A contact in the part frame: centre point (on the grown edge) and inward
 /// unit normal. The centre and the true contact point lie on the same line of
@@ -129,6 +132,11 @@ pub struct AppliedWrenches {
     /// Largest `|p|`, kept so that the locator floor can often answer
     /// without a loop.
     max_norm: f64,
+    /// The wrenches, for [`Self::directions`].
+    coords: Vec<[f64; 3]>,
+    /// The cells of directions the locator floor asks first, built at
+    /// its first question (a run in full-counts mode never asks).
+    directions: OnceLock<Option<Directions>>,
 }
 
 impl AppliedWrenches {
@@ -138,7 +146,17 @@ impl AppliedWrenches {
         AppliedWrenches {
             blocks: lanes::blocks(&coords),
             max_norm: list.iter().map(|p| p.norm()).fold(0.0, f64::max),
+            coords,
+            directions: OnceLock::new(),
         }
+    }
+
+    /// See `directions`: `None` when the wrenches have no cells (the
+    /// blocks decide).
+    fn directions(&self) -> Option<&Directions> {
+        self.directions
+            .get_or_init(|| Directions::new(&self.coords))
+            .as_ref()
     }
 }
 
@@ -356,19 +374,18 @@ fn max_force_bounded(
 /// locator force `lambda0_i + s mu_i` is at least `lambda0_i`, which does
 /// not depend on the clamp. Computed with the very operations of the
 /// score, so the floor is at most the score in floating point too (adding
-/// a non-negative number never rounds below the other). The first applied
-/// wrench above `bound` settles it, so most setups that fail stop after a
-/// few blocks, fewer still from `*start` on (the wrench that floored the
-/// last setup tends to floor the next, as in [`max_force_bounded`];
-/// `*start` is left at it). Dependent wrenches: no fourth wrench gives a
-/// score, so every score is infinite.
+/// a non-negative number never rounds below the other). Dependent
+/// wrenches: no fourth wrench gives a score, so every score is infinite.
 ///
-/// Most setups that pass are told without the loop: by Cauchy-Schwarz
-/// each `lambda0_i = -(r_i . p)` is at most `|r_i| |p|` (`r_i` a row of
-/// `W^-1`), so when the largest row norm times `max_norm` (a bound on
-/// every `|p|`) is below `bound` no wrench can pass it. The relative
+/// A row `r_i` of `W^-1` whose length times `max_norm` (a bound on every
+/// `|p|`) is below `bound` passes no wrench: by Cauchy-Schwarz each
+/// `lambda0_i = -(r_i . p)` is at most `|r_i| |p|`, and the relative
 /// margin of 1e-12 is far above the rounding of the dot products and
-/// norms (a few 1e-16).
+/// norms (a few 1e-16). Most setups are told so, or by the few wrenches
+/// farthest along `-r_i` ([`Directions::row_exceeds`]); the rest by the
+/// blocks of every applied wrench ([`lanes::floor_exceeds`], from block
+/// `*start` on, left at the block that told: the wrench that floored the
+/// last setup tends to floor the next), which give the same answers.
 fn max_force_floor_exceeds(
     inv: Option<&Matrix3<f64>>,
     applied: &AppliedWrenches,
@@ -379,6 +396,47 @@ fn max_force_floor_exceeds(
         return true;
     };
     // The floor starts at 0, as the score does.
+    if 0.0 > bound {
+        return true;
+    }
+    let norms: [f64; 3] = std::array::from_fn(|i| inv.row(i).norm());
+    let rows = rows_of(inv);
+    let weak = |i: usize| norms[i] * applied.max_norm * (1.0 + 1e-12) <= bound;
+    if (0..3).all(weak) {
+        return false;
+    }
+    if let Some(directions) = applied.directions() {
+        let mut told = true;
+        for i in (0..3).filter(|&i| !weak(i)) {
+            if !norms[i].is_finite() {
+                told = false;
+                break;
+            }
+            match directions.row_exceeds(&rows[i], norms[i], applied.max_norm, bound) {
+                Some(true) => return true,
+                Some(false) => {}
+                None => told = false,
+            }
+        }
+        if told {
+            return false;
+        }
+    }
+    lanes::floor_exceeds(&rows, &norms, &applied.blocks, bound, start)
+}
+
+/// The floor test through the blocks of every applied wrench, as it was
+/// before [`Directions`]: the reference the new path must match.
+#[cfg(test)]
+fn max_force_floor_blocks(
+    inv: Option<&Matrix3<f64>>,
+    applied: &AppliedWrenches,
+    bound: f64,
+    start: &mut usize,
+) -> bool {
+    let Some(inv) = inv else {
+        return true;
+    };
     if 0.0 > bound {
         return true;
     }
@@ -478,6 +536,88 @@ mod tests {
             }
         }
         assert!(decided_by_loop > 100, "{decided_by_loop}");
+    }
+
+    /// The floor test with its cells of directions against the blocks
+    /// alone (the path before the cells), on random `W^-1` of many
+    /// scales, for the sphere, a scattered list and a list with a NaN
+    /// (no cells), at bounds at the floor, an ulp either side, a little
+    /// below and above it and between it and the row-norm shortcut; and
+    /// the cells tell most answers themselves.
+    #[test]
+    fn floor_through_the_cells_matches_the_blocks() {
+        let sphere = fibonacci_sphere(MaxForceMetric::DIRECTIONS);
+        let mut rng = crate::test_rng::Xorshift::new(0xf100_7ce1_15ab_cdef);
+        let mut rnd = || rng.signed_unit();
+        let scattered: Vec<Vector3<f64>> = (0..45)
+            .map(|_| Vector3::new(rnd(), 2.0 * rnd(), 0.3 * rnd()))
+            .collect();
+        let mut with_nan = scattered.clone();
+        with_nan[3].y = f64::NAN;
+        let (mut told, mut asked, mut yes) = (0, 0, 0);
+        for list in [&sphere, &scattered, &with_nan] {
+            let applied = AppliedWrenches::new(list);
+            for _ in 0..3000 {
+                let scale = 10f64.powf(3.0 * rnd());
+                let w: [Vector3<f64>; 3] = std::array::from_fn(|_| {
+                    Vector3::new(scale * rnd(), scale * rnd(), scale * rnd())
+                });
+                let Some(inv) = Matrix3::from_columns(&w).try_inverse() else {
+                    continue;
+                };
+                let rows = rows_of(&inv);
+                let floor = list
+                    .iter()
+                    .flat_map(|p| rows.map(|r| -(r[0] * p.x + r[1] * p.y + r[2] * p.z)))
+                    .fold(0.0, lanes::fmax);
+                let norm = (0..3).map(|i| inv.row(i).norm()).fold(0.0, f64::max);
+                let up = f64::from_bits(floor.to_bits() + 1);
+                let down = f64::from_bits(floor.to_bits() - 1);
+                for bound in [
+                    floor,
+                    up,
+                    down,
+                    floor * 0.9,
+                    floor * 0.999,
+                    floor * 1.001,
+                    0.5 * (floor + norm),
+                    norm * 0.995,
+                    0.0,
+                    -0.0,
+                    -1.0,
+                ] {
+                    for first in [0, 9] {
+                        let (mut a, mut b) = (first, first);
+                        let want = max_force_floor_blocks(Some(&inv), &applied, bound, &mut a);
+                        let got = max_force_floor_exceeds(Some(&inv), &applied, bound, &mut b);
+                        assert_eq!(got, want, "floor {floor}, bound {bound}, {inv}");
+                        assert_eq!(want, floor > bound || 0.0 > bound);
+                        yes += usize::from(want);
+                    }
+                    if let Some(directions) = applied.directions() {
+                        asked += 1;
+                        let norms: [f64; 3] = std::array::from_fn(|i| inv.row(i).norm());
+                        let answers: Vec<Option<bool>> = (0..3)
+                            .map(|i| {
+                                directions.row_exceeds(&rows[i], norms[i], applied.max_norm, bound)
+                            })
+                            .collect();
+                        told += usize::from(
+                            answers.contains(&Some(true)) || answers.iter().all(Option::is_some),
+                        );
+                    }
+                }
+            }
+        }
+        assert!(applied_has_no_cells(&with_nan));
+        assert!(
+            yes > 20_000 && 10 * told > 8 * asked,
+            "{yes} yes, {told} of {asked}"
+        );
+    }
+
+    fn applied_has_no_cells(list: &[Vector3<f64>]) -> bool {
+        AppliedWrenches::new(list).directions().is_none()
     }
 
     /// The max-force score as it was computed before the loops were laid
