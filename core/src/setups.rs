@@ -29,8 +29,9 @@ use crate::input::Pattern;
 use crate::poses::pose::Pose;
 use crate::poses::TripleContacts;
 use crate::segments::{PairBounds, PairTable, Segment};
-use crate::sweeps::{LocatorSweep, PivotPair, PivotPoint, SweepScratch, SweptSegment};
+use crate::sweeps::{ArcPoint, LocatorSweep, PivotPair, PivotPoint, SweepScratch, SweptSegment};
 use std::f64::consts::FRAC_PI_2;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, OnceLock};
 
 /// Slack on annulus bounds, far above rounding and far below a lattice step.
@@ -210,35 +211,29 @@ impl SetupSearch<'_> {
         const PAIRS: [(usize, usize); 3] = [(0, 2), (1, 4), (3, 5)];
         let count = self.segments.len();
         let ranks = self.ranks.of(self.swept, self.pair_table());
-        let mut best: Option<(u8, f64, usize)> = None;
-        let mut consider = |rank: &PivotRank, order: usize| {
-            if rank.preference != NOT_A_PIVOT
-                && best.is_none_or(|(preference, area, first)| {
-                    rank.ranks_before(preference, area)
-                        || (rank.preference == preference && rank.area == area && order < first)
-                })
-            {
-                best = Some((rank.preference, rank.area, order));
-            }
-        };
+        // The least (preference, area, order): the keys order the first
+        // two, the order fills their low byte.
+        let mut best = NOT_A_PIVOT;
         for (forward, backward) in PAIRS {
             let [p, q, _] = ROLES[forward];
             let (first, second) = (combo[p], combo[q]);
             let rank = &ranks[first * count + second];
-            consider(rank, forward);
+            best = best.min(rank.key | forward as u128);
             // A symmetric pair finds the same setups in the other order
             // (symmetry is a property of the unordered pair).
             if !rank.symmetric {
-                consider(&ranks[second * count + first], backward);
+                best = best.min(ranks[second * count + first].key | backward as u128);
             }
         }
-        best.map(|(_, _, order)| ROLES[order])
+        (best != NOT_A_PIVOT).then(|| ROLES[(best & 0xff) as usize])
     }
 
     /// Setups by the sweep: the pivot's first locator at the origin, its
     /// second at every lattice point `d` of `Q = {i > 0, j >= 0}` in their
     /// annulus that leaves the part some angle, the third segment's
-    /// locator in the swept region.
+    /// locator in the swept region. The pivot points come from the part's
+    /// shared table ([`PivotRanks`]) when it has them or room for them,
+    /// else from this thread's [`PivotCache`].
     fn swept_setups(
         &self,
         combo: [usize; 3],
@@ -248,26 +243,44 @@ impl SetupSearch<'_> {
         visit: &mut impl FnMut(&Setup),
     ) {
         let [p, q, r] = roles.map(|k| combo[k]);
-        let g = self.grid_step;
+        let count = self.segments.len();
         let SetupScratch {
             sweep: buffers,
             pivots,
         } = scratch;
+        let shared = self.ranks.points(count, self.grid_step, self.pattern);
         // A pivot pair without pivot points gives no setup whatever the
         // third segment: most combinations of a small part end here,
         // before their sweep is built.
-        let known = pivots.range(self.segments.len(), p, q);
-        if known.as_ref().is_some_and(std::ops::Range::is_empty) {
+        let known = match shared.and_then(|table| table.get(p, q)) {
+            Some(points) => Some(Known::Shared(points)),
+            None if shared.is_none_or(SharedPivots::full) => {
+                pivots.range(count, p, q).map(Known::Local)
+            }
+            None => None,
+        };
+        if known.as_ref().is_some_and(Known::is_empty) {
             return;
         }
-        let swept = [p, q, r].map(|i| &self.swept[i]);
-        let Some(sweep) = LocatorSweep::new(swept, p == q, self.pair(p, r).dmax) else {
+        let Some(sweep) = self.sweep(combo, roles) else {
             // Never: the ranks leave out the pairs a sweep refuses.
             return self.annulus_setups(combo, stats, visit);
         };
-        let range = known
-            .unwrap_or_else(|| pivots.insert(p, q, |out| self.pivot_points(&sweep, p, q, out)));
-        for (d, pt) in &pivots.points[range] {
+        let known = known.unwrap_or_else(|| {
+            let fresh = &mut pivots.fresh;
+            fresh.clear();
+            self.pivot_points(&sweep, p, q, fresh);
+            match shared.and_then(|table| table.keep(p, q, fresh)) {
+                Some(points) => Known::Shared(points),
+                None => Known::Local(pivots.insert(count, p, q)),
+            }
+        });
+        let points = match known {
+            Known::Shared(points) => points,
+            Known::Local(range) => &pivots.points[range],
+        };
+        let g = self.grid_step;
+        for (d, pt) in points {
             let d = *d;
             let listed = sweep.for_each_third_locator(pt, g, buffers, |e, angles| {
                 self.solve_placed(combo, roles, d, e, angles, stats, visit)
@@ -279,6 +292,14 @@ impl SetupSearch<'_> {
                 });
             }
         }
+    }
+
+    /// The sweep of a combination in the given roles, `None` when it
+    /// refuses.
+    fn sweep(&self, combo: [usize; 3], roles: [usize; 3]) -> Option<LocatorSweep<'_>> {
+        let [p, q, r] = roles.map(|k| combo[k]);
+        let swept = [p, q, r].map(|i| &self.swept[i]);
+        LocatorSweep::new(swept, p == q, self.pair(p, r).dmax)
     }
 
     /// The lattice points `d` of `Q` in the annulus of the pivot pair
@@ -450,46 +471,68 @@ const ROLES: [[usize; 3]; 6] = [
     [2, 1, 0],
 ];
 
-/// Marks a [`PivotRank`] of a pair no sweep pivots on in that order.
-const NOT_A_PIVOT: u8 = u8::MAX;
+/// The key of a [`PivotRank`] of a pair no sweep pivots on in that order:
+/// above every other key, whatever order is or-ed into it.
+const NOT_A_PIVOT: u128 = u128::MAX;
 
 /// How an ordered pair of segments ranks as a combination's pivot (see
 /// `SetupSearch::pivot_roles`): what the ranking reads of a pair, worked
 /// out once per part rather than for each of the combinations it is in.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PivotRank {
-    /// [`PivotPair::preference`]; [`NOT_A_PIVOT`] when no sweep pivots on
-    /// the pair in this order or the sweep refuses it (nearly parallel
-    /// lines).
-    preference: u8,
+    /// Ranks pairs by [`PivotPair::preference`], then by the width of the
+    /// pair's annulus (`hi^2 - lo^2`), as one integer ([`pivot_key`])
+    /// whose low byte is free for the order of the roles that breaks ties;
+    /// [`NOT_A_PIVOT`] when no sweep pivots on the pair in this order or
+    /// the sweep refuses it (nearly parallel lines).
+    key: u128,
     /// [`PivotPair::symmetric`]: the other order finds the same setups.
     symmetric: bool,
-    /// The width `hi^2 - lo^2` of the pair's annulus.
-    area: f64,
 }
 
-impl PivotRank {
-    /// Whether this pair pivots before one of kind `preference` and
-    /// annulus width `area`: a preferred kind, or the same kind and a
-    /// thinner annulus.
-    #[inline]
-    fn ranks_before(&self, preference: u8, area: f64) -> bool {
-        preference > self.preference || (preference == self.preference && area > self.area)
+/// The [`PivotRank::key`] of a pair of kind `preference` whose annulus is
+/// `area` wide: the bits of a float that is not negative (an annulus's
+/// width, `+0.0` at least, never NaN) order as the float does, so keys
+/// order as `(preference, area)` does, lexicographically.
+fn pivot_key(preference: u8, area: f64) -> u128 {
+    debug_assert!(
+        area >= 0.0 && area.is_sign_positive(),
+        "annulus width {area}"
+    );
+    (u128::from(preference) << 72) | (u128::from(area.to_bits()) << 8)
+}
+
+/// Every ordered pair's [`PivotRank`], `first * n + second`, and the
+/// pivot points of the pairs that pivot ([`SharedPivots`]), computed on
+/// first use from the pair bounds and shared by clones (like
+/// [`PairTable`]) and by the threads and shards of an enumeration.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct PivotRanks(Arc<PivotTables>);
+
+/// What [`PivotRanks`] shares.
+#[derive(Default)]
+struct PivotTables {
+    ranks: OnceLock<Vec<PivotRank>>,
+    points: OnceLock<SharedPivots>,
+}
+
+impl std::fmt::Debug for PivotTables {
+    /// The ranks only: the points are a cache, on the lattice of whichever
+    /// variant of the part (another grid step or kit) needed them first,
+    /// and a variant is the part a fresh `prepare` gives.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PivotTables")
+            .field("ranks", &self.ranks)
+            .finish_non_exhaustive()
     }
 }
-
-/// Every ordered pair's [`PivotRank`], `first * n + second`, computed on
-/// first use from the pair bounds and shared by clones (like
-/// [`PairTable`]).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct PivotRanks(Arc<OnceLock<Vec<PivotRank>>>);
 
 impl PivotRanks {
     /// The ranks of the segments `swept`, whose pair bounds are `pairs`
     /// (the first call fixes them).
     #[inline]
     pub(crate) fn of(&self, swept: &[SweptSegment], pairs: &[PairBounds]) -> &[PivotRank] {
-        self.0.get_or_init(|| {
+        self.0.ranks.get_or_init(|| {
             let mut ranks = Vec::with_capacity(pairs.len());
             for first in swept {
                 for second in swept {
@@ -499,14 +542,117 @@ impl PivotRanks {
                     debug_assert!(!(hi - lo).is_nan(), "pair bounds {:?}", pairs[ranks.len()]);
                     let kind = PivotPair::of(first, second).filter(|kind| !kind.refused());
                     ranks.push(PivotRank {
-                        preference: kind.map_or(NOT_A_PIVOT, |kind| kind.preference()),
+                        key: kind.map_or(NOT_A_PIVOT, |kind| pivot_key(kind.preference(), hi - lo)),
                         symmetric: kind.is_some_and(|kind| kind.symmetric()),
-                        area: hi - lo,
                     });
                 }
             }
             ranks
         })
+    }
+
+    /// The pivot points table of a part of `count` segments on the
+    /// lattice `(grid_step, pattern)`; `None` on another lattice than the
+    /// one the first call fixed (a clone with another grid step or kit),
+    /// whose points live in the threads' caches instead.
+    #[inline]
+    fn points(&self, count: usize, grid_step: i64, pattern: Pattern) -> Option<&SharedPivots> {
+        let table = self.0.points.get_or_init(|| SharedPivots {
+            grid_step,
+            pattern,
+            width: count,
+            pairs: (0..count * count).map(|_| OnceLock::new()).collect(),
+            stored: AtomicUsize::new(0),
+        });
+        (table.grid_step == grid_step && table.pattern == pattern && table.width == count)
+            .then_some(table)
+    }
+}
+
+/// Most bytes of pivot points [`SharedPivots`] keeps for one part (a line
+/// pair's point is about 360 bytes, a line and arc's 1.4 kB more;
+/// `housing-57` has 1,043 points, 0.4 MB): a worker keeps the parts of a
+/// run prepared, so a huge part's further points go to the threads'
+/// bounded caches instead.
+const SHARED_PIVOT_BYTES: usize = 8 << 20;
+
+/// The pivot points of every ordered pair of a part's segments on one
+/// lattice, worked out once per part: a pair's points do not depend on
+/// the third segment nor on which thread or shard needs them, and
+/// `gluegun-28` (full counts: chunks of 32 combinations, each with fresh
+/// scratch) worked out each pair's about four times over in the threads'
+/// caches.
+struct SharedPivots {
+    /// The lattice the points are on.
+    grid_step: i64,
+    /// See `grid_step`.
+    pattern: Pattern,
+    /// The number of segments `pairs` is laid out for.
+    width: usize,
+    /// Each ordered pair's points, `first * width + second`, once known.
+    pairs: Vec<OnceLock<Box<[LatticePivot]>>>,
+    /// Bytes kept so far (or about to be), against
+    /// [`SHARED_PIVOT_BYTES`].
+    stored: AtomicUsize,
+}
+
+impl SharedPivots {
+    /// The points of `(first, second)`, when known.
+    #[inline]
+    fn get(&self, first: usize, second: usize) -> Option<&[LatticePivot]> {
+        self.pairs[first * self.width + second].get().map(|p| &**p)
+    }
+
+    /// Whether the table has no room left for more points.
+    fn full(&self) -> bool {
+        self.stored.load(Ordering::Relaxed) >= SHARED_PIVOT_BYTES
+    }
+
+    /// Takes `points` (leaving it empty) as those of `(first, second)`
+    /// when there is room (another thread may have kept the same points
+    /// first); `None`, leaving them, when there is not.
+    fn keep(
+        &self,
+        first: usize,
+        second: usize,
+        points: &mut Vec<LatticePivot>,
+    ) -> Option<&[LatticePivot]> {
+        let boxed = points
+            .iter()
+            .filter(|(_, point)| matches!(point, PivotPoint::LineArc(_)))
+            .count();
+        let bytes = size_of_val(points.as_slice()) + boxed * size_of::<ArcPoint>();
+        let before = self.stored.fetch_add(bytes, Ordering::Relaxed);
+        if before + bytes > SHARED_PIVOT_BYTES {
+            return None;
+        }
+        let cell = &self.pairs[first * self.width + second];
+        Some(cell.get_or_init(|| {
+            // Moved in one copy to a list of its exact size: no regrowth,
+            // no shrink.
+            let mut kept = Vec::with_capacity(points.len());
+            kept.append(points);
+            kept.into_boxed_slice()
+        }))
+    }
+}
+
+/// Where the pivot points of a pair are: the part's table or this
+/// thread's cache.
+enum Known<'a> {
+    /// In [`SharedPivots`].
+    Shared(&'a [LatticePivot]),
+    /// In [`PivotCache::points`].
+    Local(std::ops::Range<usize>),
+}
+
+impl Known<'_> {
+    /// Whether the pair has no pivot points.
+    fn is_empty(&self) -> bool {
+        match self {
+            Known::Shared(points) => points.is_empty(),
+            Known::Local(range) => range.is_empty(),
+        }
     }
 }
 
@@ -530,10 +676,11 @@ const PIVOT_CACHE_POINTS: usize = 1 << 15;
 /// no more.
 const PIVOT_CACHE_START: usize = 256;
 
-/// The pivot points of each pivot pair: the same pair pivots many
-/// combinations (every third segment whose pairs with it are wider), and
-/// its points (two `acos` bands per lattice point of the annulus) do not
-/// depend on the third segment.
+/// The pivot points of each pivot pair, in one thread, when the part's
+/// [`SharedPivots`] has no room for them (or is on another lattice): the
+/// same pair pivots many combinations (every third segment whose pairs
+/// with it are wider), and its points (two `acos` bands per lattice point
+/// of the annulus) do not depend on the third segment.
 #[derive(Debug, Default)]
 struct PivotCache {
     /// Where each ordered pair's points lie in `points`, `first * width +
@@ -544,6 +691,9 @@ struct PivotCache {
     width: usize,
     /// Every pair's points, one after the other: one allocation for all.
     points: Vec<LatticePivot>,
+    /// Where a pair's points are worked out before they are kept here or
+    /// in [`SharedPivots`], reused so that it grows only at first.
+    fresh: Vec<LatticePivot>,
 }
 
 /// Marks a pair of [`PivotCache`] whose points are not worked out.
@@ -558,6 +708,13 @@ impl PivotCache {
         first: usize,
         second: usize,
     ) -> Option<std::ops::Range<usize>> {
+        self.lay_out(count);
+        let (start, end) = self.ranges[first * count + second];
+        ((start, end) != UNKNOWN).then_some(start..end)
+    }
+
+    /// Lays the table out for a part of `count` segments, unless it is.
+    fn lay_out(&mut self, count: usize) {
         if self.width != count {
             // A scratch's first combination (or another part's).
             self.width = count;
@@ -567,25 +724,19 @@ impl PivotCache {
             // Growing from nothing cost `gluegun-28` about 1% (7 regrowths).
             self.points.reserve(PIVOT_CACHE_START);
         }
-        let (start, end) = self.ranges[first * count + second];
-        ((start, end) != UNKNOWN).then_some(start..end)
     }
 
-    /// Works out the pivot points of `(first, second)` by `push` and
-    /// says where they lie in `points` (after [`PivotCache::range`], which
-    /// lays the table out).
-    fn insert(
-        &mut self,
-        first: usize,
-        second: usize,
-        push: impl FnOnce(&mut Vec<LatticePivot>),
-    ) -> std::ops::Range<usize> {
+    /// Moves the points in `fresh` to `points` as the pivot points of
+    /// `(first, second)` of a part with `count` segments and says where
+    /// they lie.
+    fn insert(&mut self, count: usize, first: usize, second: usize) -> std::ops::Range<usize> {
+        self.lay_out(count);
         if self.points.len() > PIVOT_CACHE_POINTS {
             self.ranges.fill(UNKNOWN);
             self.points.clear();
         }
         let start = self.points.len();
-        push(&mut self.points);
+        self.points.append(&mut self.fresh);
         let r = start..self.points.len();
         self.ranges[first * self.width + second] = (r.start, r.end);
         r
@@ -816,36 +967,134 @@ mod tests {
         out
     }
 
+    /// `body` run on the setup search of `segments` with the pivot table
+    /// `ranks` (grid step 1, square plate).
+    fn with_search<T>(
+        segments: &[Segment],
+        ranks: &PivotRanks,
+        body: impl FnOnce(&SetupSearch<'_>) -> T,
+    ) -> T {
+        let swept: Vec<SweptSegment> = segments.iter().map(SweptSegment::of).collect();
+        let pairs = PairTable::default();
+        body(&SetupSearch {
+            segments,
+            swept: &swept,
+            pairs: &pairs,
+            ranks,
+            grid_step: 1,
+            pattern: Pattern::Square,
+        })
+    }
+
+    /// Every combination of `n` segments: a <= b <= c, not one segment
+    /// thrice.
+    fn combinations(n: usize) -> impl Iterator<Item = [usize; 3]> {
+        (0..n)
+            .flat_map(move |a| (a..n).flat_map(move |b| (b..n).map(move |c| [a, b, c])))
+            .filter(|&[a, _, c]| a != c)
+    }
+
     #[test]
     fn pivot_ranks_choose_the_pivot_sorting_chose() {
         for seed in 1..40u64 {
             let segments = ranking_segments(seed, 9);
-            let swept: Vec<SweptSegment> = segments.iter().map(SweptSegment::of).collect();
-            let (pairs, ranks) = (PairTable::default(), PivotRanks::default());
-            let search = SetupSearch {
-                segments: &segments,
-                swept: &swept,
-                pairs: &pairs,
-                ranks: &ranks,
-                grid_step: 1,
-                pattern: Pattern::Square,
-            };
-            let n = segments.len();
-            let mut chosen = 0;
-            // Every combination: a <= b <= c, not one segment thrice.
-            let combos =
-                (0..n).flat_map(|a| (a..n).flat_map(move |b| (b..n).map(move |c| [a, b, c])));
-            for combo in combos.filter(|&[a, _, c]| a != c) {
-                let roles = search.pivot_roles(combo);
-                assert_eq!(
-                    roles,
-                    pivot_by_sorting(&search, combo),
-                    "seed {seed} {combo:?}"
-                );
-                chosen += usize::from(roles.is_some_and(|r| r != [0, 1, 2]));
-            }
+            let chosen = with_search(&segments, &PivotRanks::default(), |search| {
+                let mut chosen = 0;
+                for combo in combinations(segments.len()) {
+                    let roles = search.pivot_roles(combo);
+                    assert_eq!(
+                        roles,
+                        pivot_by_sorting(search, combo),
+                        "seed {seed} {combo:?}"
+                    );
+                    chosen += usize::from(roles.is_some_and(|r| r != [0, 1, 2]));
+                }
+                chosen
+            });
             assert!(chosen > 0, "seed {seed}: every pivot in the first order");
         }
+    }
+
+    /// Every setup (and the search's statistics) of every combination of
+    /// `segments` that pivots (the others never read pivot points), on one
+    /// scratch as a thread's chunk runs them, with the part's pivot table
+    /// prepared by `prime` first.
+    fn all_setups(
+        segments: &[Segment],
+        prime: impl FnOnce(&PivotRanks),
+    ) -> (Vec<Setup>, SearchStats) {
+        let ranks = PivotRanks::default();
+        prime(&ranks);
+        with_search(segments, &ranks, |search| {
+            let (mut setups, mut stats) = (Vec::new(), SearchStats::default());
+            let mut scratch = SetupScratch::default();
+            for combo in combinations(segments.len()) {
+                if search.pivot_roles(combo).is_none() {
+                    continue;
+                }
+                let found = search.setups_of_combination(combo, &mut scratch, |s| setups.push(*s));
+                stats.add(&found);
+            }
+            (setups, stats)
+        })
+    }
+
+    #[test]
+    fn shared_and_thread_pivot_points_give_the_same_setups() {
+        let (mut found, mut arcs) = (0, 0);
+        for seed in 1..7u64 {
+            let segments: Vec<Segment> = ranking_segments(seed, 6)
+                .iter()
+                .map(|s| {
+                    // Scaled up so that pivot pairs have lattice points.
+                    let mut s = *s;
+                    match &mut s.feature {
+                        Feature::Line(line) => {
+                            *line = LineFeature::new(line.origin * 3.0, line.u, line.n);
+                            (s.s0, s.s1) = (s.s0 * 3.0, s.s1 * 3.0);
+                        }
+                        Feature::Arc(arc) => {
+                            (arc.center, arc.radius) = (arc.center * 3.0, arc.radius * 3.0);
+                            (s.s0, s.s1) = (s.s0 * 3.0, s.s1 * 3.0);
+                        }
+                    }
+                    s
+                })
+                .collect();
+            let count = segments.len();
+            let shared = all_setups(&segments, |_| {});
+            // Another lattice fixed the table first: every point in the
+            // thread's cache.
+            let local = all_setups(&segments, |ranks| {
+                assert!(ranks.points(count, 2, Pattern::Square).is_some());
+            });
+            // Room for a few pairs only: some points in each.
+            let mixed = all_setups(&segments, |ranks| {
+                let table = ranks
+                    .points(count, 1, Pattern::Square)
+                    .expect("first lattice");
+                let room = 40 * size_of::<LatticePivot>();
+                table
+                    .stored
+                    .store(SHARED_PIVOT_BYTES - room, Ordering::Relaxed);
+            });
+            assert_eq!(shared, local, "seed {seed}");
+            assert_eq!(shared, mixed, "seed {seed}");
+            found += shared.0.len();
+            arcs += shared
+                .0
+                .iter()
+                .filter(|s| {
+                    s.combo
+                        .iter()
+                        .any(|&k| matches!(segments[k].feature, Feature::Arc(_)))
+                })
+                .count();
+        }
+        assert!(
+            found > 100 && arcs > 0,
+            "{found} setups, {arcs} with an arc"
+        );
     }
 
     proptest::proptest! {
@@ -854,6 +1103,24 @@ mod tests {
             failure_persistence: None,
             ..Default::default()
         })]
+
+        /// The pivot keys order as (preference, area) does.
+        #[test]
+        fn pivot_keys_order_as_preference_then_area(
+            preference in proptest::array::uniform2(0u8..2),
+            scale in proptest::array::uniform2(-320i32..320),
+            mantissa in proptest::array::uniform2(0.0f64..2.0),
+        ) {
+            // Zero, subnormal, huge and infinite widths as well as common ones.
+            let area = [0, 1].map(|k| match scale[k] {
+                -320 => 0.0,
+                319 => f64::INFINITY,
+                e => mantissa[k] * 2f64.powi(e),
+            });
+            let keys = [0, 1].map(|k| pivot_key(preference[k], area[k]));
+            let expected = preference[0].cmp(&preference[1]).then(area[0].total_cmp(&area[1]));
+            proptest::prop_assert_eq!(keys[0].cmp(&keys[1]), expected, "{:?} {:?}", preference, area);
+        }
 
         /// Soundness of the check: three contacts on random lines and arcs,
         /// posed anywhere, always pass it.
