@@ -113,13 +113,18 @@ pub struct Measured {
 }
 
 /// Best of `repeat` timed runs of one part on the current thread, with the
-/// part's result.
+/// part's result. Each run starts without the part's tables
+/// ([`PreparedPart::with_fresh_tables`]): a run works them out once per
+/// part, and so does each measured run.
 pub fn measure(prep: &PreparedPart, repeat: usize) -> Measured {
     let once = || {
         let n = prep.combination_count();
+        let fresh = prep.with_fresh_tables();
         // Untimed run for the wall clock (no clock reads in the inner loop)...
         let t = std::time::Instant::now();
-        let result = prep.enumerate(0..n, EnumerateOptions::this_thread()).result;
+        let result = fresh
+            .enumerate(0..n, EnumerateOptions::this_thread())
+            .result;
         let wall = t.elapsed().as_nanos() as u64;
         // ...and a timed run for the split.
         let timed = EnumerateOptions {

@@ -125,8 +125,10 @@ pub trait Metric: Send + Sync + std::fmt::Debug {
 }
 
 /// The applied wrenches of a max-force metric, in the blocks its loops
-/// take (see [`lanes`]).
-#[derive(Debug, Clone)]
+/// take (see [`lanes`]). Its `Debug` leaves out the cells of directions:
+/// they are a cache, built as the threads ask, and a part's `Debug` says
+/// what it is (`prepared_variants` compares it with a fresh one's).
+#[derive(Clone)]
 pub struct AppliedWrenches {
     blocks: Vec<Block>,
     /// Largest `|p|`, kept so that the locator floor can often answer
@@ -137,6 +139,15 @@ pub struct AppliedWrenches {
     /// The cells of directions the locator floor asks first, built at
     /// its first question (a run in full-counts mode never asks).
     directions: OnceLock<Option<Directions>>,
+}
+
+impl std::fmt::Debug for AppliedWrenches {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("AppliedWrenches")
+            .field("blocks", &self.blocks)
+            .field("max_norm", &self.max_norm)
+            .finish_non_exhaustive()
+    }
 }
 
 impl AppliedWrenches {
