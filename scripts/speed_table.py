@@ -111,7 +111,9 @@ def table(binary, repeat):
     intro = (
         f"{build}, one core, max clamp angle 45 degrees, grid step 1; {when}, "
         f"commit {commit()}, {cpu_model()}. Times are the enumeration's (the part "
-        f"prepared once, outside the clock), fastest of {repeat} runs "
+        f"prepared once, outside the clock; the tables it works out on first use, "
+        f"pair bounds and pivot points, inside it, for every run as in a real run), "
+        f"fastest of {repeat} runs "
         f"({max(1, repeat // 5)} for the large cases, top-10 mode only)."
     )
     return [intro, ""] + with_paper_column(header, small + large)
