@@ -49,19 +49,33 @@ impl LocatorWrenches {
         let tau = cross(dq, f);
         let m = &self.neg_inv;
         let beta = [m[(0, 2)] * tau, m[(1, 2)] * tau, m[(2, 2)] * tau];
-        let (mut lo, mut hi) = (lo, hi);
-        for i in 0..3 {
-            let (a, b) = (alpha[i], beta[i]);
-            if b > 0.0 {
-                lo = lo.max((EPS - a) / b);
-            } else if b < 0.0 {
-                hi = hi.min((EPS - a) / b);
-            } else if a <= EPS {
-                return None;
-            }
-        }
-        (lo < hi).then_some((lo, hi))
+        interval_above_eps(&alpha, beta, lo, hi)
     }
+}
+
+/// The open interval of `s` in `(lo, hi)` where every `alpha_i + s beta_i`
+/// is above `eps`: each coefficient bounds `s` from one side by the sign
+/// of `beta_i`, and a zero `beta_i` (of either sign) keeps all of it or
+/// none.
+#[inline(always)]
+fn interval_above_eps(
+    alpha: &Vector3<f64>,
+    beta: [f64; 3],
+    lo: f64,
+    hi: f64,
+) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (lo, hi);
+    for i in 0..3 {
+        let (a, b) = (alpha[i], beta[i]);
+        if b > 0.0 {
+            lo = lo.max((EPS - a) / b);
+        } else if b < 0.0 {
+            hi = hi.min((EPS - a) / b);
+        } else if a <= EPS {
+            return None;
+        }
+    }
+    (lo < hi).then_some((lo, hi))
 }
 
 /// How far, relative to the sizes involved, rounding can carry the
@@ -414,18 +428,7 @@ mod tests {
     ) -> Option<(f64, f64)> {
         let alpha = lw.lambda(&wrench(q0, f));
         let beta = lw.neg_inv * Vector3::new(0.0, 0.0, cross(dq, f));
-        let (mut lo, mut hi) = (lo, hi);
-        for i in 0..3 {
-            let (a, b) = (alpha[i], beta[i]);
-            if b > 0.0 {
-                lo = lo.max((EPS - a) / b);
-            } else if b < 0.0 {
-                hi = hi.min((EPS - a) / b);
-            } else if a <= EPS {
-                return None;
-            }
-        }
-        (lo < hi).then_some((lo, hi))
+        interval_above_eps(&alpha, [beta[0], beta[1], beta[2]], lo, hi)
     }
 
     /// The interval is the whole product's bit for bit: random locators
