@@ -2,18 +2,17 @@
 //! distance between the two pieces, the largest at a pair of end points
 //! (the code of polygons, unchanged).
 
-use crate::geometry::segment_segment_dist2;
-use crate::segments::segment::Segment;
+use crate::geometry::{segment_segment_dist2, V2};
 
-/// Smallest and largest distance between a point of `a` and a point of
-/// `b`, both on lines.
-pub(super) fn distance_range(a: &Segment, b: &Segment) -> (f64, f64) {
-    let dmin = segment_segment_dist2(a.start(), a.end(), b.start(), b.end()).sqrt();
+/// Smallest and largest distance between a point of the piece `[start,
+/// end]` of `a` and a point of that of `b`, both on lines.
+pub(super) fn distance_range([a0, a1]: [V2; 2], [b0, b1]: [V2; 2]) -> (f64, f64) {
+    let dmin = segment_segment_dist2(a0, a1, b0, b1).sqrt();
     let dmax = [
-        (a.start() - b.start()).norm(),
-        (a.start() - b.end()).norm(),
-        (a.end() - b.start()).norm(),
-        (a.end() - b.end()).norm(),
+        (a0 - b0).norm(),
+        (a0 - b1).norm(),
+        (a1 - b0).norm(),
+        (a1 - b1).norm(),
     ]
     .into_iter()
     .fold(0.0, f64::max);

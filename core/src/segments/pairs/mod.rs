@@ -5,7 +5,11 @@
 //! The bound of a pair is computed by the code of its feature pair, chosen
 //! once in [`PairBounds::between`]: `line_line` (exact, from end points:
 //! the code of polygons), `line_arc` (exact) and `arc_arc` (sampled, with
-//! a Lipschitz slack). A new feature kind adds its pairs there.
+//! a Lipschitz slack). A new feature kind adds its pairs there. What a
+//! pair reads of each of its segments (end points, arc piece, the sampled
+//! points of an arc) is worked out once per segment ([`Sides`]), not once
+//! per pair: a small part with arcs spent most of its table in the sines
+//! and cosines of the same arc samples, recomputed for every other arc.
 
 mod arc_arc;
 mod farthest;
@@ -13,6 +17,8 @@ mod line_arc;
 mod line_line;
 
 use super::segment::{Feature, Segment};
+use crate::geometry::arc::CircArc;
+use crate::geometry::V2;
 use std::sync::{Arc, OnceLock};
 
 /// Distance range between the points of two segments: the annulus that
@@ -26,20 +32,54 @@ pub struct PairBounds {
 }
 
 impl PairBounds {
-    /// The distance range between the points of `a` and those of `b`: the
-    /// dispatcher of the bounds, by feature pair.
+    /// The distance range between the points of `a` and those of `b` (the
+    /// tests' pair by pair; the table reads each segment once).
+    #[cfg(test)]
     pub(crate) fn between(a: &Segment, b: &Segment) -> PairBounds {
-        let (dmin, dmax) = match (&a.feature, &b.feature) {
-            (Feature::Line(_), Feature::Line(_)) => line_line::distance_range(a, b),
-            (Feature::Arc(arc), Feature::Line(_)) => {
-                line_arc::distance_range(b, &a.piece_of_arc(arc))
+        Sides::of(a).bounds(&Sides::of(b))
+    }
+}
+
+/// What the bounds of a pair read of one of its segments, by the same
+/// calls as reading it pair by pair (so the same numbers, to the bit).
+#[derive(Debug, Clone)]
+pub(super) struct Sides {
+    /// [`Segment::start`].
+    start: V2,
+    /// [`Segment::end`].
+    end: V2,
+    /// The arc piece and its sampled points; `None` on a line.
+    arc: Option<(CircArc, Vec<V2>)>,
+}
+
+impl Sides {
+    /// The sides of `segment`.
+    fn of(segment: &Segment) -> Sides {
+        let arc = match &segment.feature {
+            Feature::Line(_) => None,
+            Feature::Arc(arc) => {
+                let piece = segment.piece_of_arc(arc);
+                let samples = arc_arc::samples(&piece);
+                Some((piece, samples))
             }
-            (Feature::Line(_), Feature::Arc(arc)) => {
-                line_arc::distance_range(a, &b.piece_of_arc(arc))
+        };
+        Sides {
+            start: segment.start(),
+            end: segment.end(),
+            arc,
+        }
+    }
+
+    /// The bounds of the pair (this segment, `other`): the dispatcher of
+    /// the bounds, by feature pair.
+    fn bounds(&self, other: &Sides) -> PairBounds {
+        let (dmin, dmax) = match (&self.arc, &other.arc) {
+            (None, None) => {
+                line_line::distance_range([self.start, self.end], [other.start, other.end])
             }
-            (Feature::Arc(p), Feature::Arc(q)) => {
-                arc_arc::distance_range(&a.piece_of_arc(p), &b.piece_of_arc(q))
-            }
+            (Some((arc, _)), None) => line_arc::distance_range([other.start, other.end], arc),
+            (None, Some((arc, _))) => line_arc::distance_range([self.start, self.end], arc),
+            (Some((p, samples)), Some((q, _))) => arc_arc::distance_range(p, samples, q),
         };
         PairBounds { dmin, dmax }
     }
@@ -64,10 +104,11 @@ impl PairTable {
 
 /// Distance ranges between every ordered pair of segments.
 fn pair_bounds(segments: &[Segment]) -> Vec<PairBounds> {
+    let sides: Vec<Sides> = segments.iter().map(Sides::of).collect();
     let mut pair = Vec::with_capacity(segments.len() * segments.len());
-    for a in segments {
-        for b in segments {
-            pair.push(PairBounds::between(a, b));
+    for a in &sides {
+        for b in &sides {
+            pair.push(a.bounds(b));
         }
     }
     pair
