@@ -353,14 +353,14 @@ impl ClampSearch<'_> {
     }
 
     /// The test of [`Self::angle_margin`] alone: the cosine `d . f` when
-    /// the angle passes. The cosine is read off `f` ([`axes::along`]): a
-    /// zero's sign aside it is the product, and a zero fails `c > eps`
-    /// either way.
+    /// the angle passes (`c > eps` and `c >= cos_max_angle - eps`, as the
+    /// one comparison of [`ClampWindow`]'s `pass`). The cosine is read off
+    /// `f` ([`axes::along`]): a zero's sign aside it is the product, and a
+    /// zero fails `c > eps` either way.
     #[inline(always)]
     fn angle_cos(&self, k: u8, f: V2) -> Option<f64> {
         let c = axes::along(k, f);
-        let limit = self.setting.cos_max_angle;
-        (c > EPS && c >= limit - EPS).then_some(c)
+        (c >= self.window.pass).then_some(c)
     }
 
     /// The decision margin of [`Self::angle_margin`] from the cosine that
