@@ -63,6 +63,22 @@ pub(crate) struct ClampWindow {
     reach: f64,
     reach_cos: f64,
     reach_sin: f64,
+    /// The angle test itself, `c > eps && c >= cos_max_angle - eps` for a
+    /// cosine `c`, as the one comparison `c >= pass` (see [`angle_pass`]).
+    pub(super) pass: f64,
+}
+
+/// The smallest cosine the angle test `c > eps && c >= limit` passes,
+/// so that the test is `c >= angle_pass(limit)` for every `c`: no `f64`
+/// lies strictly between `eps` and its successor, so `c > eps` is
+/// `c >= next_up(eps)`, and two lower bounds are their maximum. A NaN
+/// `limit` passes no `c`, nor does a NaN bound (`max` would drop it).
+pub(super) fn angle_pass(limit: f64) -> f64 {
+    if limit.is_nan() {
+        f64::NAN
+    } else {
+        limit.max(EPS.next_up())
+    }
 }
 
 impl ClampWindow {
@@ -84,6 +100,7 @@ impl ClampWindow {
             reach,
             reach_cos,
             reach_sin,
+            pass: angle_pass(limit),
         }
     }
 }
@@ -378,6 +395,67 @@ mod tests {
             s1: a.max(b),
             feature: Feature::Arc(arc),
         }
+    }
+
+    /// The one comparison `c >= angle_pass(limit)` decides as the angle
+    /// test `c > eps && c >= limit` for every cosine `c`, with `limit =
+    /// cos_max_angle - eps` for clamp angles up to a half turn and the
+    /// limits and cosines at the boundaries: `eps` and its neighbours,
+    /// each limit and its neighbours, zeros of both signs, infinities and
+    /// NaN.
+    #[test]
+    fn angle_pass_decides_as_the_angle_test() {
+        let mut rng = Xorshift::new(0x3c6e_f372_fe94_f82b);
+        let mut limits = vec![
+            EPS,
+            EPS.next_up(),
+            EPS.next_down(),
+            2.0 * EPS,
+            0.0,
+            -0.0,
+            -EPS,
+            1.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for degrees in [0.0, 45.0, 89.9999, 90.0, 135.0, 180.0] {
+            limits.push(f64::to_radians(degrees).cos() - EPS);
+        }
+        for _ in 0..2_000 {
+            let cos_max_angle = 1.5 * rng.signed_unit();
+            limits.push(cos_max_angle - EPS);
+        }
+        let (mut passed, mut failed) = (0u64, 0u64);
+        for &limit in &limits {
+            let pass = angle_pass(limit);
+            let mut cs = vec![
+                EPS,
+                EPS.next_up(),
+                EPS.next_down(),
+                limit,
+                limit.next_up(),
+                limit.next_down(),
+                0.0,
+                -0.0,
+                1.0,
+                -1.0,
+                f64::NAN,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ];
+            cs.extend((0..200).map(|_| rng.signed_unit()));
+            for c in cs {
+                let want = c > EPS && c >= limit;
+                assert_eq!(c >= pass, want, "c {c:e} limit {limit:e}");
+                passed += u64::from(want);
+                failed += u64::from(!want);
+            }
+        }
+        // The window's own `pass` is this one.
+        let window = ClampWindow::new(0.5);
+        assert_eq!(window.pass.to_bits(), angle_pass(0.5 - EPS).to_bits());
+        assert!(passed > 100_000 && failed > 100_000, "{passed} {failed}");
     }
 
     /// [`PosedPiece::offsets`] as first written, with the vectors `n` and

@@ -86,13 +86,14 @@ impl ClampSearch<'_> {
     /// The rotations `k` (bit `k`) whose push direction passes SPEC 4 (c)'s
     /// angle test against the normal `f`, [`ClampSearch::angle_margin`]'s
     /// test for the four at once: its cosines are `f`'s coordinates and
-    /// their negations. Only `only` if given (re-deriving one fixture).
+    /// their negations, each tested by one comparison (`ClampWindow`'s
+    /// `pass`). Only `only` if given (re-deriving one fixture).
     #[inline(always)]
     pub(super) fn angle_passes(&self, f: V2, only: Option<u8>) -> u8 {
-        let limit = self.setting.cos_max_angle - EPS;
+        let pass = self.window.pass;
         let mut passing = 0;
         for (k, c) in [f.x, f.y, -f.x, -f.y].into_iter().enumerate() {
-            passing |= u8::from(c > EPS && c >= limit) << k;
+            passing |= u8::from(c >= pass) << k;
         }
         match only {
             Some(k) if k < 4 => passing & 1 << k,

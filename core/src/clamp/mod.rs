@@ -136,11 +136,11 @@ struct SetupContext<'a> {
     base_margin: f64,
     /// Only this clamp rotation (re-deriving one fixture).
     only_rotation: Option<u8>,
-    /// The locator contacts in the part frame, as the metric takes them.
-    part_locators: [PartContact; 3],
-    /// What the metric works out from the locators alone, shared by the
-    /// locator floor and every candidate's score: worked out at the
-    /// first candidate, as `count_only`.
+    /// What the metric works out from the locators alone (their contacts
+    /// in the part frame), shared by the locator floor and every
+    /// candidate's score: worked out at the first candidate, as
+    /// `count_only`, contacts included, so that a setup without
+    /// candidates never poses them back into the part frame.
     metric_locators: std::cell::OnceCell<Locators>,
     /// Top-k mode, and the locators alone score above the k-th fixture:
     /// candidates are only counted. Worked out at the setup's first
@@ -163,7 +163,7 @@ impl SetupContext<'_> {
     /// See `metric_locators`.
     fn metric_locators(&self, search: &ClampSearch) -> &Locators {
         self.metric_locators
-            .get_or_init(|| search.metric.locators(&self.part_locators))
+            .get_or_init(|| search.metric.locators(&search.part_locators(self.setup)))
     }
 }
 
@@ -265,7 +265,6 @@ impl ClampSearch<'_> {
         let Some(lw) = LocatorWrenches::new(ws) else {
             return;
         };
-        let part_locators = self.part_locators(setup);
         let cone = if self.reaches.is_empty() {
             ForceCone::open()
         } else {
@@ -280,7 +279,6 @@ impl ClampSearch<'_> {
             t1: pose.t.x.abs() + pose.t.y.abs(),
             base_margin: setup.margin.min(lw.det.abs() - EPS),
             only_rotation: only.map(|o| o.1),
-            part_locators,
             metric_locators: std::cell::OnceCell::new(),
             count_only: std::cell::Cell::new(None),
         };
@@ -353,14 +351,14 @@ impl ClampSearch<'_> {
     }
 
     /// The test of [`Self::angle_margin`] alone: the cosine `d . f` when
-    /// the angle passes. The cosine is read off `f` ([`axes::along`]): a
-    /// zero's sign aside it is the product, and a zero fails `c > eps`
-    /// either way.
+    /// the angle passes (`c > eps` and `c >= cos_max_angle - eps`, as the
+    /// one comparison of [`ClampWindow`]'s `pass`). The cosine is read off
+    /// `f` ([`axes::along`]): a zero's sign aside it is the product, and a
+    /// zero fails `c > eps` either way.
     #[inline(always)]
     fn angle_cos(&self, k: u8, f: V2) -> Option<f64> {
         let c = axes::along(k, f);
-        let limit = self.setting.cos_max_angle;
-        (c > EPS && c >= limit - EPS).then_some(c)
+        (c >= self.window.pass).then_some(c)
     }
 
     /// The decision margin of [`Self::angle_margin`] from the cosine that
