@@ -296,7 +296,7 @@ impl Directions {
                 rest = rest.max(length * whole);
                 continue;
             }
-            if !(length > 0.0) {
+            if length.is_nan() || length <= 0.0 {
                 return None;
             }
             let cell = self.cell(v)?;
