@@ -151,18 +151,37 @@ fn forces(solve: &Solve, b: &Block) -> [f64; LANES] {
     let mu = [solve.mu[0], solve.mu[1], solve.mu[2], 1.0];
     let mut out = [0.0; LANES];
     for j in 0..LANES {
-        let l0 = [-y[0][j], -y[1][j], -y[2][j], 0.0];
-        let mut s = f64::NEG_INFINITY;
-        for i in 0..4 {
-            s = fmax(s, -l0[i] / mu[i]);
-        }
-        let mut worst = 0.0f64;
-        for i in 0..4 {
-            worst = fmax(worst, l0[i] + s * mu[i]);
-        }
-        out[j] = worst;
+        out[j] = force_of_solved([y[0][j], y[1][j], y[2][j]], &mu);
     }
     out
+}
+
+/// One wrench's largest contact force, as its lane of [`forces`]
+/// computes it (the same operations in the same order: the same bits):
+/// for the few wrenches the cells of directions pick
+/// ([`super::directions::Directions::largest_force`]).
+#[inline(always)]
+pub(crate) fn force(solve: &Solve, p: [f64; 3]) -> f64 {
+    let r = &solve.rows;
+    let y = std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2]);
+    force_of_solved(y, &[solve.mu[0], solve.mu[1], solve.mu[2], 1.0])
+}
+
+/// The force of one lane from its `y = W^-1 p` ([`solved`]) and `mu`
+/// with its fourth entry 1: the smallest non-negative point of the ray
+/// `lambda0 + s mu`, `lambda0 = (-y, 0)`.
+#[inline(always)]
+fn force_of_solved(y: [f64; 3], mu: &[f64; 4]) -> f64 {
+    let l0 = [-y[0], -y[1], -y[2], 0.0];
+    let mut s = f64::NEG_INFINITY;
+    for i in 0..4 {
+        s = fmax(s, -l0[i] / mu[i]);
+    }
+    let mut worst = 0.0f64;
+    for i in 0..4 {
+        worst = fmax(worst, l0[i] + s * mu[i]);
+    }
+    worst
 }
 
 /// The largest force over `blocks`, taken from block `*start` on
@@ -337,6 +356,24 @@ mod tests {
                     assert_eq!(a, b);
                 }
             }
+        }
+    }
+
+    /// One wrench's [`force`] is its lane's, bit for bit: the loop over
+    /// a block of that wrench alone (padded with copies) gives it.
+    #[test]
+    fn one_wrench_force_is_its_lanes() {
+        let mut rng = crate::test_rng::Xorshift::new(0x01e_f0ce);
+        let mut rnd = || rng.signed_unit();
+        for _ in 0..2_000 {
+            let scale = 10f64.powf(3.0 * rnd());
+            let solve = Solve {
+                rows: std::array::from_fn(|_| [scale * rnd(), scale * rnd(), rnd()]),
+                mu: [rnd().abs(), 0.01 * rnd().abs(), rnd().abs()],
+            };
+            let p = [rnd(), rnd(), 2.0 * rnd()];
+            let lane = largest_portable(&solve, &blocks(&[p]), f64::INFINITY, &mut 0);
+            assert_eq!(force(&solve, p).to_bits(), lane.to_bits());
         }
     }
 

@@ -136,8 +136,8 @@ pub struct AppliedWrenches {
     max_norm: f64,
     /// The wrenches, for [`Self::directions`].
     coords: Vec<[f64; 3]>,
-    /// The cells of directions the locator floor asks first, built at
-    /// its first question (a run in full-counts mode never asks).
+    /// The cells of directions the locator floor and the score ask
+    /// first, made at the first question.
     directions: OnceLock<Option<Directions>>,
 }
 
@@ -358,7 +358,10 @@ fn rows_of(inv: &Matrix3<f64>) -> [[f64; 3]; 3] {
 /// block `*start` on, wrapping around, and `*start` is left at the one
 /// that stopped the search: the wrench that breaks one fixture tends to
 /// break its neighbours. A maximum does not depend on the order its terms
-/// are taken in, so the score is the same bits whatever `start`.
+/// are taken in, so the score is the same bits whatever `start`. Most
+/// scores without a bound (full counts) are told by the few wrenches the
+/// cells of directions pick ([`Directions::largest_force`]), which leave
+/// `start` as it is.
 fn max_force_bounded(
     inv: &Matrix3<f64>,
     w4: &Vector3<f64>,
@@ -376,7 +379,15 @@ fn max_force_bounded(
         rows: rows_of(inv),
         mu,
     };
-    Some(lanes::largest_force(&solve, &applied.blocks, bound, start))
+    // With a bound, the blocks mostly stop at the first one (`start`).
+    let told = (bound == f64::INFINITY)
+        .then(|| {
+            applied
+                .directions()?
+                .largest_force(&solve, applied.max_norm)
+        })
+        .flatten();
+    Some(told.unwrap_or_else(|| lanes::largest_force(&solve, &applied.blocks, bound, start)))
 }
 
 /// Whether a floor on the max-force score over every fourth wrench, from
