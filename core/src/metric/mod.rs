@@ -414,6 +414,30 @@ fn max_force_floor_exceeds(
     bound: f64,
     start: &mut usize,
 ) -> bool {
+    floor_exceeds_asking(inv, applied, bound, start, AppliedWrenches::directions)
+}
+
+/// The floor test through the blocks of every applied wrench alone, as it
+/// was before [`Directions`]: the reference the cells must match.
+#[cfg(test)]
+fn max_force_floor_blocks(
+    inv: Option<&Matrix3<f64>>,
+    applied: &AppliedWrenches,
+    bound: f64,
+    start: &mut usize,
+) -> bool {
+    floor_exceeds_asking(inv, applied, bound, start, |_| None)
+}
+
+/// [`max_force_floor_exceeds`], asking `cells` for the cells of
+/// directions (none: the blocks decide every row the norms leave open).
+fn floor_exceeds_asking<'a>(
+    inv: Option<&Matrix3<f64>>,
+    applied: &'a AppliedWrenches,
+    bound: f64,
+    start: &mut usize,
+    cells: impl FnOnce(&'a AppliedWrenches) -> Option<&'a Directions>,
+) -> bool {
     let Some(inv) = inv else {
         return true;
     };
@@ -427,7 +451,7 @@ fn max_force_floor_exceeds(
     if (0..3).all(weak) {
         return false;
     }
-    if let Some(directions) = applied.directions() {
+    if let Some(directions) = cells(applied) {
         let mut told = true;
         for i in (0..3).filter(|&i| !weak(i)) {
             if !norms[i].is_finite() {
@@ -445,29 +469,6 @@ fn max_force_floor_exceeds(
         }
     }
     lanes::floor_exceeds(&rows, &norms, &applied.blocks, bound, start)
-}
-
-/// The floor test through the blocks of every applied wrench, as it was
-/// before [`Directions`]: the reference the new path must match.
-#[cfg(test)]
-fn max_force_floor_blocks(
-    inv: Option<&Matrix3<f64>>,
-    applied: &AppliedWrenches,
-    bound: f64,
-    start: &mut usize,
-) -> bool {
-    let Some(inv) = inv else {
-        return true;
-    };
-    if 0.0 > bound {
-        return true;
-    }
-    let norms: [f64; 3] = std::array::from_fn(|i| inv.row(i).norm());
-    let rows = norms.into_iter().fold(0.0, f64::max);
-    if rows * applied.max_norm * (1.0 + 1e-12) <= bound {
-        return false;
-    }
-    lanes::floor_exceeds(&rows_of(inv), &norms, &applied.blocks, bound, start)
 }
 
 #[cfg(test)]
